@@ -1,0 +1,228 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The asymmetric program of AEDC-TR-78-10 (Table 2, Appendix A): a body with
+// a plane of mirror symmetry (x-z), in body axes, with a product of inertia
+// I_zx (parameter 60, fittable). State
+//
+//   x = (phi, theta, psi, p, q, r)   [rad, rad/s]
+//
+// with 3-2-1 Euler angles and body rates. The moment expansion is Eq. 14 as
+// the listing's MBAR writes it (parameters 1-57), plus the tunnel-fixed
+// terms of Eq. 41 (61-64).
+//
+// Sign convention of the product of inertia (Eq. 2 and the listing's FCT):
+// h_x = I_x p - I_zx r, h_z = I_z r - I_zx p. Check Case II of the report
+// (I_zx = -100) reproduces only with this sign.
+
+#ifndef FIT3DOF_ASYMMETRIC_DYNAMICS_H_
+#define FIT3DOF_ASYMMETRIC_DYNAMICS_H_
+
+#include <cmath>
+
+#include "fit3dof/coefficients.h"
+#include "fit3dof/parameters.h"
+
+namespace fit3dof {
+
+enum AsymmetricState {
+  kAsymPhi = 0,
+  kAsymTheta = 1,
+  kAsymPsi = 2,
+  kAsymP = 3,
+  kAsymQ = 4,
+  kAsymR = 5,
+};
+
+struct AsymmetricConstants {
+  double Ix = 0.0;
+  double Iy = 0.0;
+  double Iz = 0.0;
+  Incidence incidence = Incidence::kVelocityRatio;
+};
+
+// Moments divided by the inertia of their axis, body axes:
+// mx = M_x/I_x, my = M_y/I_y, mz = M_z/I_z (the listing's MXOI, MYOI, MZOI).
+template <typename T>
+void AsymmetricMoments(const CoefficientView<T>& k,
+                       const AsymmetricConstants& constants,
+                       const T* x,
+                       T* mx,
+                       T* my,
+                       T* mz) {
+  using std::abs;
+  using std::atan;
+  using std::cos;
+  using std::sin;
+  const T& phi = x[kAsymPhi];
+  const T& theta = x[kAsymTheta];
+  const T& psi = x[kAsymPsi];
+  const T& p = x[kAsymP];
+  const T& q = x[kAsymQ];
+  const T& r = x[kAsymR];
+  const T sf = sin(phi);
+  const T cf = cos(phi);
+  const T st = sin(theta);
+  const T ct = cos(theta);
+  const T sp = sin(psi);
+  const T cp = cos(psi);
+
+  // Eq. A-4 (TEMP): the free-stream direction in body axes.
+  T a = sp * sf + cp * st * cf;
+  T b = -sp * cf + cp * st * sf;
+  if (constants.incidence == Incidence::kAngleOfAttack) {
+    const T gamma = cp * ct;
+    a = atan(a / gamma);
+    b = atan(b / gamma);
+  }
+  const T a2 = a * a;
+  const T b2 = b * b;
+  const T aa = abs(a);
+  const T ab = abs(b);
+  const T aab = abs(a * b);
+
+  // Rolling moment.
+  T roll(0.0);
+  if (k.on(47)) roll += k(47);
+  if (k.on(48)) roll += k(48) * a;
+  if (k.on(49)) roll += k(49) * b;
+  if (k.on(50)) roll += k(50) * (a * b);
+  if (k.on(51)) roll += k(51) * (aa * b);
+  if (k.on(52)) roll += k(52) * (b * ab);
+  T roll_damping(0.0);
+  if (k.on(53)) roll_damping += k(53);
+  if (k.on(54)) roll_damping += k(54) * aa;
+  if (k.on(55)) roll_damping += k(55) * ab;
+  if (k.on(56)) roll_damping += k(56) * a2;
+  if (k.on(57)) roll_damping += k(57) * b2;
+  *mx = roll + p * roll_damping;
+
+  // Pitching moment.
+  T pitch(0.0);
+  if (k.on(1)) pitch += k(1);
+  if (k.on(2)) pitch += k(2) * a;
+  if (k.on(3)) pitch += k(3) * aa;
+  if (k.on(4)) pitch += k(4) * a2;
+  if (k.on(5)) pitch += k(5) * (a * aa);
+  if (k.on(6)) pitch += k(6) * (a * a2);
+  if (k.on(7)) pitch += k(7) * (aa * a2);
+  if (k.on(8)) pitch += k(8) * ab;
+  if (k.on(9)) pitch += k(9) * b2;
+  if (k.on(10)) pitch += k(10) * (ab * b2);
+  if (k.on(11)) pitch += k(11) * (a * ab);
+  if (k.on(12)) pitch += k(12) * aab;
+  if (k.on(13)) pitch += k(13) * (ab * a2);
+  if (k.on(14)) pitch += k(14) * (a * aab);
+  if (k.on(15)) pitch += k(15) * (a * b2);
+  if (k.on(16)) pitch += k(16) * (aa * b2);
+  T pitch_damping(0.0);
+  if (k.on(17)) pitch_damping += k(17);
+  if (k.on(18)) pitch_damping += k(18) * a;
+  if (k.on(19)) pitch_damping += k(19) * aa;
+  if (k.on(20)) pitch_damping += k(20) * a2;
+  if (k.on(21)) pitch_damping += k(21) * (a * aa);
+  if (k.on(22)) pitch_damping += k(22) * ab;
+  if (k.on(23)) pitch_damping += k(23) * b2;
+  if (k.on(24)) pitch_damping += k(24) * (a * ab);
+  if (k.on(25)) pitch_damping += k(25) * aab;
+  *my = pitch + q * pitch_damping;
+  if (k.on(26)) *my += k(26) * r * b;
+  if (k.on(27)) *my += k(27) * p * b;
+
+  // Yawing moment.
+  T yaw(0.0);
+  if (k.on(28)) yaw += k(28);
+  if (k.on(29)) yaw += k(29) * b;
+  if (k.on(30)) yaw += k(30) * (a * b);
+  if (k.on(31)) yaw += k(31) * (b * aa);
+  if (k.on(32)) yaw += k(32) * (b * b2);
+  if (k.on(33)) yaw += k(33) * (b * a2);
+  if (k.on(34)) yaw += k(34) * (b * ab);
+  if (k.on(35)) yaw += k(35) * (b * aab);
+  T yaw_damping(0.0);
+  if (k.on(36)) yaw_damping += k(36);
+  if (k.on(37)) yaw_damping += k(37) * a;
+  if (k.on(38)) yaw_damping += k(38) * aa;
+  if (k.on(39)) yaw_damping += k(39) * a2;
+  if (k.on(40)) yaw_damping += k(40) * ab;
+  if (k.on(41)) yaw_damping += k(41) * b2;
+  if (k.on(42)) yaw_damping += k(42) * (a * aa);
+  if (k.on(43)) yaw_damping += k(43) * (a * ab);
+  if (k.on(44)) yaw_damping += k(44) * aab;
+  *mz = yaw + r * yaw_damping;
+  if (k.on(45)) *mz += k(45) * q * b;
+  if (k.on(46)) *mz += k(46) * p * a;
+
+  // Tunnel-fixed stiffness and damping, Eqs. 39 and 41. myt is M_yT / I_y
+  // and mzt is M_zT / I_z; the ratios of inertias move them to the axis
+  // they act on (the listing's RX1/RY1 and friends).
+  const bool pitch_tunnel = k.on(62) || k.on(63);
+  const bool yaw_tunnel = k.on(61) || k.on(64);
+  if (pitch_tunnel || yaw_tunnel) {
+    T myt(0.0), mzt(0.0);
+    if (k.on(63)) myt += k(63) * theta;
+    if (k.on(62)) myt += k(62) * (q * cf - r * sf);  // thetadot
+    if (k.on(64)) mzt += k(64) * psi;
+    if (k.on(61)) mzt += k(61) * ((r * cf + q * sf) / ct);  // psidot
+    const double iy_ix = constants.Iy / constants.Ix;
+    const double iz_ix = constants.Iz / constants.Ix;
+    const double iz_iy = constants.Iz / constants.Iy;
+    const double iy_iz = constants.Iy / constants.Iz;
+    *mx += myt * sp * ct * iy_ix - mzt * st * iz_ix;
+    *my += myt * cp * cf + (myt * sp * st + mzt * ct * iz_iy) * sf;
+    *mz += -myt * cp * sf * iy_iz + (myt * sp * st * iy_iz + mzt * ct) * cf;
+  }
+}
+
+// Appendix A (the listing's FCT): 3-2-1 kinematics and Euler's equations
+// with the product of inertia I_zx = k(60) (slug ft^2, not scaled).
+template <typename T>
+void AsymmetricDerivative(const CoefficientView<T>& k,
+                          const AsymmetricConstants& constants,
+                          const T* x,
+                          T* dx) {
+  using std::cos;
+  using std::sin;
+  T mx, my, mz;
+  AsymmetricMoments(k, constants, x, &mx, &my, &mz);
+  const T& phi = x[kAsymPhi];
+  const T& theta = x[kAsymTheta];
+  const T& p = x[kAsymP];
+  const T& q = x[kAsymQ];
+  const T& r = x[kAsymR];
+  const T sf = sin(phi);
+  const T cf = cos(phi);
+  const T st = sin(theta);
+  const T ct = cos(theta);
+
+  dx[kAsymPhi] = p + (st / ct) * (q * sf + r * cf);
+  dx[kAsymTheta] = q * cf - r * sf;
+  dx[kAsymPsi] = (r * cf + q * sf) / ct;
+
+  // Ix' = (I_z - I_y)/I_x etc.; J = I_zx / I. With h_x = I_x p - I_zx r and
+  // h_z = I_z r - I_zx p, solving the x and z equations of
+  // dh/dt + omega x h = M for pdot and rdot gives the listing's form.
+  const double ixp = (constants.Iz - constants.Iy) / constants.Ix;
+  const double iyp = (constants.Ix - constants.Iz) / constants.Iy;
+  const double izp = (constants.Iy - constants.Ix) / constants.Iz;
+  if (k.on(60)) {
+    const T jx = k(60) / constants.Ix;
+    const T jy = k(60) / constants.Iy;
+    const T jz = k(60) / constants.Iz;
+    const T rj = 1.0 - jx * jz;
+    dx[kAsymP] =
+        (mx + mz * jx - q * r * (jz * jx + ixp) + p * q * (1.0 - izp) * jx) /
+        rj;
+    dx[kAsymQ] = my - (p * p - r * r) * jy - r * p * iyp;
+    dx[kAsymR] =
+        (mz + mx * jz - p * q * (izp - jx * jz) - q * r * (1.0 + ixp) * jz) /
+        rj;
+  } else {
+    dx[kAsymP] = mx - q * r * ixp;
+    dx[kAsymQ] = my - r * p * iyp;
+    dx[kAsymR] = mz - p * q * izp;
+  }
+}
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_ASYMMETRIC_DYNAMICS_H_

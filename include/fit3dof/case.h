@@ -1,0 +1,107 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// A Case is everything one run needs, already validated: the model and its
+// constants, the parameter table (value and free/frozen, the report's
+// AACON and NCON), the data segments, the residual weights, noise, solver
+// and simulation options. Loading a YAML config (config.h) or a NAMELIST
+// deck produces a Case; nothing downstream reads YAML.
+
+#ifndef FIT3DOF_CASE_H_
+#define FIT3DOF_CASE_H_
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fit3dof/body.h"
+#include "fit3dof/motion_model.h"
+#include "fit3dof/parameters.h"
+
+namespace fit3dof {
+
+struct ParameterSetting {
+  double value = 0.0;
+  bool free = false;  // the report's NCON(i) = 1
+};
+
+// Per-channel numbers: sigma weights, noise levels, biases (degrees).
+struct ChannelValues {
+  double phi = 0.0;
+  double theta = 0.0;
+  double psi = 0.0;
+};
+
+// The report's PART: which samples of a record are used.
+struct DataSelection {
+  int start = 1;          // NSTART, 1-based first sample
+  double fraction = 1.0;  // SAMPLE, fraction of the record after start
+  int every = 1;          // NDELTA, use every n-th sample
+  // Optional time window (s), applied before start/fraction/every.
+  double t_start = -1e300;
+  double t_end = 1e300;
+};
+
+enum class InitialConditionMode {
+  kFromData,  // INLCON = 0: estimated from the data
+  kGiven,     // INLCON != 0: as written in the parameters
+};
+
+// One data block: its own record and its own six initial-condition
+// parameters; the aerodynamic and tunnel parameters are shared.
+struct Segment {
+  std::string name;
+  std::string data_file;  // resolved against the config's directory
+  DataSelection selection;
+  InitialConditionMode initial_conditions = InitialConditionMode::kFromData;
+  // The segment's initial-condition parameters, in the model's order
+  // (Layout(model).first_initial + j).
+  std::array<ParameterSetting, 6> initial;
+};
+
+struct NoiseOptions {
+  bool enabled = false;  // NSESWH = 1
+  ChannelValues sigma;   // SPHI, STHTA, SPSI
+  ChannelValues bias;    // AMPHI, AMTHTA, AMPSI
+  std::uint64_t seed = 1;
+};
+
+struct SolverOptions {
+  int max_iterations = 50;  // NITER
+  double tolerance = 1e-6;  // BOUND, on the change of the probable error
+  double step = 0.001;      // DTMIN, s
+};
+
+struct SimulateOptions {
+  double dt = 0.0;        // DTGEN, s
+  double duration = 0.0;  // s; or give samples
+  int samples = 0;        // number of samples including t = 0
+
+  // Number of samples the options describe.
+  int NumSamples() const;
+};
+
+struct Case {
+  std::string name;
+  std::string source;  // the file it came from, for messages
+  ModelKind model = ModelKind::kSymmetric;
+  Incidence incidence = Incidence::kVelocityRatio;
+  Body body;
+  Flow flow;
+  // One entry per parameter of ParameterTable(model). The initial-condition
+  // entries are the defaults that segments start from.
+  std::vector<ParameterSetting> parameters;
+  std::vector<Segment> segments;
+  ChannelValues sigma{1.0, 1.0, 1.0};
+  NoiseOptions noise;
+  SolverOptions solver;
+  SimulateOptions simulate;
+
+  ModelSpec Spec() const;
+  std::vector<double> Values() const;
+  std::vector<bool> FreeFlags() const;
+};
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_CASE_H_

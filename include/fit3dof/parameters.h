@@ -1,0 +1,95 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The parameter lists of the two programs of AEDC-TR-78-10: Table 4b (the
+// symmetric program, 30 parameters, aeroballistic axes) and Table 4c (the
+// asymmetric program, 72 parameters, body axes). Configs, reports and tests
+// name parameters by these names (see shared/design/parameters.md); the
+// 1-based report index is what a legacy NAMELIST deck (AACON, NCON) uses.
+//
+// Every parameter is given and reported in the report's units (degrees,
+// deg/s, derivatives per radian). Inside the equations of motion the
+// coefficients are scaled the way the listings' REG subroutine does it; the
+// Scaling of each parameter says how (see scaling.h).
+
+#ifndef FIT3DOF_PARAMETERS_H_
+#define FIT3DOF_PARAMETERS_H_
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fit3dof {
+
+// Upper bound on the number of parameters of any model; sizes fixed arrays.
+inline constexpr int kMaxParameters = 72;
+
+enum class ModelKind {
+  kSymmetric,   // axial symmetry, aeroballistic axes (Table 1, Eq. 6)
+  kAsymmetric,  // mirror symmetry in x-z, body axes (Table 2, Appendix A)
+};
+
+// The report's IANGLE switch.
+enum class Incidence {
+  kVelocityRatio,  // IANGLE = 0: alpha = w/U, beta = v/U (Tobak, Eq. 33)
+  kAngleOfAttack,  // IANGLE != 0: alpha = atan(w/u), beta = atan(v/u) (Eq. 34)
+};
+
+// How a parameter goes from the report's units to the listing's internal
+// units (REG). "Pitch" uses q S d / I_y, "yaw" q S d / I_z, "roll"
+// q S d / I_x; "rate" adds the factor d / (2 U).
+enum class Scaling {
+  kPitchStatic,
+  kPitchRate,
+  kYawStatic,
+  kYawRate,
+  kRollStatic,
+  kRollRate,
+  kAngle,      // degrees -> radians
+  kAngleRate,  // deg/s -> rad/s
+  kInertia,    // slug ft^2, used as is (the product of inertia I_zx)
+  kUnused,     // spare slots of the report's lists
+};
+
+struct ParameterInfo {
+  int index;          // 1-based index in Table 4b / 4c
+  std::string name;   // the name configs and reports use
+  std::string alias;  // optional second name (t1..t4), may be empty
+  std::string units;
+  Scaling scaling;
+  std::string description;
+};
+
+const char* ModelName(ModelKind model);          // "symmetric" | "asymmetric"
+const char* IncidenceName(Incidence incidence);  // "velocity_ratio" | ...
+
+// The parameter list of a model, ordered by report index (entry i has
+// index i + 1).
+const std::vector<ParameterInfo>& ParameterTable(ModelKind model);
+
+inline int NumParameters(ModelKind model) {
+  return static_cast<int>(ParameterTable(model).size());
+}
+
+// Returns the 0-based position of the parameter called `name` (or its alias)
+// in ParameterTable(model), or -1.
+int FindParameter(ModelKind model, std::string_view name);
+
+// The closest parameter name to `name`, for "did you mean" messages; empty
+// when nothing is close.
+std::string SuggestParameter(ModelKind model, std::string_view name);
+
+// 0-based positions of the special parameters of each model.
+struct ParameterLayout {
+  int theta_offset;        // theta_T (flow angularity / zero offset), degrees
+  int psi_offset;          // psi_T
+  int first_initial;       // first of the six initial-condition parameters
+  int product_of_inertia;  // I_zx, or -1 for the symmetric model
+};
+const ParameterLayout& Layout(ModelKind model);
+
+// True for the six initial-condition parameters of the model.
+bool IsInitialCondition(ModelKind model, int position);
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_PARAMETERS_H_

@@ -1,0 +1,123 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Classical fourth-order Runge-Kutta with a fixed step, the report's DRKGS,
+// and the sample loop of its INTGRL: between two samples the interval is cut
+// into the fewest equal substeps that do not exceed `max_step`.
+//
+// Templated on the scalar (double or ceres::Jet) and on the right-hand side,
+// a callable `f(const T* x, T* dx)` of an autonomous system: the 3DOF
+// equations do not depend on time explicitly.
+//
+// Example Usage:
+//
+//   auto rhs = [&](const double* x, double* dx) { ... };
+//   std::array<double, 6> x = x0;
+//   IntegrationFailure failure;
+//   bool ok = IntegrateSamples<double, 6>(rhs, times, n, 0.001, guard,
+//       x.data(), [&](int i, const double* x) { store(i, x); }, &failure);
+
+#ifndef FIT3DOF_RUNGE_KUTTA_H_
+#define FIT3DOF_RUNGE_KUTTA_H_
+
+#include <cmath>
+#include <string>
+
+#include "ceres/jet.h"
+
+namespace fit3dof {
+
+// One RK4 step of size h, in place.
+template <typename T, int kDim, typename Rhs>
+void RungeKutta4Step(const Rhs& f, double h, T* x) {
+  T k1[kDim], k2[kDim], k3[kDim], k4[kDim], y[kDim];
+  f(x, k1);
+  for (int i = 0; i < kDim; ++i) y[i] = x[i] + (0.5 * h) * k1[i];
+  f(y, k2);
+  for (int i = 0; i < kDim; ++i) y[i] = x[i] + (0.5 * h) * k2[i];
+  f(y, k3);
+  for (int i = 0; i < kDim; ++i) y[i] = x[i] + h * k3[i];
+  f(y, k4);
+  for (int i = 0; i < kDim; ++i) {
+    x[i] += (h / 6.0) * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+  }
+}
+
+// Number of equal substeps for an interval so that none exceeds max_step.
+inline int NumSubsteps(double interval, double max_step) {
+  const int n = static_cast<int>(std::ceil(interval / max_step - 1e-9));
+  return n < 1 ? 1 : n;
+}
+
+// Why an integration stopped early.
+struct IntegrationFailure {
+  double time = 0.0;
+  std::string reason;
+};
+
+inline double ScalarPart(double x) { return x; }
+template <typename U, int N>
+double ScalarPart(const ceres::Jet<U, N>& x) {
+  return x.a;
+}
+
+// Guards the integration: the state must stay finite and |theta| below
+// `max_abs_theta` radians, where the Euler-angle equations (1/cos(theta))
+// are still well away from their singularity at 90 deg.
+struct StateGuard {
+  int theta_index = 2;
+  double max_abs_theta = 85.0 * M_PI / 180.0;
+};
+
+// Integrates from times[0] (x holds the state there) through times[n-1],
+// calling observe(i, x) at every sample, the first included. Returns false
+// and fills `failure` if the guard trips.
+template <typename T, int kDim, typename Rhs, typename Observe>
+bool IntegrateSamples(const Rhs& f,
+                      const double* times,
+                      int n,
+                      double max_step,
+                      const StateGuard& guard,
+                      T* x,
+                      const Observe& observe,
+                      IntegrationFailure* failure) {
+  auto check = [&](double t) {
+    for (int j = 0; j < kDim; ++j) {
+      if (!std::isfinite(ScalarPart(x[j]))) {
+        if (failure != nullptr) {
+          failure->time = t;
+          failure->reason = "the motion became infinite or NaN";
+        }
+        return false;
+      }
+    }
+    if (std::abs(ScalarPart(x[guard.theta_index])) > guard.max_abs_theta) {
+      if (failure != nullptr) {
+        failure->time = t;
+        failure->reason =
+            "theta reached " +
+            std::to_string(ScalarPart(x[guard.theta_index]) * 180.0 / M_PI) +
+            " deg; the Euler-angle equations are singular at 90 deg";
+      }
+      return false;
+    }
+    return true;
+  };
+  if (n <= 0) return true;
+  if (!check(times[0])) return false;
+  observe(0, static_cast<const T*>(x));
+  for (int i = 1; i < n; ++i) {
+    const double interval = times[i] - times[i - 1];
+    const int substeps = NumSubsteps(interval, max_step);
+    const double h = interval / substeps;
+    for (int s = 0; s < substeps; ++s) {
+      RungeKutta4Step<T, kDim>(f, h, x);
+    }
+    if (!check(times[i])) return false;
+    observe(i, static_cast<const T*>(x));
+  }
+  return true;
+}
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_RUNGE_KUTTA_H_

@@ -1,0 +1,191 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The symmetric program of AEDC-TR-78-10 (Table 1): an axially symmetric
+// body (I_y = I_z = I) in aeroballistic axes. State
+//
+//   x = (phi, phidot, theta, thetadot, psi, psidot)   [rad, rad/s]
+//
+// with the Euler angles psi (about Z), theta (about the new y) and phi (about
+// x). The moments are those of the listing's MBAR with the alpha-dot and
+// beta-dot terms that TEMP zeroes restored only through the optional
+// Cm_alphadot (parameter 15), and the tunnel-fixed terms of Eqs. 39-40.
+//
+// Everything is templated on the scalar so that ceres::Jet flows through
+// unchanged; the simulator (double) and the fitter (Jet) share these
+// definitions.
+
+#ifndef FIT3DOF_SYMMETRIC_DYNAMICS_H_
+#define FIT3DOF_SYMMETRIC_DYNAMICS_H_
+
+#include <cmath>
+
+#include "fit3dof/coefficients.h"
+#include "fit3dof/parameters.h"
+
+namespace fit3dof {
+
+// Indices into the symmetric state.
+enum SymmetricState {
+  kSymPhi = 0,
+  kSymPhiDot = 1,
+  kSymTheta = 2,
+  kSymThetaDot = 3,
+  kSymPsi = 4,
+  kSymPsiDot = 5,
+};
+
+struct SymmetricConstants {
+  double ratio = 0.0;  // R = I_x / I
+  Incidence incidence = Incidence::kVelocityRatio;
+};
+
+// Moments divided by inertia in aeroballistic axes: mx = M_x/I_x,
+// my = M_y/I, mz = M_z/I (the listing's MXOIX, MYOI, MZOI).
+template <typename T>
+void SymmetricMoments(const CoefficientView<T>& k,
+                      const SymmetricConstants& constants,
+                      const T* x,
+                      T* mx,
+                      T* my,
+                      T* mz) {
+  using std::atan;
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  using std::tan;
+  const T& theta = x[kSymTheta];
+  const T& psi = x[kSymPsi];
+  const T& phidot = x[kSymPhiDot];
+  const T& thetadot = x[kSymThetaDot];
+  const T& psidot = x[kSymPsiDot];
+  const T st = sin(theta);
+  const T ct = cos(theta);
+  const T sp = sin(psi);
+  const T cp = cos(psi);
+
+  // Eq. 4: body rates in the aeroballistic frame.
+  const T p = phidot - psidot * st;
+  const T& q = thetadot;
+  const T r = psidot * ct;
+
+  // Incidence (TEMP). Velocity ratios, Eq. 9, or angle of attack and
+  // sideslip, Eq. 34 written in the Euler angles.
+  T alpha, beta;
+  if (constants.incidence == Incidence::kVelocityRatio) {
+    alpha = cp * st;
+    beta = -sp;
+  } else {
+    alpha = theta;
+    beta = atan(-tan(psi) / ct);
+  }
+  const T delta2 = alpha * alpha + beta * beta;
+  // delta = sqrt(delta2) has an infinite derivative at zero incidence; it is
+  // only needed by the |delta| terms and then only away from the origin.
+  T delta(0.0);
+  if ((k.on(3) || k.on(9) || k.on(11)) && delta2 > T(0.0)) {
+    delta = sqrt(delta2);
+  }
+
+  // Eq. 16 with Table 4b's numbering.
+  T stiffness(0.0);
+  if (k.on(1)) stiffness += k(1);
+  if (k.on(3)) stiffness += k(3) * delta;
+  if (k.on(5)) stiffness += k(5) * delta2;
+  T damping(0.0);
+  if (k.on(2)) damping += k(2);
+  if (k.on(9)) damping += k(9) * delta;
+  if (k.on(6)) damping += k(6) * delta2;
+  T magnus(0.0);
+  if (k.on(4)) magnus += k(4);
+  if (k.on(12)) magnus += k(12) * delta2;
+
+  T damping_y = damping;
+  T damping_z = damping;
+  if (k.on(7)) {
+    damping_y -= k(7) * beta * beta;
+    damping_z -= k(7) * alpha * alpha;
+  }
+  *my = alpha * stiffness + q * damping_y + p * beta * magnus;
+  *mz = -beta * stiffness + r * damping_z + p * alpha * magnus;
+  if (k.on(8)) {
+    *my += k(8) * r * alpha * beta;
+    *mz += k(8) * q * alpha * beta;
+  }
+
+  // Optional alpha-dot term (parameter 15), for the Section 5.1 experiment:
+  // M_y/I += C15 alphadot, M_z/I -= C15 betadot, rates from Eq. 10 (or the
+  // derivative of Eq. 34, as TEMP computes it for IANGLE != 0).
+  if (k.on(15)) {
+    T alphadot, betadot;
+    if (constants.incidence == Incidence::kVelocityRatio) {
+      alphadot = -psidot * sp * st + thetadot * cp * ct;
+      betadot = -psidot * cp;
+    } else {
+      alphadot = thetadot;
+      const T cb = cos(beta);
+      betadot = -(psidot / (cp * cp) + tan(psi) * (st / ct) * thetadot) *
+                (cb * cb) / ct;
+    }
+    *my += k(15) * alphadot;
+    *mz -= k(15) * betadot;
+  }
+
+  // Roll: Cl_0 + p (Cl_p + Cl_p_delta delta + Cl_p_delta2 delta^2).
+  T roll_damping(0.0);
+  if (k.on(13)) roll_damping += k(13);
+  if (k.on(11)) roll_damping += k(11) * delta;
+  if (k.on(14)) roll_damping += k(14) * delta2;
+  *mx = p * roll_damping;
+  if (k.on(10)) *mx += k(10);
+
+  // Tunnel-fixed stiffness and damping, Eqs. 39-40 (parameters 19-22).
+  const bool pitch_tunnel = k.on(20) || k.on(21);
+  const bool yaw_tunnel = k.on(19) || k.on(22);
+  if (pitch_tunnel || yaw_tunnel) {
+    T myt(0.0), mzt(0.0);
+    if (k.on(21)) myt += k(21) * theta;
+    if (k.on(20)) myt += k(20) * thetadot;
+    if (k.on(22)) mzt += k(22) * psi;
+    if (k.on(19)) mzt += k(19) * psidot;
+    *mx += (myt * sp * ct - mzt * st) / constants.ratio;
+    *my += myt * cp;
+    *mz += myt * sp * st + mzt * ct;
+  }
+}
+
+// Eq. 6 (the listing's FCT): dx/dt for the symmetric body. These follow from
+// dh/dt + omega_frame x h = M with h = (I_x p, I q, I r) in the non-rolling
+// frame, whose angular velocity is (-psidot sin(theta), thetadot,
+// psidot cos(theta)).
+template <typename T>
+void SymmetricDerivative(const CoefficientView<T>& k,
+                         const SymmetricConstants& constants,
+                         const T* x,
+                         T* dx) {
+  using std::cos;
+  using std::sin;
+  T mx, my, mz;
+  SymmetricMoments(k, constants, x, &mx, &my, &mz);
+  const double ratio = constants.ratio;
+  const T& theta = x[kSymTheta];
+  const T& phidot = x[kSymPhiDot];
+  const T& thetadot = x[kSymThetaDot];
+  const T& psidot = x[kSymPsiDot];
+  const T st = sin(theta);
+  const T ct = cos(theta);
+  const T tt = st / ct;
+  dx[kSymPhi] = phidot;
+  dx[kSymPhiDot] = mx + psidot * thetadot * ct + mz * tt +
+                   (2.0 - ratio) * psidot * thetadot * tt * st +
+                   ratio * phidot * thetadot * tt;
+  dx[kSymTheta] = thetadot;
+  dx[kSymThetaDot] = my - (1.0 - ratio) * psidot * psidot * st * ct -
+                     ratio * phidot * psidot * ct;
+  dx[kSymPsi] = psidot;
+  dx[kSymPsiDot] = mz / ct + (2.0 - ratio) * psidot * thetadot * tt +
+                   ratio * phidot * thetadot / ct;
+}
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_SYMMETRIC_DYNAMICS_H_

@@ -1,0 +1,43 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// A record of measured (or simulated) angles against time, and its CSV
+// form: a header line, required columns t, phi, theta, psi (seconds,
+// degrees) in any order, other columns ignored, times strictly increasing.
+
+#ifndef FIT3DOF_TIME_HISTORY_H_
+#define FIT3DOF_TIME_HISTORY_H_
+
+#include <string>
+#include <vector>
+
+namespace fit3dof {
+
+struct TimeHistory {
+  std::vector<double> t;
+  std::vector<double> phi;
+  std::vector<double> theta;
+  std::vector<double> psi;
+
+  int size() const { return static_cast<int>(t.size()); }
+  void Append(double time, double phi_deg, double theta_deg, double psi_deg) {
+    t.push_back(time);
+    phi.push_back(phi_deg);
+    theta.push_back(theta_deg);
+    psi.push_back(psi_deg);
+  }
+};
+
+// Reads a CSV record. Throws InputError naming the file and line for a
+// missing column, a non-number, a NaN, non-increasing times or fewer than
+// two rows.
+TimeHistory ReadTimeHistory(const std::string& path);
+
+// The CSV text of a record (columns t, phi, theta, psi).
+std::string FormatTimeHistory(const TimeHistory& history);
+
+// Writes the CSV atomically.
+void WriteTimeHistory(const std::string& path, const TimeHistory& history);
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_TIME_HISTORY_H_

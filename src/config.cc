@@ -1,0 +1,590 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// YAML config loading with strict validation: unknown keys are errors (a
+// misspelt key silently ignored is a wrong fit), every number must be finite,
+// and every message carries file, line and key.
+
+#include "fit3dof/config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "fit3dof/input_error.h"
+
+namespace fit3dof {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ConfigReader {
+ public:
+  ConfigReader(std::string source, std::string base_dir)
+      : source_(std::move(source)), base_dir_(std::move(base_dir)) {}
+
+  Case Read(const YAML::Node& root);
+
+ private:
+  [[noreturn]] void Fail(const YAML::Node& node,
+                         const std::string& key,
+                         const std::string& message) const {
+    std::ostringstream out;
+    out << source_;
+    if (node.IsDefined() && node.Mark().line >= 0) {
+      out << ":" << node.Mark().line + 1;
+    }
+    out << ": " << key << ": " << message;
+    throw InputError(out.str());
+  }
+
+  void CheckKeys(const YAML::Node& node,
+                 const std::string& path,
+                 const std::set<std::string>& allowed) const {
+    if (!node.IsMap()) Fail(node, path, "expected a mapping of keys");
+    for (const auto& item : node) {
+      const std::string key = item.first.as<std::string>();
+      if (allowed.count(key) == 0) {
+        std::string list;
+        for (const std::string& a : allowed)
+          list += (list.empty() ? "" : ", ") + a;
+        Fail(item.first,
+             Join(path, key),
+             "unknown key (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  static std::string Join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+
+  double Number(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsScalar()) Fail(node, key, "expected a number");
+    double value = 0.0;
+    try {
+      value = node.as<double>();
+    } catch (const YAML::Exception&) {
+      Fail(node, key, "expected a number, got '" + node.Scalar() + "'");
+    }
+    if (!std::isfinite(value)) {
+      Fail(node, key, "expected a finite number, got '" + node.Scalar() + "'");
+    }
+    return value;
+  }
+
+  double Positive(const YAML::Node& node, const std::string& key) const {
+    const double value = Number(node, key);
+    if (!(value > 0.0))
+      Fail(node, key, "must be positive, got " + node.Scalar());
+    return value;
+  }
+
+  double NonNegative(const YAML::Node& node, const std::string& key) const {
+    const double value = Number(node, key);
+    if (value < 0.0)
+      Fail(node, key, "must not be negative, got " + node.Scalar());
+    return value;
+  }
+
+  long Integer(const YAML::Node& node, const std::string& key, long min) const {
+    const double value = Number(node, key);
+    if (value != std::floor(value) || value < min) {
+      Fail(node,
+           key,
+           "expected an integer >= " + std::to_string(min) + ", got " +
+               node.Scalar());
+    }
+    return static_cast<long>(value);
+  }
+
+  bool Bool(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsScalar()) Fail(node, key, "expected true or false");
+    try {
+      return node.as<bool>();
+    } catch (const YAML::Exception&) {
+      Fail(node, key, "expected true or false, got '" + node.Scalar() + "'");
+    }
+  }
+
+  std::string String(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsScalar()) Fail(node, key, "expected a string");
+    return node.Scalar();
+  }
+
+  const YAML::Node Required(const YAML::Node& parent,
+                            const std::string& path,
+                            const std::string& key) const {
+    const YAML::Node node = parent[key];
+    if (!node.IsDefined() || node.IsNull()) {
+      Fail(parent, Join(path, key), "missing (required)");
+    }
+    return node;
+  }
+
+  void ReadBody(const YAML::Node& node, Case* c) const;
+  void ReadFlow(const YAML::Node& node, Case* c) const;
+  void ReadParameters(const YAML::Node& node, Case* c) const;
+  ParameterSetting ReadParameter(const YAML::Node& node,
+                                 const std::string& key) const;
+  ChannelValues ReadChannels(const YAML::Node& node,
+                             const std::string& path,
+                             bool all_required,
+                             double fallback) const;
+  void ReadData(const YAML::Node& node,
+                const std::string& path,
+                Segment* s) const;
+  InitialConditionMode ReadInitialConditions(const YAML::Node& node,
+                                             const std::string& key) const;
+  void ReadSegments(const YAML::Node& root, Case* c) const;
+  void ReadNoise(const YAML::Node& node, Case* c) const;
+  void ReadSolver(const YAML::Node& node, Case* c) const;
+  void ReadSimulate(const YAML::Node& node, Case* c) const;
+  void CheckPhysics(const YAML::Node& root, const Case& c) const;
+
+  std::string source_;
+  std::string base_dir_;
+};
+
+Case ConfigReader::Read(const YAML::Node& root) {
+  if (!root.IsMap()) Fail(root, "(top level)", "expected a mapping of keys");
+  CheckKeys(root,
+            "",
+            {"name",
+             "model",
+             "incidence",
+             "body",
+             "flow",
+             "parameters",
+             "initial_conditions",
+             "data",
+             "segments",
+             "sigma",
+             "noise",
+             "solver",
+             "simulate"});
+  Case c;
+  c.source = source_;
+  c.name = fs::path(source_).stem().string();
+  if (root["name"]) c.name = String(root["name"], "name");
+
+  const std::string model = String(Required(root, "", "model"), "model");
+  if (model == "symmetric") {
+    c.model = ModelKind::kSymmetric;
+  } else if (model == "asymmetric") {
+    c.model = ModelKind::kAsymmetric;
+  } else {
+    Fail(root["model"],
+         "model",
+         "expected 'symmetric' or 'asymmetric', got '" + model + "'");
+  }
+  if (root["incidence"]) {
+    const std::string incidence = String(root["incidence"], "incidence");
+    if (incidence == "velocity_ratio") {
+      c.incidence = Incidence::kVelocityRatio;
+    } else if (incidence == "angle_of_attack") {
+      c.incidence = Incidence::kAngleOfAttack;
+    } else {
+      Fail(root["incidence"],
+           "incidence",
+           "expected 'velocity_ratio' (IANGLE = 0) or 'angle_of_attack' "
+           "(IANGLE != 0), got '" +
+               incidence + "'");
+    }
+  }
+  ReadBody(Required(root, "", "body"), &c);
+  ReadFlow(Required(root, "", "flow"), &c);
+  c.parameters.assign(NumParameters(c.model), ParameterSetting{});
+  if (root["parameters"] && !root["parameters"].IsNull()) {
+    ReadParameters(root["parameters"], &c);
+  }
+  if (root["sigma"]) {
+    c.sigma = ReadChannels(root["sigma"], "sigma", true, 1.0);
+    if (!(c.sigma.phi > 0 && c.sigma.theta > 0 && c.sigma.psi > 0)) {
+      Fail(root["sigma"], "sigma", "every sigma must be positive (deg)");
+    }
+  }
+  ReadSegments(root, &c);
+  if (root["noise"]) ReadNoise(root["noise"], &c);
+  if (root["solver"]) ReadSolver(root["solver"], &c);
+  if (root["simulate"]) ReadSimulate(root["simulate"], &c);
+  CheckPhysics(root, c);
+  return c;
+}
+
+void ConfigReader::ReadBody(const YAML::Node& node, Case* c) const {
+  const bool asymmetric = c->model == ModelKind::kAsymmetric;
+  CheckKeys(node, "body", {"area", "diameter", "Ix", "Iy", "Iz", "Izx"});
+  if (node["Izx"]) {
+    Fail(node["Izx"],
+         "body.Izx",
+         "the product of inertia is parameter 60 of the asymmetric model "
+         "(fittable): give it under parameters");
+  }
+  c->body.area = Positive(Required(node, "body", "area"), "body.area");
+  c->body.diameter =
+      Positive(Required(node, "body", "diameter"), "body.diameter");
+  c->body.Ix = Positive(Required(node, "body", "Ix"), "body.Ix");
+  c->body.Iy = Positive(Required(node, "body", "Iy"), "body.Iy");
+  if (asymmetric) {
+    c->body.Iz = Positive(Required(node, "body", "Iz"), "body.Iz");
+  } else {
+    c->body.Iz = c->body.Iy;
+    if (node["Iz"]) {
+      const double iz = Positive(node["Iz"], "body.Iz");
+      if (std::abs(iz - c->body.Iy) > 1e-12 * c->body.Iy) {
+        Fail(node["Iz"],
+             "body.Iz",
+             "the symmetric model needs Iy = Iz (one transverse inertia I); "
+             "use model: asymmetric for Iy != Iz");
+      }
+    }
+  }
+  const Body& b = c->body;
+  // Principal moments of a rigid body obey the triangle inequality.
+  if (b.Ix > b.Iy + b.Iz || b.Iy > b.Ix + b.Iz || b.Iz > b.Ix + b.Iy) {
+    Fail(node,
+         "body",
+         "Ix, Iy, Iz cannot be the moments of inertia of a rigid body (each "
+         "must not exceed the sum of the other two)");
+  }
+}
+
+void ConfigReader::ReadFlow(const YAML::Node& node, Case* c) const {
+  CheckKeys(node, "flow", {"velocity", "dynamic_pressure", "density"});
+  c->flow.velocity =
+      Positive(Required(node, "flow", "velocity"), "flow.velocity");
+  const bool has_q = node["dynamic_pressure"].IsDefined();
+  const bool has_rho = node["density"].IsDefined();
+  if (has_q == has_rho) {
+    Fail(node,
+         "flow",
+         "give exactly one of dynamic_pressure (lbf/ft^2) or density "
+         "(slug/ft^3)");
+  }
+  if (has_q) {
+    c->flow.dynamic_pressure =
+        Positive(node["dynamic_pressure"], "flow.dynamic_pressure");
+  } else {
+    const double rho = Positive(node["density"], "flow.density");
+    c->flow.dynamic_pressure = 0.5 * rho * c->flow.velocity * c->flow.velocity;
+  }
+}
+
+ParameterSetting ConfigReader::ReadParameter(const YAML::Node& node,
+                                             const std::string& key) const {
+  ParameterSetting setting;
+  if (node.IsScalar()) {
+    setting.value = Number(node, key);
+    return setting;
+  }
+  CheckKeys(node, key, {"value", "free"});
+  if (node["free"]) setting.free = Bool(node["free"], key + ".free");
+  if (node["value"]) {
+    setting.value = Number(node["value"], key + ".value");
+  } else if (!setting.free) {
+    Fail(node, key, "a frozen parameter needs a value");
+  }
+  return setting;
+}
+
+void ConfigReader::ReadParameters(const YAML::Node& node, Case* c) const {
+  if (!node.IsMap()) Fail(node, "parameters", "expected a mapping of names");
+  const auto& table = ParameterTable(c->model);
+  std::set<int> seen;
+  for (const auto& item : node) {
+    const std::string name = item.first.as<std::string>();
+    const std::string key = "parameters." + name;
+    const int position = FindParameter(c->model, name);
+    if (position < 0) {
+      std::string message = std::string("unknown parameter of the ") +
+                            ModelName(c->model) + " model";
+      const std::string hint = SuggestParameter(c->model, name);
+      if (!hint.empty()) {
+        message += " (did you mean " + hint + "?)";
+      } else if (c->model == ModelKind::kSymmetric &&
+                 FindParameter(ModelKind::kAsymmetric, name) >= 0) {
+        message += " (it belongs to the asymmetric model)";
+      }
+      Fail(item.first, key, message);
+    }
+    if (!seen.insert(position).second) {
+      Fail(item.first,
+           key,
+           "given twice (" + table[position].name + " has an alias)");
+    }
+    const ParameterSetting setting = ReadParameter(item.second, key);
+    if (table[position].scaling == Scaling::kUnused &&
+        (setting.value != 0.0 || setting.free)) {
+      Fail(item.first, key, "is a spare slot that no equation uses");
+    }
+    c->parameters[position] = setting;
+  }
+}
+
+ChannelValues ConfigReader::ReadChannels(const YAML::Node& node,
+                                         const std::string& path,
+                                         bool all_required,
+                                         double fallback) const {
+  CheckKeys(node, path, {"phi", "theta", "psi"});
+  ChannelValues v{fallback, fallback, fallback};
+  auto read = [&](const char* channel, double* out) {
+    const YAML::Node n = node[channel];
+    if (!n.IsDefined()) {
+      if (all_required) Fail(node, Join(path, channel), "missing (required)");
+      return;
+    }
+    *out = Number(n, Join(path, channel));
+  };
+  read("phi", &v.phi);
+  read("theta", &v.theta);
+  read("psi", &v.psi);
+  return v;
+}
+
+void ConfigReader::ReadData(const YAML::Node& node,
+                            const std::string& path,
+                            Segment* s) const {
+  CheckKeys(
+      node, path, {"file", "start", "fraction", "every", "t_start", "t_end"});
+  const std::string file =
+      String(Required(node, path, "file"), Join(path, "file"));
+  const fs::path p(file);
+  s->data_file = p.is_absolute() ? file : (fs::path(base_dir_) / p).string();
+  if (node["start"]) {
+    s->selection.start =
+        static_cast<int>(Integer(node["start"], Join(path, "start"), 1));
+  }
+  if (node["fraction"]) {
+    const double f = Number(node["fraction"], Join(path, "fraction"));
+    if (!(f > 0.0 && f <= 1.0)) {
+      Fail(node["fraction"],
+           Join(path, "fraction"),
+           "must be in (0, 1], got " + node["fraction"].Scalar());
+    }
+    s->selection.fraction = f;
+  }
+  if (node["every"]) {
+    s->selection.every =
+        static_cast<int>(Integer(node["every"], Join(path, "every"), 1));
+  }
+  if (node["t_start"]) {
+    s->selection.t_start = Number(node["t_start"], Join(path, "t_start"));
+  }
+  if (node["t_end"]) {
+    s->selection.t_end = Number(node["t_end"], Join(path, "t_end"));
+  }
+  if (s->selection.t_end <= s->selection.t_start) {
+    Fail(node, path, "t_end must be later than t_start");
+  }
+}
+
+InitialConditionMode ConfigReader::ReadInitialConditions(
+    const YAML::Node& node, const std::string& key) const {
+  const std::string value = String(node, key);
+  if (value == "from_data") return InitialConditionMode::kFromData;
+  if (value == "given") return InitialConditionMode::kGiven;
+  Fail(node,
+       key,
+       "expected 'from_data' (INLCON = 0) or 'given' (INLCON != 0), got '" +
+           value + "'");
+}
+
+void ConfigReader::ReadSegments(const YAML::Node& root, Case* c) const {
+  InitialConditionMode mode = InitialConditionMode::kFromData;
+  if (root["initial_conditions"]) {
+    mode =
+        ReadInitialConditions(root["initial_conditions"], "initial_conditions");
+  }
+  const int first = Layout(c->model).first_initial;
+  Segment defaults;
+  defaults.initial_conditions = mode;
+  for (int j = 0; j < 6; ++j) defaults.initial[j] = c->parameters[first + j];
+
+  const YAML::Node data = root["data"];
+  const YAML::Node segments = root["segments"];
+  if (data.IsDefined() && segments.IsDefined()) {
+    Fail(segments,
+         "segments",
+         "give either data (one segment) or segments (several), not both");
+  }
+  if (data.IsDefined()) {
+    Segment s = defaults;
+    s.name = c->name;
+    ReadData(data, "data", &s);
+    c->segments.push_back(s);
+    return;
+  }
+  if (!segments.IsDefined()) return;
+  if (!segments.IsSequence() || segments.size() == 0) {
+    Fail(segments, "segments", "expected a non-empty list of data segments");
+  }
+  const auto& table = ParameterTable(c->model);
+  std::set<std::string> names;
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const YAML::Node node = segments[i];
+    const std::string path = "segments[" + std::to_string(i) + "]";
+    CheckKeys(node, path, {"name", "data", "initial_conditions", "parameters"});
+    Segment s = defaults;
+    s.name = "segment" + std::to_string(i + 1);
+    if (node["name"]) s.name = String(node["name"], Join(path, "name"));
+    if (!names.insert(s.name).second) {
+      Fail(node,
+           Join(path, "name"),
+           "segment name '" + s.name + "' is used twice");
+    }
+    ReadData(Required(node, path, "data"), Join(path, "data"), &s);
+    if (node["initial_conditions"]) {
+      s.initial_conditions = ReadInitialConditions(
+          node["initial_conditions"], Join(path, "initial_conditions"));
+    }
+    const YAML::Node params = node["parameters"];
+    if (params.IsDefined() && !params.IsNull()) {
+      if (!params.IsMap()) {
+        Fail(params, Join(path, "parameters"), "expected a mapping of names");
+      }
+      for (const auto& item : params) {
+        const std::string name = item.first.as<std::string>();
+        const std::string key = Join(path, "parameters." + name);
+        const int position = FindParameter(c->model, name);
+        if (position < 0 || !IsInitialCondition(c->model, position)) {
+          std::string allowed;
+          for (int j = 0; j < 6; ++j) {
+            allowed += (j ? ", " : "") + table[first + j].name;
+          }
+          Fail(item.first,
+               key,
+               "a segment sets only its own initial conditions (" + allowed +
+                   "); aerodynamic parameters are shared and go under the "
+                   "top-level parameters");
+        }
+        s.initial[position - first] = ReadParameter(item.second, key);
+      }
+    }
+    c->segments.push_back(s);
+  }
+}
+
+void ConfigReader::ReadNoise(const YAML::Node& node, Case* c) const {
+  CheckKeys(node, "noise", {"enabled", "sigma", "bias", "seed"});
+  c->noise.enabled = true;
+  if (node["enabled"])
+    c->noise.enabled = Bool(node["enabled"], "noise.enabled");
+  if (node["sigma"]) {
+    c->noise.sigma = ReadChannels(node["sigma"], "noise.sigma", false, 0.0);
+    const ChannelValues& s = c->noise.sigma;
+    if (s.phi < 0 || s.theta < 0 || s.psi < 0) {
+      Fail(node["sigma"], "noise.sigma", "noise levels must not be negative");
+    }
+  }
+  if (node["bias"]) {
+    c->noise.bias = ReadChannels(node["bias"], "noise.bias", false, 0.0);
+  }
+  if (node["seed"]) {
+    c->noise.seed =
+        static_cast<std::uint64_t>(Integer(node["seed"], "noise.seed", 0));
+  }
+}
+
+void ConfigReader::ReadSolver(const YAML::Node& node, Case* c) const {
+  CheckKeys(node, "solver", {"max_iterations", "tolerance", "step"});
+  if (node["max_iterations"]) {
+    c->solver.max_iterations = static_cast<int>(
+        Integer(node["max_iterations"], "solver.max_iterations", 1));
+  }
+  if (node["tolerance"]) {
+    c->solver.tolerance = Positive(node["tolerance"], "solver.tolerance");
+  }
+  if (node["step"]) c->solver.step = Positive(node["step"], "solver.step");
+}
+
+void ConfigReader::ReadSimulate(const YAML::Node& node, Case* c) const {
+  CheckKeys(node, "simulate", {"duration", "dt", "samples"});
+  c->simulate.dt = Positive(Required(node, "simulate", "dt"), "simulate.dt");
+  const bool has_duration = node["duration"].IsDefined();
+  const bool has_samples = node["samples"].IsDefined();
+  if (has_duration == has_samples) {
+    Fail(node,
+         "simulate",
+         "give exactly one of duration (s) or samples (count, t = 0 included)");
+  }
+  if (has_duration) {
+    c->simulate.duration = Positive(node["duration"], "simulate.duration");
+  } else {
+    c->simulate.samples =
+        static_cast<int>(Integer(node["samples"], "simulate.samples", 2));
+  }
+}
+
+void ConfigReader::CheckPhysics(const YAML::Node& root, const Case& c) const {
+  const int izx = Layout(c.model).product_of_inertia;
+  if (izx >= 0) {
+    const double v = c.parameters[izx].value;
+    if (v * v >= c.body.Ix * c.body.Iz) {
+      Fail(root["parameters"],
+           "parameters.Izx",
+           "|Izx| must be below sqrt(Ix Iz) for a positive-definite inertia");
+    }
+  }
+}
+
+}  // namespace
+
+int SimulateOptions::NumSamples() const {
+  if (samples > 0) return samples;
+  if (dt <= 0.0) return 0;
+  return static_cast<int>(std::floor(duration / dt + 1e-9)) + 1;
+}
+
+ModelSpec Case::Spec() const {
+  ModelSpec spec;
+  spec.model = model;
+  spec.incidence = incidence;
+  spec.body = body;
+  spec.flow = flow;
+  spec.max_step = solver.step;
+  return spec;
+}
+
+std::vector<double> Case::Values() const {
+  std::vector<double> values(parameters.size());
+  for (size_t i = 0; i < parameters.size(); ++i)
+    values[i] = parameters[i].value;
+  return values;
+}
+
+std::vector<bool> Case::FreeFlags() const {
+  std::vector<bool> free(parameters.size());
+  for (size_t i = 0; i < parameters.size(); ++i) free[i] = parameters[i].free;
+  return free;
+}
+
+Case ParseConfig(const std::string& text,
+                 const std::string& source,
+                 const std::string& base_dir) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(source + ":" + std::to_string(e.mark.line + 1) +
+                     ": not valid YAML: " + e.msg);
+  }
+  if (!root.IsDefined() || root.IsNull()) {
+    throw InputError(source + ": the config is empty");
+  }
+  return ConfigReader(source, base_dir).Read(root);
+}
+
+Case LoadConfig(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the config file");
+  std::stringstream text;
+  text << in.rdbuf();
+  const fs::path parent = fs::path(path).parent_path();
+  return ParseConfig(text.str(), path, parent.empty() ? "." : parent.string());
+}
+
+}  // namespace fit3dof

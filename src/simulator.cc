@@ -1,0 +1,49 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "fit3dof/simulator.h"
+
+#include <cstdio>
+
+#include "fit3dof/input_error.h"
+#include "fit3dof/motion_model.h"
+#include "fit3dof/noise.h"
+
+namespace fit3dof {
+
+TimeHistory SimulateAt(const Case& c,
+                       const std::vector<double>& values,
+                       const std::vector<double>& times) {
+  const MotionModel model(c.Spec(), ActiveParameters(values, c.FreeFlags()));
+  const int n = static_cast<int>(times.size());
+  std::vector<double> angles(3 * n);
+  IntegrationFailure failure;
+  if (!model.Evaluate(
+          values.data(), times.data(), n, angles.data(), &failure)) {
+    char when[64];
+    std::snprintf(when, sizeof(when), " at t = %.4g s", failure.time);
+    throw InputError(c.source + ": the motion cannot be integrated: " +
+                     failure.reason + when + "; check the parameters");
+  }
+  TimeHistory history;
+  for (int i = 0; i < n; ++i) {
+    history.Append(
+        times[i], angles[3 * i], angles[3 * i + 1], angles[3 * i + 2]);
+  }
+  return history;
+}
+
+TimeHistory Simulate(const Case& c) {
+  const int n = c.simulate.NumSamples();
+  if (n < 2) {
+    throw InputError(c.source +
+                     ": simulate: missing (give simulate.dt and "
+                     "simulate.duration or simulate.samples)");
+  }
+  std::vector<double> times(n);
+  for (int i = 0; i < n; ++i) times[i] = i * c.simulate.dt;
+  TimeHistory history = SimulateAt(c, c.Values(), times);
+  AddNoise(c.noise, &history);
+  return history;
+}
+
+}  // namespace fit3dof

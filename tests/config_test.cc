@@ -1,0 +1,243 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "fit3dof/config.h"
+
+#include <string>
+
+#include "fit3dof/input_error.h"
+#include "gtest/gtest.h"
+#include "test_util.h"
+
+namespace fit3dof {
+namespace {
+
+const char kValid[] = R"(name: table6
+model: symmetric
+incidence: velocity_ratio
+body:
+  area: 0.390
+  diameter: 0.7047
+  Ix: 0.0372
+  Iy: 0.244
+flow:
+  velocity: 4774.0
+  dynamic_pressure: 150.4
+parameters:
+  Cm_alpha: {value: -0.2, free: true}
+  Cm_q: {value: 0.0, free: true}
+  Cl_p: -0.0081
+  t1: 0.01
+  theta0: {value: 5.18, free: true}
+initial_conditions: from_data
+data:
+  file: run12.csv
+  start: 2
+  fraction: 0.5
+  every: 3
+sigma: {phi: 1.0, theta: 0.05, psi: 0.05}
+noise:
+  sigma: {theta: 0.01, psi: 0.01}
+  seed: 7
+solver: {max_iterations: 20, tolerance: 1.0e-5, step: 0.002}
+simulate: {duration: 10.0, dt: 0.01}
+)";
+
+Case Parse(const std::string& text) {
+  return ParseConfig(text, "test.yaml", "/data");
+}
+
+// The message of the InputError that parsing `text` throws.
+std::string Error(const std::string& text) {
+  try {
+    Parse(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string Replace(std::string text,
+                    const std::string& from,
+                    const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(Config, ReadsEveryKey) {
+  const Case c = Parse(kValid);
+  EXPECT_EQ(c.name, "table6");
+  EXPECT_EQ(c.model, ModelKind::kSymmetric);
+  EXPECT_EQ(c.incidence, Incidence::kVelocityRatio);
+  EXPECT_DOUBLE_EQ(c.body.Iz, 0.244);  // symmetric: I = Iy
+  EXPECT_DOUBLE_EQ(c.flow.dynamic_pressure, 150.4);
+  EXPECT_DOUBLE_EQ(c.parameters[0].value, -0.2);
+  EXPECT_TRUE(c.parameters[0].free);
+  EXPECT_DOUBLE_EQ(c.parameters[12].value, -0.0081);
+  EXPECT_FALSE(c.parameters[12].free);
+  EXPECT_DOUBLE_EQ(c.parameters[20].value, 0.01);  // t1 alias
+  ASSERT_EQ(c.segments.size(), 1u);
+  EXPECT_EQ(c.segments[0].data_file, "/data/run12.csv");
+  EXPECT_EQ(c.segments[0].selection.start, 2);
+  EXPECT_DOUBLE_EQ(c.segments[0].selection.fraction, 0.5);
+  EXPECT_EQ(c.segments[0].selection.every, 3);
+  EXPECT_DOUBLE_EQ(c.segments[0].initial[2].value, 5.18);  // theta0
+  EXPECT_TRUE(c.segments[0].initial[2].free);
+  EXPECT_DOUBLE_EQ(c.sigma.theta, 0.05);
+  EXPECT_TRUE(c.noise.enabled);
+  EXPECT_DOUBLE_EQ(c.noise.sigma.phi, 0.0);
+  EXPECT_DOUBLE_EQ(c.noise.sigma.psi, 0.01);
+  EXPECT_EQ(c.noise.seed, 7u);
+  EXPECT_EQ(c.solver.max_iterations, 20);
+  EXPECT_DOUBLE_EQ(c.solver.step, 0.002);
+  EXPECT_EQ(c.simulate.NumSamples(), 1001);
+}
+
+TEST(Config, DensityGivesTheDynamicPressure) {
+  const Case c =
+      Parse(Replace(kValid, "dynamic_pressure: 150.4", "density: 0.00002"));
+  EXPECT_NEAR(c.flow.dynamic_pressure, 0.5 * 0.00002 * 4774.0 * 4774.0, 1e-9);
+}
+
+TEST(Config, ReadsSegments) {
+  std::string text = Replace(
+      kValid,
+      "data:\n  file: run12.csv\n  start: 2\n  fraction: 0.5\n  every: 3\n",
+      "segments:\n"
+      "  - name: first\n"
+      "    data: {file: a.csv}\n"
+      "    parameters: {psi0: {value: 1.0, free: true}}\n"
+      "  - data: {file: /abs/b.csv, t_start: 1.0, t_end: 5.0}\n"
+      "    initial_conditions: given\n");
+  const Case c = Parse(text);
+  ASSERT_EQ(c.segments.size(), 2u);
+  EXPECT_EQ(c.segments[0].name, "first");
+  EXPECT_EQ(c.segments[0].data_file, "/data/a.csv");
+  EXPECT_DOUBLE_EQ(c.segments[0].initial[4].value, 1.0);
+  EXPECT_DOUBLE_EQ(c.segments[0].initial[2].value, 5.18);  // from defaults
+  EXPECT_EQ(c.segments[1].name, "segment2");
+  EXPECT_EQ(c.segments[1].data_file, "/abs/b.csv");
+  EXPECT_EQ(c.segments[1].initial_conditions, InitialConditionMode::kGiven);
+  EXPECT_DOUBLE_EQ(c.segments[1].selection.t_end, 5.0);
+}
+
+struct BadCase {
+  const char* from;
+  const char* to;
+  const char* expected;  // must appear in the message
+};
+
+class ConfigErrors : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(ConfigErrors, NamesFileLineKeyAndProblem) {
+  const BadCase& bad = GetParam();
+  const std::string message = Error(Replace(kValid, bad.from, bad.to));
+  EXPECT_NE(message.find("test.yaml:"), std::string::npos) << message;
+  EXPECT_NE(message.find(bad.expected), std::string::npos) << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Config,
+    ConfigErrors,
+    ::testing::Values(
+        BadCase{"Cl_p: -0.0081",
+                "Cm_alfa: -0.0081",
+                "test.yaml:15: parameters.Cm_alfa: unknown parameter of the "
+                "symmetric model (did you mean Cm_alpha?)"},
+        BadCase{"Cl_p: -0.0081",
+                "Izx: 0.001",
+                "it belongs to the asymmetric model"},
+        BadCase{"  area: 0.390\n",
+                "",
+                "test.yaml:5: body.area: missing (required)"},
+        BadCase{"Ix: 0.0372",
+                "Ix: -0.0372",
+                "test.yaml:7: body.Ix: must be positive"},
+        BadCase{"Ix: 0.0372", "Ix: .nan", "body.Ix: expected a finite number"},
+        BadCase{"Ix: 0.0372",
+                "Ix: heavy",
+                "body.Ix: expected a number, got 'heavy'"},
+        BadCase{"Ix: 0.0372", "Ix: 0.6", "cannot be the moments of inertia"},
+        BadCase{"  Iy: 0.244\n",
+                "  Iy: 0.244\n  Iz: 0.25\n",
+                "body.Iz: the symmetric model needs Iy = Iz"},
+        BadCase{"  velocity: 4774.0\n",
+                "  velocity: 4774.0\n  density: 0.001\n",
+                "give exactly one of dynamic_pressure"},
+        BadCase{"model: symmetric",
+                "model: round",
+                "model: expected 'symmetric' or 'asymmetric'"},
+        BadCase{"incidence: velocity_ratio",
+                "incidence: tobak",
+                "incidence: expected 'velocity_ratio'"},
+        BadCase{
+            "name: table6", "name: table6\nsigmas: 1", "sigmas: unknown key"},
+        BadCase{"sigma: {phi: 1.0, theta: 0.05, psi: 0.05}",
+                "sigma: {phi: 1.0, theta: 0.0, psi: 0.05}",
+                "sigma: every sigma must be positive"},
+        BadCase{"sigma: {phi: 1.0, theta: 0.05, psi: 0.05}",
+                "sigma: {phi: 1.0, theta: 0.05}",
+                "sigma.psi: missing"},
+        BadCase{"start: 2", "start: 0", "data.start: expected an integer >= 1"},
+        BadCase{"fraction: 0.5",
+                "fraction: 1.5",
+                "data.fraction: must be in (0, 1]"},
+        BadCase{"step: 0.002", "step: 0", "solver.step: must be positive"},
+        BadCase{"Cl_p: -0.0081",
+                "Cl_p: {free: false}",
+                "a frozen parameter needs a value"},
+        BadCase{"Cl_p: -0.0081", "spare16: 1.0", "spare slot"},
+        BadCase{"initial_conditions: from_data",
+                "initial_conditions: guess",
+                "initial_conditions: expected 'from_data'"},
+        BadCase{"{duration: 10.0, dt: 0.01}",
+                "{duration: 10.0, samples: 5, dt: 0.01}",
+                "give exactly one of duration"},
+        BadCase{"Cl_p: -0.0081", "Cl_p: -0.0081\n  t1: 0.02", "given twice"},
+        BadCase{"seed: 7", "seed: -1", "noise.seed: expected an integer >= 0"},
+        BadCase{"every: 3", "every: [3]", "data.every: expected a number"}));
+
+TEST(Config, AsymmetricNeedsIzAndAValidProductOfInertia) {
+  std::string text = Replace(kValid, "model: symmetric", "model: asymmetric");
+  text = Replace(text, "Cm_q:", "Cn_r:");
+  EXPECT_NE(Error(text).find("body.Iz: missing (required)"), std::string::npos);
+  text = Replace(text, "  Iy: 0.244\n", "  Iy: 0.244\n  Iz: 0.25\n");
+  EXPECT_EQ(Error(text), "(no error)");
+  EXPECT_NE(Error(Replace(text, "Cl_p: -0.0081", "Izx: 0.2"))
+                .find("|Izx| must be below"),
+            std::string::npos);
+  EXPECT_NE(Error(Replace(text, "Cl_p: -0.0081", "Cm_alpha_delta2: 1.0"))
+                .find("unknown parameter of the asymmetric model"),
+            std::string::npos);
+}
+
+TEST(Config, ReportsYamlSyntaxErrorsWithALine) {
+  const std::string message = Error("model: symmetric\nbody: {area: 1\n");
+  EXPECT_NE(message.find("test.yaml:"), std::string::npos) << message;
+  EXPECT_NE(message.find("not valid YAML"), std::string::npos) << message;
+}
+
+TEST(Config, MissingFileIsAnInputError) {
+  try {
+    LoadConfig("/nonexistent/config.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/config.yaml"),
+              std::string::npos);
+  }
+}
+
+TEST(Config, ReportConfigsLoad) {
+  for (const char* name : {"check_case_1.yaml",
+                           "check_case_1_printed.yaml",
+                           "check_case_2.yaml",
+                           "table6_motion.yaml",
+                           "section5_1_motion.yaml"}) {
+    EXPECT_NO_THROW(
+        LoadConfig(testing::SourcePath(std::string("configs/report/") + name)))
+        << name;
+  }
+}
+
+}  // namespace
+}  // namespace fit3dof

@@ -1,0 +1,216 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "fit3dof/motion_model.h"
+
+#include <cmath>
+#include <vector>
+
+#include "ceres/jet.h"
+#include "gtest/gtest.h"
+
+namespace fit3dof {
+namespace {
+
+ModelSpec SymmetricSpec(Incidence incidence) {
+  ModelSpec spec;
+  spec.model = ModelKind::kSymmetric;
+  spec.incidence = incidence;
+  spec.body = {0.39, 0.7047, 0.0372, 0.244, 0.244};
+  spec.flow = {4774.0, 150.4};
+  spec.max_step = 0.002;
+  return spec;
+}
+
+std::vector<double> SymmetricValues() {
+  std::vector<double> v(30, 0.0);
+  auto set = [&](const char* name, double value) {
+    v[FindParameter(ModelKind::kSymmetric, name)] = value;
+  };
+  set("Cm_alpha", -0.236);
+  set("Cm_q", -4.0);
+  set("Cm_alpha_delta", 0.3);
+  set("Cm_p_alpha", 0.5);
+  set("Cm_alpha_delta2", 5.81);
+  set("Cm_q_delta2", 98.5);
+  set("Cm_q_beta2", 10.0);
+  set("Cm_r_alpha_beta", 5.0);
+  set("Cm_q_delta", 3.0);
+  set("Cl_0", -1e-4);
+  set("Cl_p_delta", -0.01);
+  set("Cm_p_alpha_delta2", 2.0);
+  set("Cl_p", -0.0081);
+  set("Cl_p_delta2", -0.05);
+  set("Cm_alphadot", -0.5);
+  set("t4", 1.3);
+  set("t2", -0.5);
+  set("t1", 0.015);
+  set("t3", -0.005);
+  set("theta_T", -0.1);
+  set("psi_T", 0.15);
+  set("phidot0", 641.0);
+  set("theta0", 5.18);
+  set("thetadot0", -26.356);
+  set("psi0", -2.589);
+  set("psidot0", -7.77);
+  return v;
+}
+
+std::vector<double> AsymmetricValues() {
+  std::vector<double> v(72, 0.0);
+  for (int i = 0; i < 57; ++i) v[i] = 0.02 * ((i * 7) % 11 - 5);  // all terms
+  v[FindParameter(ModelKind::kAsymmetric, "Cm_alpha")] = -0.23;
+  v[FindParameter(ModelKind::kAsymmetric, "Cn_beta")] = 0.22;
+  v[FindParameter(ModelKind::kAsymmetric, "Cm_q")] = -5.0;
+  v[FindParameter(ModelKind::kAsymmetric, "Cn_r")] = -5.5;
+  v[FindParameter(ModelKind::kAsymmetric, "Cl_p")] = -0.008;
+  v[FindParameter(ModelKind::kAsymmetric, "Izx")] = 0.002;
+  for (int i = 60; i < 64; ++i) v[i] = 0.01 * (i - 61);
+  v[64] = -0.1;
+  v[65] = 0.15;
+  v[66] = 20.0;
+  v[67] = 5.0;
+  v[68] = -3.0;
+  v[69] = 600.0;
+  v[70] = -20.0;
+  v[71] = 10.0;
+  return v;
+}
+
+// Derivatives of the simulated angles carried by Jets through scaling,
+// moments, equations of motion, RK4 and the measurement model agree with
+// central differences.
+template <int N>
+void CheckJetDerivatives(const ModelSpec& spec,
+                         const std::vector<double>& values,
+                         const std::vector<int>& wrt) {
+  ASSERT_EQ(static_cast<int>(wrt.size()), N);
+  using J = ceres::Jet<double, N>;
+  std::vector<double> times;
+  for (int i = 0; i <= 40; ++i) times.push_back(0.05 * i);
+  const int n = static_cast<int>(times.size());
+  std::vector<bool> free(values.size(), false);
+  for (int i : wrt) free[i] = true;
+  const MotionModel model(spec, ActiveParameters(values, free));
+  std::vector<J> jet_values(values.size());
+  for (size_t i = 0; i < values.size(); ++i) jet_values[i] = J(values[i]);
+  for (int d = 0; d < N; ++d) jet_values[wrt[d]].v[d] = 1.0;
+  std::vector<J> angles(3 * n);
+  ASSERT_TRUE(model.Evaluate(
+      jet_values.data(), times.data(), n, angles.data(), nullptr));
+  for (int d = 0; d < N; ++d) {
+    double scale = 0.0;  // deg per unit of the parameter
+    for (int i = 0; i < 3 * n; ++i)
+      scale = std::max(scale, std::abs(angles[i].v[d]));
+    ASSERT_GT(scale, 0.0) << "parameter " << wrt[d] << " has no effect";
+    // A step that moves the angles by about 1e-3 deg: well above the
+    // roundoff in phi (thousands of degrees), well inside the linear range.
+    const double h = 1e-3 / scale;
+    std::vector<double> plus = values, minus = values;
+    plus[wrt[d]] += h;
+    minus[wrt[d]] -= h;
+    std::vector<double> ap(3 * n), am(3 * n);
+    ASSERT_TRUE(
+        model.Evaluate(plus.data(), times.data(), n, ap.data(), nullptr));
+    ASSERT_TRUE(
+        model.Evaluate(minus.data(), times.data(), n, am.data(), nullptr));
+    for (int i = 0; i < 3 * n; ++i) {
+      const double numeric = (ap[i] - am[i]) / (2.0 * h);
+      EXPECT_NEAR(angles[i].v[d], numeric, 1e-5 * scale)
+          << "parameter " << ParameterTable(spec.model)[wrt[d]].name
+          << " sample " << i / 3 << " channel " << i % 3;
+    }
+  }
+}
+
+TEST(MotionModel, SymmetricJetDerivativesMatchCentralDifferences) {
+  std::vector<int> all;
+  for (int i = 0; i < 30; ++i) {
+    if (i < 15 || (i >= 18 && i < 30)) all.push_back(i);
+  }
+  ASSERT_EQ(all.size(), 27u);
+  const std::vector<double> values = SymmetricValues();
+  CheckJetDerivatives<27>(
+      SymmetricSpec(Incidence::kVelocityRatio), values, all);
+  CheckJetDerivatives<27>(
+      SymmetricSpec(Incidence::kAngleOfAttack), values, all);
+}
+
+TEST(MotionModel, AsymmetricJetDerivativesMatchCentralDifferences) {
+  ModelSpec spec;
+  spec.model = ModelKind::kAsymmetric;
+  spec.body = {0.3491, 0.6667, 0.0301, 0.2583, 0.2465};
+  spec.flow = {2000.0, 300.0};
+  spec.max_step = 0.002;
+  const std::vector<double> values = AsymmetricValues();
+  // A spread of terms: static, absolute-value, rate, roll, Izx, tunnel,
+  // offsets and every initial condition.
+  const std::vector<int> wrt = {0,  1,  2,  5,  11, 13, 16, 18, 24, 26, 28,
+                                30, 34, 35, 40, 45, 47, 52, 56, 59, 60, 61,
+                                62, 63, 64, 65, 66, 67, 68, 69, 70, 71};
+  for (Incidence incidence :
+       {Incidence::kVelocityRatio, Incidence::kAngleOfAttack}) {
+    spec.incidence = incidence;
+    CheckJetDerivatives<32>(spec, values, wrt);
+  }
+}
+
+// Skipping the terms of frozen zero parameters changes nothing.
+TEST(MotionModel, InactiveTermsAreExactlyZero) {
+  const ModelSpec spec = SymmetricSpec(Incidence::kVelocityRatio);
+  std::vector<double> values(30, 0.0);
+  values[0] = -0.236;
+  values[1] = -4.0;
+  values[25] = 641.0;
+  values[26] = 5.18;
+  const std::vector<double> times = {0.0, 1.0, 2.0};
+  ActiveSet all;
+  all.set();
+  std::vector<double> a(9), b(9);
+  ASSERT_TRUE(MotionModel(spec, all).Evaluate(
+      values.data(), times.data(), 3, a.data(), nullptr));
+  ASSERT_TRUE(MotionModel(spec, ActiveParameters(values, {}))
+                  .Evaluate(values.data(), times.data(), 3, b.data(), nullptr));
+  for (int i = 0; i < 9; ++i) EXPECT_EQ(a[i], b[i]);
+}
+
+// theta_T and psi_T shift the measured angles and nothing else.
+TEST(MotionModel, FlowOffsetsShiftTheMeasurement) {
+  const ModelSpec spec = SymmetricSpec(Incidence::kVelocityRatio);
+  std::vector<double> values(30, 0.0);
+  values[0] = -0.236;
+  values[26] = 5.0;
+  const std::vector<double> times = {0.0, 0.5, 1.0};
+  std::vector<double> shifted = values;
+  shifted[22] = 0.25;
+  shifted[23] = -0.5;
+  std::vector<double> a(9), b(9);
+  const MotionModel model(spec, ActiveParameters(shifted, {}));
+  ASSERT_TRUE(
+      model.Evaluate(values.data(), times.data(), 3, a.data(), nullptr));
+  ASSERT_TRUE(
+      model.Evaluate(shifted.data(), times.data(), 3, b.data(), nullptr));
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(b[3 * i], a[3 * i]);
+    EXPECT_NEAR(b[3 * i + 1] - a[3 * i + 1], 0.25, 1e-12);
+    EXPECT_NEAR(b[3 * i + 2] - a[3 * i + 2], -0.5, 1e-12);
+  }
+}
+
+TEST(MotionModel, ReportsABlowUp) {
+  ModelSpec spec = SymmetricSpec(Incidence::kVelocityRatio);
+  std::vector<double> values(30, 0.0);
+  values[0] = +16.0;  // statically unstable: theta runs away
+  values[26] = 5.0;
+  std::vector<double> times;
+  for (int i = 0; i < 100; ++i) times.push_back(0.05 * i);
+  std::vector<double> angles(300);
+  IntegrationFailure failure;
+  EXPECT_FALSE(
+      MotionModel(spec, ActiveParameters(values, {}))
+          .Evaluate(values.data(), times.data(), 100, angles.data(), &failure));
+  EXPECT_GT(failure.time, 0.0);
+  EXPECT_FALSE(failure.reason.empty());
+}
+
+}  // namespace
+}  // namespace fit3dof

@@ -1,0 +1,68 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "test_util.h"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace fit3dof::testing {
+
+namespace fs = std::filesystem;
+
+const nlohmann::json& PaperResults() {
+  static const nlohmann::json results = [] {
+    std::ifstream in(std::string(FIT3DOF_SHARED_DIR) +
+                     "/reference/paper_results.json");
+    if (!in) throw std::runtime_error("cannot read paper_results.json");
+    return nlohmann::json::parse(in);
+  }();
+  return results;
+}
+
+std::string SourcePath(const std::string& relative) {
+  return std::string(FIT3DOF_SOURCE_DIR) + "/" + relative;
+}
+
+std::string ScratchDirectory(const std::string& name) {
+  const fs::path dir = fs::current_path() / "scratch" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+void WriteText(const std::string& path, const std::string& text) {
+  const fs::path p(path);
+  if (p.has_parent_path()) fs::create_directories(p.parent_path());
+  std::ofstream out(path);
+  out << text;
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+CommandResult RunFit3dof(const std::string& arguments) {
+  const std::string command =
+      std::string(FIT3DOF_BINARY) + " " + arguments + " 2>&1";
+  CommandResult result;
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buffer[4096];
+  size_t n;
+  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) {
+    result.output.append(buffer, n);
+  }
+  const int status = ::pclose(pipe);
+  result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace fit3dof::testing

@@ -1,0 +1,39 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Helpers shared by the tests: where the sources, the shared reference data
+// and the built command are, scratch directories, running the command.
+
+#ifndef FIT3DOF_TESTS_TEST_UTIL_H_
+#define FIT3DOF_TESTS_TEST_UTIL_H_
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace fit3dof::testing {
+
+// The report's published numbers, shared/reference/paper_results.json.
+const nlohmann::json& PaperResults();
+
+// A path under the source tree, e.g. SourcePath("configs/report/x.yaml").
+std::string SourcePath(const std::string& relative);
+
+// A fresh, empty directory for one test (removed when the process exits
+// only if the test passes is not attempted: it lives under the build tree).
+std::string ScratchDirectory(const std::string& name);
+
+// Writes text to a file, creating directories.
+void WriteText(const std::string& path, const std::string& text);
+std::string ReadText(const std::string& path);
+
+struct CommandResult {
+  int exit_status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs the built fit3dof binary with the given arguments (shell-quoted by
+// the caller where needed).
+CommandResult RunFit3dof(const std::string& arguments);
+
+}  // namespace fit3dof::testing
+
+#endif  // FIT3DOF_TESTS_TEST_UTIL_H_

@@ -1,0 +1,76 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "fit3dof/time_history.h"
+
+#include <filesystem>
+
+#include "fit3dof/input_error.h"
+#include "gtest/gtest.h"
+#include "test_util.h"
+
+namespace fit3dof {
+namespace {
+
+std::string ReadError(const std::string& path) {
+  try {
+    ReadTimeHistory(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(TimeHistory, RoundTripsThroughCsv) {
+  const std::string dir = testing::ScratchDirectory("time_history_roundtrip");
+  TimeHistory h;
+  h.Append(0.0, 1.5, 5.18, -2.589);
+  h.Append(0.06, 40.0, 5.0123456789, -2.6);
+  WriteTimeHistory(dir + "/a.csv", h);
+  const TimeHistory r = ReadTimeHistory(dir + "/a.csv");
+  ASSERT_EQ(r.size(), 2);
+  EXPECT_NEAR(r.theta[1], 5.0123456789, 1e-11);
+  EXPECT_DOUBLE_EQ(r.psi[0], -2.589);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/a.csv.tmp"));
+}
+
+TEST(TimeHistory, ColumnsInAnyOrderExtraColumnsIgnored) {
+  const std::string dir = testing::ScratchDirectory("time_history_columns");
+  testing::WriteText(
+      dir + "/b.csv",
+      "psi,extra,t,theta,phi\n1.0,x,0.0,2.0,3.0\n1.5,y,0.1,2.5,3.5\n");
+  const TimeHistory r = ReadTimeHistory(dir + "/b.csv");
+  ASSERT_EQ(r.size(), 2);
+  EXPECT_DOUBLE_EQ(r.t[1], 0.1);
+  EXPECT_DOUBLE_EQ(r.phi[1], 3.5);
+  EXPECT_DOUBLE_EQ(r.psi[0], 1.0);
+}
+
+TEST(TimeHistory, BadFilesNameTheFileAndLine) {
+  const std::string dir = testing::ScratchDirectory("time_history_bad");
+  testing::WriteText(dir + "/order.csv",
+                     "t,phi,theta,psi\n0,0,0,0\n0.1,0,0,0\n0.1,0,0,0\n");
+  EXPECT_NE(
+      ReadError(dir + "/order.csv").find("order.csv:4: times must increase"),
+      std::string::npos)
+      << ReadError(dir + "/order.csv");
+  testing::WriteText(dir + "/column.csv", "t,phi,theta\n0,0,0\n0.1,0,0\n");
+  EXPECT_NE(ReadError(dir + "/column.csv").find("psi"), std::string::npos)
+      << ReadError(dir + "/column.csv");
+  testing::WriteText(dir + "/nan.csv",
+                     "t,phi,theta,psi\n0,0,0,0\n0.1,0,nan,0\n");
+  EXPECT_NE(ReadError(dir + "/nan.csv").find("line \"3\""), std::string::npos)
+      << ReadError(dir + "/nan.csv");
+  testing::WriteText(dir + "/text.csv",
+                     "t,phi,theta,psi\n0,0,0,0\n0.1,0,abc,0\n");
+  EXPECT_NE(ReadError(dir + "/text.csv").find("text.csv"), std::string::npos)
+      << ReadError(dir + "/text.csv");
+  testing::WriteText(dir + "/short.csv", "t,phi,theta,psi\n0,0,0,0\n");
+  EXPECT_NE(ReadError(dir + "/short.csv").find("at least two rows"),
+            std::string::npos);
+  EXPECT_NE(ReadError(dir + "/missing.csv").find("missing.csv"),
+            std::string::npos)
+      << ReadError(dir + "/missing.csv");
+}
+
+}  // namespace
+}  // namespace fit3dof
