@@ -13,12 +13,15 @@
 #include <vector>
 
 #include "fit3dof/config.h"
+#include "fit3dof/fit.h"
+#include "fit3dof/fit_report.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/simulator.h"
 #include "fit3dof/time_history.h"
 
 // clang-format off
 DEFINE_string(out, "", "Output file (simulate: CSV of t, phi, theta, psi).");
+DEFINE_string(out_dir, "", "Output directory (fit: report.json, fit.csv).");
 // clang-format on
 
 namespace fit3dof {
@@ -28,6 +31,7 @@ constexpr char kUsage[] =
     "fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion\n"
     "\n"
     "  fit3dof simulate CONFIG --out=FILE.csv   motion from the config\n"
+    "  fit3dof fit CONFIG --out_dir=DIR          fit the config's data\n"
     "\n"
     "Exit status: 0 success, 1 the job ran but failed, 2 bad input.";
 
@@ -44,6 +48,16 @@ int Simulate(const std::vector<std::string>& args) {
   return 0;
 }
 
+int FitCommand(const std::vector<std::string>& args) {
+  if (args.size() != 1) throw InputError("fit: expected one CONFIG argument");
+  if (FLAGS_out_dir.empty()) throw InputError("fit: --out_dir=DIR is required");
+  const Case c = LoadConfig(args[0]);
+  const FitResult result = Fit(c);
+  WriteFitOutputs(FLAGS_out_dir, result);
+  std::cout << FormatFitTable(result) << std::flush;
+  return result.converged ? 0 : 1;
+}
+
 int Run(int argc, char** argv) {
   if (argc < 2) {
     std::cerr << kUsage << "\n";
@@ -54,6 +68,7 @@ int Run(int argc, char** argv) {
   using Handler = int (*)(const std::vector<std::string>&);
   const std::map<std::string, Handler> commands = {
       {"simulate", &Simulate},
+      {"fit", &FitCommand},
   };
   const auto it = commands.find(command);
   if (it == commands.end()) {

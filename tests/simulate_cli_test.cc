@@ -24,9 +24,35 @@ TEST(SimulateCli, WritesTheTable6Motion) {
   const TimeHistory h = ReadTimeHistory(dir + "/table6.csv");
   ASSERT_EQ(h.size(), 800);
   EXPECT_NEAR(h.t.back(), 799 * 0.06, 1e-9);
-  // The config adds 0.01 deg noise: the first sample is theta0 + noise.
-  EXPECT_NEAR(h.theta[0], 5.18, 0.05);
-  EXPECT_NE(h.theta[0], 5.18);
+  EXPECT_DOUBLE_EQ(h.theta[0], 5.18);
+  // The bundled report data is this command's output.
+  const TimeHistory bundled = ReadTimeHistory(
+      testing::SourcePath("configs/report/data/table6_clean.csv"));
+  ASSERT_EQ(bundled.size(), h.size());
+  for (int i = 0; i < h.size(); i += 97) {
+    EXPECT_NEAR(bundled.theta[i], h.theta[i], 1e-9);
+    EXPECT_NEAR(bundled.psi[i], h.psi[i], 1e-9);
+  }
+}
+
+TEST(SimulateCli, AddsSeededNoise) {
+  const std::string dir = testing::ScratchDirectory("simulate_noise");
+  std::string config = testing::ReadText(
+      testing::SourcePath("configs/report/table6_motion.yaml"));
+  config += "noise: {sigma: {theta: 0.05}, bias: {psi: 0.5}, seed: 3}\n";
+  testing::WriteText(dir + "/noisy.yaml", config);
+  for (const char* out : {"a.csv", "b.csv"}) {
+    const auto result = testing::RunFit3dof(
+        "simulate " + dir + "/noisy.yaml --out=" + dir + "/" + out);
+    ASSERT_EQ(result.exit_status, 0) << result.output;
+  }
+  const TimeHistory a = ReadTimeHistory(dir + "/a.csv");
+  const TimeHistory b = ReadTimeHistory(dir + "/b.csv");
+  EXPECT_EQ(a.theta, b.theta);  // same seed, same noise
+  EXPECT_NE(a.theta[0], 5.18);
+  EXPECT_NEAR(a.theta[0], 5.18, 0.25);
+  EXPECT_NEAR(a.psi[0], -2.589 + 0.5, 1e-9);  // bias only
+  EXPECT_DOUBLE_EQ(a.phi[0], 0.0);            // no phi noise
 }
 
 TEST(SimulateCli, BadConfigExitsTwoAndWritesNothing) {

@@ -93,7 +93,7 @@ TEST(SymmetricDynamics, StiffnessActsAlongTheIncidence) {
   SymmetricConstants constants{0.15, Incidence::kVelocityRatio};
   const double x[6] = {0.3, 10.0, 4.0 * kDeg, 0.0, -2.0 * kDeg, 0.0};
   double mx, my, mz;
-  SymmetricMoments(k, constants, x, &mx, &my, &mz);
+  SymmetricMoments(k, constants, x, SymmetricTrig<double>(x), &mx, &my, &mz);
   EXPECT_DOUBLE_EQ(my, -40.0 * std::cos(x[4]) * std::sin(x[2]));
   EXPECT_DOUBLE_EQ(mz, -40.0 * std::sin(x[4]));
   EXPECT_DOUBLE_EQ(mx, 0.0);

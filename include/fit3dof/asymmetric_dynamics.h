@@ -40,31 +40,46 @@ struct AsymmetricConstants {
   Incidence incidence = Incidence::kVelocityRatio;
 };
 
+// Sines and cosines of the three Euler angles, shared by the moments and
+// the equations of motion.
+template <typename T>
+struct AsymmetricTrig {
+  explicit AsymmetricTrig(const T* x) {
+    using std::cos;
+    using std::sin;
+    sf = sin(x[kAsymPhi]);
+    cf = cos(x[kAsymPhi]);
+    st = sin(x[kAsymTheta]);
+    ct = cos(x[kAsymTheta]);
+    sp = sin(x[kAsymPsi]);
+    cp = cos(x[kAsymPsi]);
+  }
+  T sf, cf, st, ct, sp, cp;
+};
+
 // Moments divided by the inertia of their axis, body axes:
 // mx = M_x/I_x, my = M_y/I_y, mz = M_z/I_z (the listing's MXOI, MYOI, MZOI).
 template <typename T>
 void AsymmetricMoments(const CoefficientView<T>& k,
                        const AsymmetricConstants& constants,
                        const T* x,
+                       const AsymmetricTrig<T>& trig,
                        T* mx,
                        T* my,
                        T* mz) {
   using std::abs;
   using std::atan;
-  using std::cos;
-  using std::sin;
-  const T& phi = x[kAsymPhi];
   const T& theta = x[kAsymTheta];
   const T& psi = x[kAsymPsi];
   const T& p = x[kAsymP];
   const T& q = x[kAsymQ];
   const T& r = x[kAsymR];
-  const T sf = sin(phi);
-  const T cf = cos(phi);
-  const T st = sin(theta);
-  const T ct = cos(theta);
-  const T sp = sin(psi);
-  const T cp = cos(psi);
+  const T& sf = trig.sf;
+  const T& cf = trig.cf;
+  const T& st = trig.st;
+  const T& ct = trig.ct;
+  const T& sp = trig.sp;
+  const T& cp = trig.cp;
 
   // Eq. A-4 (TEMP): the free-stream direction in body axes.
   T a = sp * sf + cp * st * cf;
@@ -180,23 +195,22 @@ void AsymmetricDerivative(const CoefficientView<T>& k,
                           const AsymmetricConstants& constants,
                           const T* x,
                           T* dx) {
-  using std::cos;
-  using std::sin;
+  const AsymmetricTrig<T> trig(x);
   T mx, my, mz;
-  AsymmetricMoments(k, constants, x, &mx, &my, &mz);
-  const T& phi = x[kAsymPhi];
-  const T& theta = x[kAsymTheta];
+  AsymmetricMoments(k, constants, x, trig, &mx, &my, &mz);
   const T& p = x[kAsymP];
   const T& q = x[kAsymQ];
   const T& r = x[kAsymR];
-  const T sf = sin(phi);
-  const T cf = cos(phi);
-  const T st = sin(theta);
-  const T ct = cos(theta);
+  const T& sf = trig.sf;
+  const T& cf = trig.cf;
+  const T& st = trig.st;
+  const T& ct = trig.ct;
 
-  dx[kAsymPhi] = p + (st / ct) * (q * sf + r * cf);
+  const T sec = 1.0 / ct;
+  const T q_sf_r_cf = q * sf + r * cf;
+  dx[kAsymPhi] = p + st * sec * q_sf_r_cf;
   dx[kAsymTheta] = q * cf - r * sf;
-  dx[kAsymPsi] = (r * cf + q * sf) / ct;
+  dx[kAsymPsi] = q_sf_r_cf * sec;
 
   // Ix' = (I_z - I_y)/I_x etc.; J = I_zx / I. With h_x = I_x p - I_zx r and
   // h_z = I_z r - I_zx p, solving the x and z equations of

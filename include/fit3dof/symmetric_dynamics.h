@@ -39,18 +39,34 @@ struct SymmetricConstants {
   Incidence incidence = Incidence::kVelocityRatio;
 };
 
+// Sines and cosines of the state's angles, computed once per evaluation
+// and shared by the moments and the equations of motion (with Jets every
+// trigonometric call costs a full derivative vector).
+template <typename T>
+struct SymmetricTrig {
+  explicit SymmetricTrig(const T* x) {
+    using std::cos;
+    using std::sin;
+    st = sin(x[kSymTheta]);
+    ct = cos(x[kSymTheta]);
+    sp = sin(x[kSymPsi]);
+    cp = cos(x[kSymPsi]);
+  }
+  T st, ct, sp, cp;
+};
+
 // Moments divided by inertia in aeroballistic axes: mx = M_x/I_x,
 // my = M_y/I, mz = M_z/I (the listing's MXOIX, MYOI, MZOI).
 template <typename T>
 void SymmetricMoments(const CoefficientView<T>& k,
                       const SymmetricConstants& constants,
                       const T* x,
+                      const SymmetricTrig<T>& trig,
                       T* mx,
                       T* my,
                       T* mz) {
   using std::atan;
   using std::cos;
-  using std::sin;
   using std::sqrt;
   using std::tan;
   const T& theta = x[kSymTheta];
@@ -58,10 +74,10 @@ void SymmetricMoments(const CoefficientView<T>& k,
   const T& phidot = x[kSymPhiDot];
   const T& thetadot = x[kSymThetaDot];
   const T& psidot = x[kSymPsiDot];
-  const T st = sin(theta);
-  const T ct = cos(theta);
-  const T sp = sin(psi);
-  const T cp = cos(psi);
+  const T& st = trig.st;
+  const T& ct = trig.ct;
+  const T& sp = trig.sp;
+  const T& cp = trig.cp;
 
   // Eq. 4: body rates in the aeroballistic frame.
   const T p = phidot - psidot * st;
@@ -162,18 +178,17 @@ void SymmetricDerivative(const CoefficientView<T>& k,
                          const SymmetricConstants& constants,
                          const T* x,
                          T* dx) {
-  using std::cos;
-  using std::sin;
+  const SymmetricTrig<T> trig(x);
   T mx, my, mz;
-  SymmetricMoments(k, constants, x, &mx, &my, &mz);
+  SymmetricMoments(k, constants, x, trig, &mx, &my, &mz);
   const double ratio = constants.ratio;
-  const T& theta = x[kSymTheta];
   const T& phidot = x[kSymPhiDot];
   const T& thetadot = x[kSymThetaDot];
   const T& psidot = x[kSymPsiDot];
-  const T st = sin(theta);
-  const T ct = cos(theta);
-  const T tt = st / ct;
+  const T& st = trig.st;
+  const T& ct = trig.ct;
+  const T sec = 1.0 / ct;
+  const T tt = st * sec;
   dx[kSymPhi] = phidot;
   dx[kSymPhiDot] = mx + psidot * thetadot * ct + mz * tt +
                    (2.0 - ratio) * psidot * thetadot * tt * st +
@@ -182,8 +197,8 @@ void SymmetricDerivative(const CoefficientView<T>& k,
   dx[kSymThetaDot] = my - (1.0 - ratio) * psidot * psidot * st * ct -
                      ratio * phidot * psidot * ct;
   dx[kSymPsi] = psidot;
-  dx[kSymPsiDot] = mz / ct + (2.0 - ratio) * psidot * thetadot * tt +
-                   ratio * phidot * thetadot / ct;
+  dx[kSymPsiDot] = mz * sec + (2.0 - ratio) * psidot * thetadot * tt +
+                   ratio * phidot * thetadot * sec;
 }
 
 }  // namespace fit3dof

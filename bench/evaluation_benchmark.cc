@@ -1,0 +1,98 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Cost of one residual evaluation (a forward integration) against one
+// Jacobian evaluation of a segment residual block, for the Table 6 case
+// (800 samples, step 0.01 s), as the number of free parameters k grows.
+// The ratios are what matter: Jacobian / forward should stay below
+// (k + 1) / 2, and 4 free parameters should cost at most a quarter of 27.
+
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <vector>
+
+#include "fit3dof/config.h"
+#include "fit3dof/segment_cost_function.h"
+#include "fit3dof/time_history.h"
+
+namespace fit3dof {
+namespace {
+
+struct Block {
+  std::unique_ptr<SegmentCostFunction> cost;
+  std::vector<double> u;  // free values (scale 1)
+};
+
+// The Table 6 truth with the first k of the symmetric model's 27 usable
+// parameters free: the four of Table 6, the six initial conditions, then
+// every other term.
+Block MakeBlock(int k) {
+  static const Case c = LoadConfig(std::string(FIT3DOF_SOURCE_DIR) +
+                                   "/configs/report/table6_sigma0.01.yaml");
+  static const TimeHistory data = ReadTimeHistory(c.segments[0].data_file);
+  std::vector<double> base = c.Values();
+  const std::vector<std::pair<int, double>> truth = {{0, -0.236},
+                                                     {1, -4.0},
+                                                     {4, 5.81},
+                                                     {5, 98.5},
+                                                     {25, 641.0},
+                                                     {26, 5.18},
+                                                     {27, -26.356},
+                                                     {28, -2.589},
+                                                     {29, -7.77}};
+  for (auto [i, v] : truth) base[i] = v;
+  const std::vector<int> order = {0,  1,  4,  5,  24, 25, 26, 27, 28,
+                                  29, 2,  3,  6,  7,  8,  9,  10, 11,
+                                  12, 13, 14, 18, 19, 20, 21, 22, 23};
+  const std::vector<int> free(order.begin(), order.begin() + k);
+  std::vector<bool> flags(base.size(), false);
+  for (int i : free) flags[i] = true;
+  auto model = std::make_shared<const MotionModel>(
+      c.Spec(), ActiveParameters(base, flags));
+  Block b;
+  for (int i : free) b.u.push_back(base[i]);
+  b.cost = std::make_unique<SegmentCostFunction>(
+      model, base, free, k, std::vector<double>(k, 1.0), data, c.sigma);
+  return b;
+}
+
+void BM_Forward(benchmark::State& state) {
+  Block b = MakeBlock(static_cast<int>(state.range(0)));
+  std::vector<double> residuals(b.cost->num_residuals());
+  const double* blocks[1] = {b.u.data()};
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        b.cost->Evaluate(blocks, residuals.data(), nullptr));
+  }
+}
+
+void BM_Jacobian(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  Block b = MakeBlock(k);
+  std::vector<double> residuals(b.cost->num_residuals());
+  std::vector<double> jacobian(b.cost->num_residuals() * k);
+  const double* blocks[1] = {b.u.data()};
+  double* jacobians[1] = {jacobian.data()};
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        b.cost->Evaluate(blocks, residuals.data(), jacobians));
+  }
+}
+
+BENCHMARK(BM_Forward)->Arg(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Jacobian)
+    ->Arg(1)
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(10)
+    ->Arg(12)
+    ->Arg(16)
+    ->Arg(20)
+    ->Arg(24)
+    ->Arg(27)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace fit3dof
+
+BENCHMARK_MAIN();

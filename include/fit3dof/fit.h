@@ -1,0 +1,86 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The Chapman-Kirk fit of AEDC-TR-78-10 (Section 3.2) done with Ceres:
+// every data segment is a residual block (segment_cost_function.h), the
+// aerodynamic and tunnel parameters are shared between segments, each
+// segment has its own initial conditions. Levenberg-Marquardt runs until the
+// probable error changes by less than solver.tolerance between two
+// iterations (the listing's BOUND) or solver.max_iterations (NITER) is
+// reached; then
+//
+//   sum of residuals  S = sqrt(sum of squared weighted residuals)   Eq. 32
+//   probable error    E = sqrt(S^2 / (3 N - N_free))               Eq. 26
+//   RMS error         E sqrt(B_i), B = (J^T J)^-1                   Eq. 27
+//
+// with J the Jacobian of the weighted residuals, B from ceres::Covariance.
+// Parameters that the data cannot separate (rank deficiency, or correlation
+// above 0.99) are named in warnings together with the combination that is
+// determined.
+//
+// Example Usage:
+//
+//   Case c = LoadConfig("run12.yaml");
+//   FitResult result = Fit(c);
+//   WriteFitOutputs("out/run12", result);
+
+#ifndef FIT3DOF_FIT_H_
+#define FIT3DOF_FIT_H_
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "fit3dof/case.h"
+#include "fit3dof/time_history.h"
+
+namespace fit3dof {
+
+struct ParameterEstimate {
+  std::string name;     // report name; "segment.name" for a segment's own
+                        // initial conditions when there are several segments
+  std::string segment;  // empty for shared parameters
+  int position = 0;     // in ParameterTable(model)
+  double value = 0.0;
+  double rms_error = 0.0;  // Eq. 27; NaN when frozen or not determined
+  bool free = false;
+  std::string units;
+};
+
+struct SegmentFit {
+  std::string name;
+  TimeHistory data;              // the samples fitted (after selection, noise)
+  std::vector<double> computed;  // phi, theta, psi per sample (deg)
+  ChannelValues rms_residual_deg;
+  std::array<double, 6> initial;  // the fitted initial conditions
+  bool initial_from_data = false;
+};
+
+struct FitResult {
+  std::string name;
+  ModelKind model = ModelKind::kSymmetric;
+  bool converged = false;
+  int iterations = 0;
+  int points = 0;           // samples in all segments
+  int free_parameters = 0;  // N_free
+  double probable_error = 0.0;
+  double sum_of_residuals = 0.0;
+  ChannelValues rms_residual_deg;
+  std::string termination;  // why the iteration stopped
+  std::vector<ParameterEstimate> parameters;
+  std::vector<std::string> correlation_names;  // free coordinates
+  Eigen::MatrixXd correlation;                 // empty if not computable
+  std::vector<std::string> warnings;
+  std::vector<SegmentFit> segments;
+  double seconds = 0.0;
+};
+
+// Fits the case's data. Throws InputError for bad input (missing data, too
+// few points for the free parameters, nothing free, a motion that cannot be
+// integrated from the starting values). A fit that does not converge
+// returns normally with converged = false.
+FitResult Fit(const Case& c);
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_FIT_H_

@@ -1,0 +1,673 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "fit3dof/fit.h"
+
+#include <glog/logging.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+#include "ceres/ceres.h"
+#include "fit3dof/data_selection.h"
+#include "fit3dof/initial_conditions.h"
+#include "fit3dof/input_error.h"
+#include "fit3dof/noise.h"
+#include "fit3dof/segment_cost_function.h"
+
+namespace fit3dof {
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A segment ready to fit: its samples and its full parameter vector.
+struct PreparedSegment {
+  std::string name;
+  TimeHistory data;
+  std::vector<double> base;  // frozen values and this segment's ICs
+  std::vector<int> own;      // positions of its free initial conditions
+  bool from_data = false;
+};
+
+// The free coordinates of the whole fit: shared ones, then each segment's
+// own, in that order (global index g).
+struct FreeLayout {
+  std::vector<int> shared;      // positions
+  std::vector<int> own_offset;  // first global index of each segment
+  std::vector<int> position;    // position of global index g
+  std::vector<int> segment;     // -1 for shared
+  int size() const { return static_cast<int>(position.size()); }
+};
+
+struct Assembly {
+  std::unique_ptr<ceres::Problem> problem;
+  std::vector<SegmentCostFunction*> costs;
+  std::vector<double> shared_u;
+  std::vector<std::vector<double>> own_u;
+  std::vector<double*> blocks;  // in global order, non-empty ones only
+};
+
+std::string Fmt(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, value);
+  return buffer;
+}
+
+PreparedSegment PrepareSegment(const Case& c, const Segment& s, int index) {
+  PreparedSegment p;
+  p.name = s.name;
+  TimeHistory record;
+  try {
+    record = ReadTimeHistory(s.data_file);
+  } catch (const InputError& e) {
+    throw InputError(c.source + ": segment '" + s.name +
+                     "' data.file: " + e.what());
+  }
+  p.data = SelectSamples(record, s.selection);
+  if (p.data.size() < 2) {
+    throw InputError(c.source + ": segment '" + s.name +
+                     "': the data selection (start, fraction, every, "
+                     "t_start, t_end) leaves " +
+                     std::to_string(p.data.size()) + " samples of " +
+                     std::to_string(record.size()) + "; need at least 2");
+  }
+  NoiseOptions noise = c.noise;
+  noise.seed += static_cast<std::uint64_t>(index);
+  AddNoise(noise, &p.data);
+
+  p.base = c.Values();
+  const ParameterLayout& layout = Layout(c.model);
+  p.from_data = s.initial_conditions == InitialConditionMode::kFromData;
+  std::array<double, 6> initial;
+  if (p.from_data) {
+    initial = EstimateInitialConditions(c.model,
+                                        p.data,
+                                        p.base[layout.theta_offset],
+                                        p.base[layout.psi_offset]);
+  } else {
+    for (int j = 0; j < 6; ++j) initial[j] = s.initial[j].value;
+  }
+  for (int j = 0; j < 6; ++j) {
+    p.base[layout.first_initial + j] = initial[j];
+    if (s.initial[j].free) p.own.push_back(layout.first_initial + j);
+  }
+  return p;
+}
+
+// Builds the problem for physical values `values` (global free order) in
+// scaled coordinates u = value / scale.
+Assembly Assemble(const std::vector<PreparedSegment>& segments,
+                  const FreeLayout& free,
+                  const std::shared_ptr<const MotionModel>& model,
+                  const ChannelValues& sigma,
+                  const std::vector<double>& values,
+                  const std::vector<double>& scale) {
+  Assembly a;
+  ceres::Problem::Options options;
+  a.problem = std::make_unique<ceres::Problem>(options);
+  const int ks = static_cast<int>(free.shared.size());
+  a.shared_u.resize(ks);
+  for (int g = 0; g < ks; ++g) a.shared_u[g] = values[g] / scale[g];
+  a.own_u.resize(segments.size());
+  for (size_t s = 0; s < segments.size(); ++s) {
+    const int first = free.own_offset[s];
+    const int count = static_cast<int>(segments[s].own.size());
+    a.own_u[s].resize(count);
+    for (int j = 0; j < count; ++j) {
+      a.own_u[s][j] = values[first + j] / scale[first + j];
+    }
+  }
+  if (ks > 0) a.blocks.push_back(a.shared_u.data());
+  for (size_t s = 0; s < segments.size(); ++s) {
+    if (!a.own_u[s].empty()) a.blocks.push_back(a.own_u[s].data());
+  }
+  for (size_t s = 0; s < segments.size(); ++s) {
+    const PreparedSegment& p = segments[s];
+    std::vector<int> positions = free.shared;
+    std::vector<double> segment_scale(scale.begin(), scale.begin() + ks);
+    std::vector<double> base = p.base;
+    for (int g = 0; g < ks; ++g) base[free.shared[g]] = values[g];
+    for (size_t j = 0; j < p.own.size(); ++j) {
+      positions.push_back(p.own[j]);
+      segment_scale.push_back(scale[free.own_offset[s] + j]);
+    }
+    auto* cost = new SegmentCostFunction(
+        model, base, positions, ks, segment_scale, p.data, sigma);
+    std::vector<double*> blocks;
+    if (ks > 0) blocks.push_back(a.shared_u.data());
+    if (!a.own_u[s].empty()) blocks.push_back(a.own_u[s].data());
+    a.problem->AddResidualBlock(cost, nullptr, blocks);
+    a.costs.push_back(cost);
+  }
+  return a;
+}
+
+// Physical values of the free coordinates (global order) from the blocks.
+std::vector<double> FreeValues(const Assembly& a,
+                               const FreeLayout& free,
+                               const std::vector<double>& scale) {
+  std::vector<double> values(free.size());
+  const int ks = static_cast<int>(a.shared_u.size());
+  for (int g = 0; g < ks; ++g) values[g] = scale[g] * a.shared_u[g];
+  for (size_t s = 0; s < a.own_u.size(); ++s) {
+    for (size_t j = 0; j < a.own_u[s].size(); ++j) {
+      const int g = free.own_offset[s] + static_cast<int>(j);
+      values[g] = scale[g] * a.own_u[s][j];
+    }
+  }
+  return values;
+}
+
+// J^T J of the weighted residuals (columns in global free order) and the
+// residual sum of squares; false if the motion cannot be integrated.
+bool Information(const Assembly& a, Eigen::MatrixXd* jtj, double* ressum) {
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = a.blocks;
+  double cost = 0.0;
+  ceres::CRSMatrix crs;
+  if (!a.problem->Evaluate(options, &cost, nullptr, nullptr, &crs)) {
+    return false;
+  }
+  *ressum = 2.0 * cost;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> j(crs.num_rows, crs.num_cols);
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(crs.values.size());
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int idx = crs.rows[r]; idx < crs.rows[r + 1]; ++idx) {
+      entries.emplace_back(r, crs.cols[idx], crs.values[idx]);
+    }
+  }
+  j.setFromTriplets(entries.begin(), entries.end());
+  *jtj = Eigen::MatrixXd(j.transpose() * j);
+  return true;
+}
+
+// Scales that make every Jacobian column of unit length.
+std::vector<double> ColumnScales(const Eigen::MatrixXd& jtj_unscaled,
+                                 const std::vector<double>& old_scale) {
+  std::vector<double> scale(old_scale.size());
+  for (size_t g = 0; g < scale.size(); ++g) {
+    const double norm = std::sqrt(jtj_unscaled(g, g));
+    scale[g] = (norm > 0.0 && std::isfinite(norm)) ? old_scale[g] / norm
+                                                   : old_scale[g];
+  }
+  return scale;
+}
+
+// Logs each iteration the way the report's listing prints it and applies its
+// convergence rule: stop when the probable error changes by less than BOUND.
+class ReportIterationCallback : public ceres::IterationCallback {
+ public:
+  ReportIterationCallback(const Assembly* assembly,
+                          const FreeLayout* free,
+                          const std::vector<double>* scale,
+                          const std::vector<std::string>* names,
+                          int degrees_of_freedom,
+                          double tolerance)
+      : assembly_(assembly),
+        free_(free),
+        scale_(scale),
+        names_(names),
+        dof_(degrees_of_freedom),
+        tolerance_(tolerance) {}
+
+  ceres::CallbackReturnType operator()(
+      const ceres::IterationSummary& summary) override {
+    const double ressum = 2.0 * summary.cost;
+    const double e = std::sqrt(ressum / dof_);
+    std::vector<double> values = FreeValues(*assembly_, *free_, *scale_);
+    if (summary.iteration == 0) {
+      old_e_ = e;
+      previous_ = values;
+      LOG(INFO) << "start: sum of residuals " << std::sqrt(ressum)
+                << "  probable error " << e;
+      return ceres::SOLVER_CONTINUE;
+    }
+    if (!summary.step_is_successful) return ceres::SOLVER_CONTINUE;
+    std::ostringstream log;
+    log << "ITERATION NO " << summary.iteration << "\n"
+        << "                      CON        DELTA CON\n";
+    for (size_t g = 0; g < values.size(); ++g) {
+      char line[128];
+      std::snprintf(line,
+                    sizeof(line),
+                    "  %-18s %14.6e %14.6e\n",
+                    (*names_)[g].c_str(),
+                    values[g],
+                    values[g] - previous_[g]);
+      log << line;
+    }
+    log << "  SUM OF RESIDUALS " << std::sqrt(ressum)
+        << "   NEW PROBABLE ERROR = " << e
+        << "   OLD PROBABLE ERROR = " << old_e_;
+    LOG(INFO) << log.str();
+    const double change = std::abs(e - old_e_);
+    old_e_ = e;
+    previous_ = values;
+    if (change < tolerance_) {
+      converged_by_rule_ = true;
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+
+  bool converged_by_rule() const { return converged_by_rule_; }
+
+ private:
+  const Assembly* assembly_;
+  const FreeLayout* free_;
+  const std::vector<double>* scale_;
+  const std::vector<std::string>* names_;
+  int dof_;
+  double tolerance_;
+  double old_e_ = 0.0;
+  std::vector<double> previous_;
+  bool converged_by_rule_ = false;
+};
+
+// "only their sum", "only their difference" or the explicit combination
+// a + c b, for a determined direction w = (w_a, w_b).
+std::string Combination(const std::string& a,
+                        const std::string& b,
+                        double w_a,
+                        double w_b) {
+  const double c = w_b / w_a;
+  if (std::abs(c - 1.0) < 0.15) return "only their sum is determined";
+  if (std::abs(c + 1.0) < 0.15) return "only their difference is determined";
+  return "only the combination " + a + (c >= 0 ? " + " : " - ") +
+         Fmt("%.3g", std::abs(c)) + " " + b + " is determined";
+}
+
+std::string JoinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " and " : ", ";
+    out += names[i];
+  }
+  return out;
+}
+
+// Free-coordinate names: report names, qualified by segment when several
+// segments carry their own initial conditions.
+std::vector<std::string> FreeNames(const Case& c,
+                                   const FreeLayout& free,
+                                   const std::vector<PreparedSegment>& segs) {
+  const auto& table = ParameterTable(c.model);
+  std::vector<std::string> names;
+  for (int g = 0; g < free.size(); ++g) {
+    std::string name = table[free.position[g]].name;
+    if (free.segment[g] >= 0 && segs.size() > 1) {
+      name = segs[free.segment[g]].name + "." + name;
+    }
+    names.push_back(name);
+  }
+  return names;
+}
+
+}  // namespace
+
+FitResult Fit(const Case& c) {
+  const auto start_time = std::chrono::steady_clock::now();
+  if (c.segments.empty()) {
+    throw InputError(c.source +
+                     ": data: missing (a fit needs data: or segments:)");
+  }
+  std::vector<PreparedSegment> segments;
+  for (size_t s = 0; s < c.segments.size(); ++s) {
+    segments.push_back(PrepareSegment(c, c.segments[s], static_cast<int>(s)));
+  }
+
+  FreeLayout free;
+  for (int i = 0; i < NumParameters(c.model); ++i) {
+    if (c.parameters[i].free && !IsInitialCondition(c.model, i)) {
+      free.shared.push_back(i);
+      free.position.push_back(i);
+      free.segment.push_back(-1);
+    }
+  }
+  int points = 0;
+  for (size_t s = 0; s < segments.size(); ++s) {
+    free.own_offset.push_back(free.size());
+    for (int position : segments[s].own) {
+      free.position.push_back(position);
+      free.segment.push_back(static_cast<int>(s));
+    }
+    points += segments[s].data.size();
+  }
+  const int k = free.size();
+  if (k == 0) {
+    throw InputError(c.source +
+                     ": parameters: every parameter is frozen; mark at least "
+                     "one with free: true");
+  }
+  const int dof = 3 * points - k;
+  if (dof <= 0) {
+    throw InputError(c.source + ": too few points: " + std::to_string(points) +
+                     " samples give " + std::to_string(3 * points) +
+                     " residuals for " + std::to_string(k) +
+                     " free parameters");
+  }
+
+  std::vector<double> values(k);
+  for (int g = 0; g < k; ++g) {
+    values[g] = free.segment[g] < 0
+                    ? c.parameters[free.position[g]].value
+                    : segments[free.segment[g]].base[free.position[g]];
+  }
+  std::vector<bool> free_flags = c.FreeFlags();
+  auto model = std::make_shared<const MotionModel>(
+      c.Spec(), ActiveParameters(c.Values(), free_flags));
+  const std::vector<std::string> names = FreeNames(c, free, segments);
+
+  // Scale the free coordinates by the Jacobian at the start.
+  std::vector<double> scale(k, 1.0);
+  {
+    Assembly probe = Assemble(segments, free, model, c.sigma, values, scale);
+    Eigen::MatrixXd jtj;
+    double ressum;
+    if (!Information(probe, &jtj, &ressum)) {
+      IntegrationFailure failure;
+      std::string reason = "the motion blows up";
+      for (size_t s = 0; s < probe.costs.size(); ++s) {
+        std::vector<double> angles;
+        if (!probe.costs[s]->ComputeAngles(
+                segments[s].base, &angles, &failure)) {
+          reason = failure.reason + Fmt(" at t = %.4g s", failure.time) +
+                   " in segment '" + segments[s].name + "'";
+          break;
+        }
+      }
+      throw InputError(c.source +
+                       ": the motion cannot be integrated from the starting "
+                       "values (" +
+                       reason + "); check the parameters");
+    }
+    scale = ColumnScales(jtj, scale);
+  }
+
+  Assembly assembly = Assemble(segments, free, model, c.sigma, values, scale);
+  ceres::Solver::Options options;
+  options.minimizer_type = ceres::TRUST_REGION;
+  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = c.solver.max_iterations;
+  // The report's rule (the callback) decides convergence; Ceres' own
+  // tolerances only stop a fit that cannot move at all.
+  options.function_tolerance = 1e-14;
+  options.gradient_tolerance = 1e-16;
+  options.parameter_tolerance = 1e-14;
+  // SILENT also keeps Ceres from logging every rejected trial step.
+  options.logging_type = ceres::SILENT;
+  options.update_state_every_iteration = true;
+  ReportIterationCallback callback(
+      &assembly, &free, &scale, &names, dof, c.solver.tolerance);
+  options.callbacks.push_back(&callback);
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, assembly.problem.get(), &summary);
+
+  FitResult result;
+  result.name = c.name;
+  result.model = c.model;
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.points = points;
+  result.free_parameters = k;
+  result.converged = summary.termination_type == ceres::USER_SUCCESS ||
+                     summary.termination_type == ceres::CONVERGENCE;
+  if (summary.termination_type == ceres::USER_SUCCESS) {
+    result.termination =
+        "probable error changed by less than " + Fmt("%g", c.solver.tolerance);
+  } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    result.termination = "CONVERGENCE CRITERIA NOT SATISFIED AFTER " +
+                         std::to_string(result.iterations) + " ITERATIONS";
+  } else {
+    result.termination = summary.message;
+  }
+  if (!result.converged) LOG(WARNING) << c.name << ": " << result.termination;
+
+  values = FreeValues(assembly, free, scale);
+
+  // Covariance at the solution, in coordinates rescaled there.
+  Eigen::MatrixXd jtj;
+  double ressum = 0.0;
+  Assembly final_assembly =
+      Assemble(segments, free, model, c.sigma, values, scale);
+  if (!Information(final_assembly, &jtj, &ressum)) {
+    throw std::runtime_error(c.source +
+                             ": the motion cannot be integrated at the "
+                             "solution");
+  }
+  scale = ColumnScales(jtj, scale);
+  final_assembly = Assemble(segments, free, model, c.sigma, values, scale);
+  Information(final_assembly, &jtj, &ressum);
+  result.sum_of_residuals = std::sqrt(ressum);
+  result.probable_error = std::sqrt(ressum / dof);
+
+  ceres::Covariance::Options cov_options;
+  cov_options.algorithm_type = ceres::DENSE_SVD;
+  cov_options.null_space_rank = 0;
+  cov_options.min_reciprocal_condition_number = 1e-14;
+  ceres::Covariance covariance(cov_options);
+  std::vector<std::pair<const double*, const double*>> pairs;
+  for (size_t i = 0; i < final_assembly.blocks.size(); ++i) {
+    for (size_t j = i; j < final_assembly.blocks.size(); ++j) {
+      pairs.emplace_back(final_assembly.blocks[i], final_assembly.blocks[j]);
+    }
+  }
+  Eigen::MatrixXd cov_u = Eigen::MatrixXd::Constant(k, k, kNaN);
+  std::vector<bool> determined(k, true);
+  // Block sizes in global order.
+  std::vector<int> block_start, block_size;
+  {
+    int offset = 0;
+    for (double* block : final_assembly.blocks) {
+      block_start.push_back(offset);
+      const int size = final_assembly.problem->ParameterBlockSize(block);
+      block_size.push_back(size);
+      offset += size;
+    }
+  }
+  if (covariance.Compute(pairs, final_assembly.problem.get())) {
+    for (size_t i = 0; i < final_assembly.blocks.size(); ++i) {
+      for (size_t j = i; j < final_assembly.blocks.size(); ++j) {
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+            block(block_size[i], block_size[j]);
+        covariance.GetCovarianceBlock(
+            final_assembly.blocks[i], final_assembly.blocks[j], block.data());
+        cov_u.block(
+            block_start[i], block_start[j], block_size[i], block_size[j]) =
+            block;
+        cov_u.block(
+            block_start[j], block_start[i], block_size[j], block_size[i]) =
+            block.transpose();
+      }
+    }
+  } else {
+    // Rank deficient: name the directions the data do not determine and use
+    // the pseudo-inverse for the parameters outside them.
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(jtj);
+    const Eigen::VectorXd lambda = eigen.eigenvalues();
+    const double lambda_max = lambda.maxCoeff();
+    Eigen::MatrixXd pinv = Eigen::MatrixXd::Zero(k, k);
+    for (int e = 0; e < k; ++e) {
+      const Eigen::VectorXd v = eigen.eigenvectors().col(e);
+      if (lambda(e) > 1e-14 * lambda_max) {
+        pinv += v * v.transpose() / lambda(e);
+        continue;
+      }
+      std::vector<std::string> involved;
+      std::vector<int> index;
+      for (int g = 0; g < k; ++g) {
+        if (std::abs(v(g)) > 0.2) {
+          involved.push_back(names[g]);
+          index.push_back(g);
+          determined[g] = false;
+        }
+      }
+      std::string message = JoinNames(involved) +
+                            " cannot be separated (the information matrix "
+                            "is singular)";
+      if (index.size() == 2) {
+        // Null direction in physical units n; determined w = (n_b, -n_a).
+        const double na = scale[index[0]] * v(index[0]);
+        const double nb = scale[index[1]] * v(index[1]);
+        message += ": " + Combination(involved[0], involved[1], nb, -na);
+      }
+      result.warnings.push_back(message);
+    }
+    cov_u = pinv;
+  }
+
+  // Physical covariance and RMS errors (Eq. 27).
+  Eigen::MatrixXd cov(k, k);
+  for (int a = 0; a < k; ++a) {
+    for (int b = 0; b < k; ++b) cov(a, b) = scale[a] * cov_u(a, b) * scale[b];
+  }
+  std::vector<double> rms(k);
+  for (int g = 0; g < k; ++g) {
+    rms[g] =
+        determined[g] ? result.probable_error * std::sqrt(cov(g, g)) : kNaN;
+  }
+  result.correlation_names = names;
+  result.correlation = Eigen::MatrixXd::Constant(k, k, kNaN);
+  for (int a = 0; a < k; ++a) {
+    for (int b = 0; b < k; ++b) {
+      if (determined[a] && determined[b]) {
+        result.correlation(a, b) = cov(a, b) / std::sqrt(cov(a, a) * cov(b, b));
+      }
+    }
+  }
+  // Highly correlated pairs: name the combination that is determined.
+  for (int a = 0; a < k; ++a) {
+    for (int b = a + 1; b < k; ++b) {
+      const double r = result.correlation(a, b);
+      if (!(std::abs(r) > 0.99)) continue;
+      Eigen::Matrix2d block;
+      block << cov(a, a), cov(a, b), cov(b, a), cov(b, b);
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(block);
+      // Largest-variance direction n is undetermined; w = (n_b, -n_a).
+      const Eigen::Vector2d n = eigen.eigenvectors().col(1);
+      Eigen::Vector2d w(n(1), -n(0));
+      w /= w(0);
+      const double value = w(0) * values[a] + w(1) * values[b];
+      const double error = result.probable_error * std::sqrt(w.dot(block * w));
+      std::string combination = Combination(names[a], names[b], w(0), w(1));
+      result.warnings.push_back(
+          names[a] + " and " + names[b] + " are " +
+          Fmt("%.2f", 100.0 * std::abs(r)) + "% correlated: " + combination +
+          " (" + names[a] + (w(1) >= 0 ? " + " : " - ") +
+          Fmt("%.4g", std::abs(w(1))) + " " + names[b] + " = " +
+          Fmt("%.6g", value) + " +- " + Fmt("%.2g", error) + ")");
+    }
+  }
+  // Groups of three or more nearly dependent parameters (e.g. Cm_alpha, t1,
+  // t3 for small motion, the report's Eq. 43) that no single pair reveals.
+  if (result.correlation.allFinite()) {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(result.correlation);
+    for (int e = 0; e < k; ++e) {
+      if (eigen.eigenvalues()(e) > 1e-3) continue;
+      const Eigen::VectorXd v = eigen.eigenvectors().col(e);
+      std::vector<std::string> involved;
+      for (int g = 0; g < k; ++g) {
+        if (std::abs(v(g)) > 0.25) involved.push_back(names[g]);
+      }
+      if (involved.size() >= 3) {
+        result.warnings.push_back(
+            JoinNames(involved) +
+            " are nearly dependent: the data determine only " +
+            std::to_string(involved.size() - 1) + " combinations of these " +
+            std::to_string(involved.size()) + " parameters");
+      }
+    }
+  }
+
+  // Estimates for every parameter.
+  const auto& table = ParameterTable(c.model);
+  std::vector<double> final_values = c.Values();
+  for (int g = 0; g < k; ++g) {
+    if (free.segment[g] < 0) final_values[free.position[g]] = values[g];
+  }
+  for (int i = 0; i < NumParameters(c.model); ++i) {
+    if (table[i].scaling == Scaling::kUnused) continue;
+    if (IsInitialCondition(c.model, i) && segments.size() > 1) continue;
+    ParameterEstimate e;
+    e.name = table[i].name;
+    e.position = i;
+    e.units = table[i].units;
+    e.value =
+        IsInitialCondition(c.model, i) ? segments[0].base[i] : final_values[i];
+    e.rms_error = kNaN;
+    for (int g = 0; g < k; ++g) {
+      if (free.position[g] == i && (free.segment[g] <= 0)) {
+        e.free = true;
+        e.value = values[g];
+        e.rms_error = rms[g];
+      }
+    }
+    result.parameters.push_back(e);
+  }
+
+  // Segments: fitted initial conditions, computed motion, residual levels.
+  double sum2[3] = {0, 0, 0};
+  for (size_t s = 0; s < segments.size(); ++s) {
+    const PreparedSegment& p = segments[s];
+    SegmentCostFunction* cost = final_assembly.costs[s];
+    std::vector<const double*> blocks;
+    if (!final_assembly.shared_u.empty()) {
+      blocks.push_back(final_assembly.shared_u.data());
+    }
+    if (!final_assembly.own_u[s].empty()) {
+      blocks.push_back(final_assembly.own_u[s].data());
+    }
+    const std::vector<double> full = cost->FullValues(blocks.data());
+    SegmentFit fit;
+    fit.name = p.name;
+    fit.data = p.data;
+    fit.initial_from_data = p.from_data;
+    cost->ComputeAngles(full, &fit.computed, nullptr);
+    const int first = Layout(c.model).first_initial;
+    for (int j = 0; j < 6; ++j) fit.initial[j] = full[first + j];
+    double seg2[3] = {0, 0, 0};
+    const double* measured[3] = {
+        p.data.phi.data(), p.data.theta.data(), p.data.psi.data()};
+    for (int i = 0; i < p.data.size(); ++i) {
+      for (int ch = 0; ch < 3; ++ch) {
+        const double d = fit.computed[3 * i + ch] - measured[ch][i];
+        seg2[ch] += d * d;
+        sum2[ch] += d * d;
+      }
+    }
+    const double n = p.data.size();
+    fit.rms_residual_deg = {
+        std::sqrt(seg2[0] / n), std::sqrt(seg2[1] / n), std::sqrt(seg2[2] / n)};
+    // Multi-segment fits list each segment's own initial conditions.
+    if (segments.size() > 1) {
+      for (int g = 0; g < k; ++g) {
+        if (free.segment[g] != static_cast<int>(s)) continue;
+        ParameterEstimate e;
+        e.name = names[g];
+        e.segment = p.name;
+        e.position = free.position[g];
+        e.units = table[free.position[g]].units;
+        e.value = values[g];
+        e.rms_error = rms[g];
+        e.free = true;
+        result.parameters.push_back(e);
+      }
+    }
+    result.segments.push_back(std::move(fit));
+  }
+  result.rms_residual_deg = {std::sqrt(sum2[0] / points),
+                             std::sqrt(sum2[1] / points),
+                             std::sqrt(sum2[2] / points)};
+  result.seconds = std::chrono::duration<double>(
+                       std::chrono::steady_clock::now() - start_time)
+                       .count();
+  return result;
+}
+
+}  // namespace fit3dof

@@ -1,0 +1,157 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "fit3dof/fit_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "fit3dof/atomic_file.h"
+
+namespace fit3dof {
+namespace {
+
+using nlohmann::json;
+
+// JSON has no NaN: undetermined numbers are null.
+json Number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+json Channels(const ChannelValues& v) {
+  return {{"phi", Number(v.phi)},
+          {"theta", Number(v.theta)},
+          {"psi", Number(v.psi)}};
+}
+
+}  // namespace
+
+std::string ReportJson(const FitResult& r) {
+  json report;
+  report["name"] = r.name;
+  report["model"] = ModelName(r.model);
+  report["converged"] = r.converged;
+  report["termination"] = r.termination;
+  report["iterations"] = r.iterations;
+  report["points"] = r.points;
+  report["free_parameters"] = r.free_parameters;
+  report["probable_error"] = Number(r.probable_error);
+  report["sum_of_residuals"] = Number(r.sum_of_residuals);
+  report["rms_residual_deg"] = Channels(r.rms_residual_deg);
+  json parameters = json::object();
+  for (const ParameterEstimate& e : r.parameters) {
+    parameters[e.name] = {{"value", Number(e.value)},
+                          {"rms_error", e.free ? Number(e.rms_error) : json()},
+                          {"free", e.free},
+                          {"units", e.units}};
+    if (!e.segment.empty()) parameters[e.name]["segment"] = e.segment;
+  }
+  report["parameters"] = parameters;
+  json matrix = json::array();
+  for (int a = 0; a < r.correlation.rows(); ++a) {
+    json row = json::array();
+    for (int b = 0; b < r.correlation.cols(); ++b) {
+      row.push_back(Number(r.correlation(a, b)));
+    }
+    matrix.push_back(row);
+  }
+  report["correlation"] = {{"names", r.correlation_names}, {"matrix", matrix}};
+  report["warnings"] = r.warnings;
+  json segments = json::array();
+  for (const SegmentFit& s : r.segments) {
+    segments.push_back(
+        {{"name", s.name},
+         {"points", s.data.size()},
+         {"t_start", s.data.t.front()},
+         {"t_end", s.data.t.back()},
+         {"initial_conditions", s.initial_from_data ? "from_data" : "given"},
+         {"rms_residual_deg", Channels(s.rms_residual_deg)}});
+  }
+  report["segments"] = segments;
+  report["seconds"] = r.seconds;
+  return report.dump(2) + "\n";
+}
+
+std::string FitComparisonCsv(const FitResult& r) {
+  std::string out = "t,phi,phi_fit,theta,theta_fit,psi,psi_fit,segment\n";
+  char line[256];
+  for (const SegmentFit& s : r.segments) {
+    for (int i = 0; i < s.data.size(); ++i) {
+      std::snprintf(line,
+                    sizeof(line),
+                    "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,",
+                    s.data.t[i],
+                    s.data.phi[i],
+                    s.computed[3 * i],
+                    s.data.theta[i],
+                    s.computed[3 * i + 1],
+                    s.data.psi[i],
+                    s.computed[3 * i + 2]);
+      out += line;
+      out += s.name + "\n";
+    }
+  }
+  return out;
+}
+
+std::string FormatFitTable(const FitResult& r) {
+  std::string out;
+  char line[256];
+  std::snprintf(line,
+                sizeof(line),
+                "%s: %s model, %d points, %d free parameters, %s after %d "
+                "iterations (%.3f s)\n",
+                r.name.c_str(),
+                ModelName(r.model),
+                r.points,
+                r.free_parameters,
+                r.converged ? "converged" : "NOT CONVERGED",
+                r.iterations,
+                r.seconds);
+  out += line;
+  if (!r.converged) out += "  " + r.termination + "\n";
+  std::snprintf(line,
+                sizeof(line),
+                "probable error %.4g   sum of residuals %.4g   rms residual "
+                "(deg): phi %.4g  theta %.4g  psi %.4g\n\n",
+                r.probable_error,
+                r.sum_of_residuals,
+                r.rms_residual_deg.phi,
+                r.rms_residual_deg.theta,
+                r.rms_residual_deg.psi);
+  out += line;
+  std::snprintf(line,
+                sizeof(line),
+                "  %-26s %15s %12s  %s\n",
+                "parameter",
+                "value",
+                "rms error",
+                "units");
+  out += line;
+  for (const ParameterEstimate& e : r.parameters) {
+    if (!e.free && e.value == 0.0) continue;
+    char error[32];
+    if (!e.free) {
+      std::snprintf(error, sizeof(error), "(frozen)");
+    } else if (std::isfinite(e.rms_error)) {
+      std::snprintf(error, sizeof(error), "%.3g", e.rms_error);
+    } else {
+      std::snprintf(error, sizeof(error), "undetermined");
+    }
+    std::snprintf(line,
+                  sizeof(line),
+                  "  %-26s %15.7g %12s  %s\n",
+                  e.name.c_str(),
+                  e.value,
+                  error,
+                  e.units.c_str());
+    out += line;
+  }
+  for (const std::string& w : r.warnings) out += "warning: " + w + "\n";
+  return out;
+}
+
+void WriteFitOutputs(const std::string& dir, const FitResult& result) {
+  WriteFileAtomically(dir + "/fit.csv", FitComparisonCsv(result));
+  WriteFileAtomically(dir + "/report.json", ReportJson(result));
+}
+
+}  // namespace fit3dof

@@ -1,0 +1,137 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "fit3dof/segment_cost_function.h"
+
+#include <cmath>
+
+namespace fit3dof {
+
+SegmentCostFunction::SegmentCostFunction(
+    std::shared_ptr<const MotionModel> model,
+    std::vector<double> base,
+    std::vector<int> free,
+    int num_shared,
+    std::vector<double> scale,
+    TimeHistory data,
+    ChannelValues sigma)
+    : model_(std::move(model)),
+      base_(std::move(base)),
+      free_(std::move(free)),
+      num_shared_(num_shared),
+      scale_(std::move(scale)),
+      data_(std::move(data)),
+      sigma_(sigma) {
+  const int num_own = static_cast<int>(free_.size()) - num_shared_;
+  if (num_shared_ > 0) mutable_parameter_block_sizes()->push_back(num_shared_);
+  if (num_own > 0) mutable_parameter_block_sizes()->push_back(num_own);
+  set_num_residuals(3 * data_.size());
+}
+
+void SegmentCostFunction::Locate(int j, int* block, int* column) const {
+  if (j < num_shared_) {
+    *block = 0;
+    *column = j;
+  } else {
+    *block = num_shared_ > 0 ? 1 : 0;
+    *column = j - num_shared_;
+  }
+}
+
+void SegmentCostFunction::GatherFree(double const* const* parameters,
+                                     double* u) const {
+  for (size_t j = 0; j < free_.size(); ++j) {
+    int block, column;
+    Locate(static_cast<int>(j), &block, &column);
+    u[j] = parameters[block][column];
+  }
+}
+
+std::vector<double> SegmentCostFunction::FullValues(
+    double const* const* parameters) const {
+  std::vector<double> u(free_.size());
+  GatherFree(parameters, u.data());
+  std::vector<double> full = base_;
+  for (size_t j = 0; j < free_.size(); ++j) full[free_[j]] = scale_[j] * u[j];
+  return full;
+}
+
+bool SegmentCostFunction::ComputeAngles(const std::vector<double>& full,
+                                        std::vector<double>* angles,
+                                        IntegrationFailure* failure) const {
+  const int n = data_.size();
+  angles->resize(3 * n);
+  if (!model_->Evaluate(
+          full.data(), data_.t.data(), n, angles->data(), failure)) {
+    return false;
+  }
+  for (int i = 0; i < n; ++i) {
+    double& phi = (*angles)[3 * i];
+    phi -= 360.0 * std::round((phi - data_.phi[i]) / 360.0);
+  }
+  return true;
+}
+
+bool SegmentCostFunction::EvaluatePass(const double* u,
+                                       const int* lanes,
+                                       int count,
+                                       double* residuals,
+                                       double** jacobians) const {
+  if (count <= 4)
+    return EvaluateLanes<4>(u, lanes, count, residuals, jacobians);
+  if (count <= 8)
+    return EvaluateLanes<8>(u, lanes, count, residuals, jacobians);
+  if (count <= 12) {
+    return EvaluateLanes<12>(u, lanes, count, residuals, jacobians);
+  }
+  if (count <= 16) {
+    return EvaluateLanes<16>(u, lanes, count, residuals, jacobians);
+  }
+  if (count <= 24) {
+    return EvaluateLanes<24>(u, lanes, count, residuals, jacobians);
+  }
+  return EvaluateLanes<32>(u, lanes, count, residuals, jacobians);
+}
+
+bool SegmentCostFunction::Evaluate(double const* const* parameters,
+                                   double* residuals,
+                                   double** jacobians) const {
+  const int k = static_cast<int>(free_.size());
+  std::vector<double> u(k);
+  GatherFree(parameters, u.data());
+  std::vector<int> lanes;
+  if (jacobians != nullptr) {
+    for (int j = 0; j < k; ++j) {
+      int block, column;
+      Locate(j, &block, &column);
+      if (jacobians[block] != nullptr) lanes.push_back(j);
+    }
+  }
+  if (lanes.empty()) {
+    std::vector<double> full = base_;
+    for (int j = 0; j < k; ++j) full[free_[j]] = scale_[j] * u[j];
+    std::vector<double> angles;
+    if (!ComputeAngles(full, &angles, nullptr)) return false;
+    const double* measured[3] = {
+        data_.phi.data(), data_.theta.data(), data_.psi.data()};
+    const double sigma[3] = {sigma_.phi, sigma_.theta, sigma_.psi};
+    for (int i = 0; i < data_.size(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        const double r = (angles[3 * i + c] - measured[c][i]) / sigma[c];
+        if (!std::isfinite(r)) return false;
+        residuals[3 * i + c] = r;
+      }
+    }
+    return true;
+  }
+  for (size_t first = 0; first < lanes.size(); first += kMaxLanes) {
+    const int count =
+        static_cast<int>(std::min<size_t>(kMaxLanes, lanes.size() - first));
+    if (!EvaluatePass(
+            u.data(), lanes.data() + first, count, residuals, jacobians)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace fit3dof
