@@ -490,7 +490,11 @@ void ConfigReader::ReadNoise(const YAML::Node& node, Case* c) const {
 }
 
 void ConfigReader::ReadSolver(const YAML::Node& node, Case* c) const {
-  CheckKeys(node, "solver", {"max_iterations", "tolerance", "step"});
+  CheckKeys(
+      node, "solver", {"max_iterations", "tolerance", "step", "continuation"});
+  if (node["continuation"]) {
+    c->solver.continuation = Bool(node["continuation"], "solver.continuation");
+  }
   if (node["max_iterations"]) {
     c->solver.max_iterations = static_cast<int>(
         Integer(node["max_iterations"], "solver.max_iterations", 1));

@@ -187,7 +187,8 @@ bool Information(const Assembly& a, Eigen::MatrixXd* jtj, double* ressum) {
   return true;
 }
 
-// Scales that make every Jacobian column of unit length.
+// Scales that make every Jacobian column of unit length (columns that are
+// exactly zero keep their scale).
 std::vector<double> ColumnScales(const Eigen::MatrixXd& jtj_unscaled,
                                  const std::vector<double>& old_scale) {
   std::vector<double> scale(old_scale.size());
@@ -208,13 +209,15 @@ class ReportIterationCallback : public ceres::IterationCallback {
                           const std::vector<double>* scale,
                           const std::vector<std::string>* names,
                           int degrees_of_freedom,
-                          double tolerance)
+                          double tolerance,
+                          double relative_tolerance)
       : assembly_(assembly),
         free_(free),
         scale_(scale),
         names_(names),
         dof_(degrees_of_freedom),
-        tolerance_(tolerance) {}
+        tolerance_(tolerance),
+        relative_tolerance_(relative_tolerance) {}
 
   ceres::CallbackReturnType operator()(
       const ceres::IterationSummary& summary) override {
@@ -224,8 +227,8 @@ class ReportIterationCallback : public ceres::IterationCallback {
     if (summary.iteration == 0) {
       old_e_ = e;
       previous_ = values;
-      LOG(INFO) << "start: sum of residuals " << std::sqrt(ressum)
-                << "  probable error " << e;
+      VLOG(1) << "start: sum of residuals " << std::sqrt(ressum)
+              << "  probable error " << e;
       return ceres::SOLVER_CONTINUE;
     }
     if (!summary.step_is_successful) return ceres::SOLVER_CONTINUE;
@@ -245,11 +248,11 @@ class ReportIterationCallback : public ceres::IterationCallback {
     log << "  SUM OF RESIDUALS " << std::sqrt(ressum)
         << "   NEW PROBABLE ERROR = " << e
         << "   OLD PROBABLE ERROR = " << old_e_;
-    LOG(INFO) << log.str();
+    VLOG(1) << log.str();
     const double change = std::abs(e - old_e_);
     old_e_ = e;
     previous_ = values;
-    if (change < tolerance_) {
+    if (change < std::max(tolerance_, relative_tolerance_ * e)) {
       converged_by_rule_ = true;
       return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     }
@@ -265,10 +268,20 @@ class ReportIterationCallback : public ceres::IterationCallback {
   const std::vector<std::string>* names_;
   int dof_;
   double tolerance_;
+  double relative_tolerance_;
   double old_e_ = 0.0;
   std::vector<double> previous_;
   bool converged_by_rule_ = false;
 };
+
+// A correlation as a percentage with enough digits to tell it from 100%.
+std::string Percent(double r) {
+  int digits = 2;
+  while (digits < 6 && 1.0 - r < std::pow(10.0, -digits - 1)) ++digits;
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.*f%%", digits, 100.0 * r);
+  return buffer;
+}
 
 // "only their sum", "only their difference" or the explicit combination
 // a + c b, for a determined direction w = (w_a, w_b).
@@ -307,6 +320,203 @@ std::vector<std::string> FreeNames(const Case& c,
     names.push_back(name);
   }
   return names;
+}
+
+// Free coordinates (global order) whose Jacobian column is zero for all
+// practical purposes (1e10 times weaker than the strongest, in physical
+// units): parameters the data cannot see at the current values, like a
+// Magnus term without spin. Real columns span about 1e-1 (deg per unit of a
+// cubic damping term) to 1e8 (deg per unit of Cl_0).
+std::vector<bool> NullColumns(const Eigen::MatrixXd& jtj) {
+  const double largest = jtj.diagonal().maxCoeff();
+  std::vector<bool> null(jtj.rows());
+  for (int g = 0; g < jtj.rows(); ++g) {
+    null[g] = !(jtj(g, g) > 1e-20 * largest);
+  }
+  return null;
+}
+
+// Holds the given free coordinates constant in the assembled problem.
+void HoldCoordinates(const std::vector<bool>& hold, Assembly* a) {
+  int offset = 0;
+  for (double* block : a->blocks) {
+    const int size = a->problem->ParameterBlockSize(block);
+    std::vector<int> constant;
+    for (int j = 0; j < size; ++j) {
+      if (hold[offset + j]) constant.push_back(j);
+    }
+    if (static_cast<int>(constant.size()) == size) {
+      a->problem->SetParameterBlockConstant(block);
+    } else if (!constant.empty()) {
+      a->problem->SetManifold(block, new ceres::SubsetManifold(size, constant));
+    }
+    offset += size;
+  }
+}
+
+// A rough period of the angular motion from the zero crossings of theta and
+// psi about their means; 0 when the record holds too few of them.
+double EstimatePeriod(const TimeHistory& data) {
+  double crossings = 0.0;
+  for (const std::vector<double>* channel : {&data.theta, &data.psi}) {
+    double mean = 0.0;
+    for (double x : *channel) mean += x;
+    mean /= channel->size();
+    for (size_t i = 1; i < channel->size(); ++i) {
+      if (((*channel)[i] - mean) * ((*channel)[i - 1] - mean) < 0.0) {
+        crossings += 0.5;  // averaged over the two channels
+      }
+    }
+  }
+  if (crossings < 8.0) return 0.0;
+  return 2.0 * (data.t.back() - data.t.front()) / crossings;
+}
+
+// The windows (seconds after each segment's first sample) of the
+// continuation: about two periods of the motion first, doubling until the
+// whole record is in. A fit that starts far off in frequency is not convex
+// over 40 cycles; over two it is, and each longer window starts from the
+// last one's answer.
+std::vector<double> ContinuationWindows(
+    const std::vector<PreparedSegment>& segments, int num_free) {
+  double longest = 0.0;
+  double period = 0.0;
+  for (const PreparedSegment& p : segments) {
+    longest = std::max(longest, p.data.t.back() - p.data.t.front());
+    period = std::max(period, EstimatePeriod(p.data));
+  }
+  std::vector<double> windows;
+  if (period > 0.0) {
+    for (double w = 2.0 * period; w < 0.75 * longest; w *= 2.0) {
+      // Enough residuals for the free parameters in the window.
+      int points = 0;
+      for (const PreparedSegment& p : segments) {
+        for (double t : p.data.t) points += (t - p.data.t.front() <= w);
+      }
+      if (3 * points >= 4 * num_free + 30) windows.push_back(w);
+    }
+  }
+  windows.push_back(std::numeric_limits<double>::infinity());
+  return windows;
+}
+
+std::vector<PreparedSegment> Window(const std::vector<PreparedSegment>& all,
+                                    double window) {
+  std::vector<PreparedSegment> out = all;
+  for (PreparedSegment& p : out) {
+    TimeHistory cut;
+    for (int i = 0; i < p.data.size(); ++i) {
+      if (p.data.t[i] - p.data.t[0] > window) break;
+      cut.Append(p.data.t[i], p.data.phi[i], p.data.theta[i], p.data.psi[i]);
+    }
+    p.data = cut;
+  }
+  return out;
+}
+
+struct StageOutcome {
+  bool integrable = true;  // false: the motion blew up at the start values
+  bool converged = false;
+  int iterations = 0;
+  int failed_evaluations = 0;  // rejected trial steps that blew up
+  std::string termination;
+  std::string failure;  // why the start values could not be integrated
+};
+
+// One Levenberg-Marquardt run from `values` (updated in place).
+StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
+                        const FreeLayout& free,
+                        const std::shared_ptr<const MotionModel>& model,
+                        const ChannelValues& sigma,
+                        const std::vector<std::string>& names,
+                        double tolerance,
+                        double relative_tolerance,
+                        int max_iterations,
+                        std::vector<double>* values) {
+  StageOutcome outcome;
+  const int k = free.size();
+  int points = 0;
+  for (const PreparedSegment& p : segments) points += p.data.size();
+  std::vector<double> scale(k, 1.0);
+  std::vector<bool> null_columns;
+  {
+    // Scale the free coordinates by the Jacobian at the start.
+    Assembly probe = Assemble(segments, free, model, sigma, *values, scale);
+    Eigen::MatrixXd jtj;
+    double ressum;
+    if (!Information(probe, &jtj, &ressum)) {
+      outcome.integrable = false;
+      outcome.failure = "the motion blows up";
+      for (size_t s = 0; s < probe.costs.size(); ++s) {
+        IntegrationFailure failure;
+        std::vector<double> angles;
+        const std::vector<double*>& blocks = probe.blocks;
+        (void)blocks;
+        std::vector<const double*> segment_blocks;
+        if (!probe.shared_u.empty())
+          segment_blocks.push_back(probe.shared_u.data());
+        if (!probe.own_u[s].empty())
+          segment_blocks.push_back(probe.own_u[s].data());
+        if (!probe.costs[s]->ComputeAngles(
+                probe.costs[s]->FullValues(segment_blocks.data()),
+                &angles,
+                &failure)) {
+          outcome.failure = failure.reason +
+                            Fmt(" at t = %.4g s", failure.time) +
+                            " in segment '" + segments[s].name + "'";
+          break;
+        }
+      }
+      return outcome;
+    }
+    scale = ColumnScales(jtj, scale);
+    null_columns = NullColumns(jtj);
+  }
+  Assembly assembly = Assemble(segments, free, model, sigma, *values, scale);
+  // A coordinate without any effect on the residuals would let
+  // Levenberg-Marquardt step without bound along it (the cost never
+  // objects); hold it where it is. The covariance names it afterwards.
+  HoldCoordinates(null_columns, &assembly);
+  ceres::Solver::Options options;
+  options.minimizer_type = ceres::TRUST_REGION;
+  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = max_iterations;
+  // The report's rule (the callback) decides convergence; Ceres' own
+  // tolerances only stop a fit that cannot move at all.
+  options.function_tolerance = 1e-14;
+  options.gradient_tolerance = 1e-16;
+  options.parameter_tolerance = 1e-14;
+  // SILENT also keeps Ceres from logging every rejected trial step.
+  options.logging_type = ceres::SILENT;
+  options.update_state_every_iteration = true;
+  ReportIterationCallback callback(&assembly,
+                                   &free,
+                                   &scale,
+                                   &names,
+                                   3 * points - k,
+                                   tolerance,
+                                   relative_tolerance);
+  options.callbacks.push_back(&callback);
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, assembly.problem.get(), &summary);
+  outcome.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  for (const SegmentCostFunction* cost : assembly.costs) {
+    outcome.failed_evaluations += cost->failed_evaluations();
+  }
+  outcome.converged = summary.termination_type == ceres::USER_SUCCESS ||
+                      summary.termination_type == ceres::CONVERGENCE;
+  if (summary.termination_type == ceres::USER_SUCCESS) {
+    outcome.termination = "probable error changed by less than " +
+                          Fmt("%g", std::max(tolerance, relative_tolerance));
+  } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    outcome.termination = "CONVERGENCE CRITERIA NOT SATISFIED AFTER " +
+                          std::to_string(outcome.iterations) + " ITERATIONS";
+  } else {
+    outcome.termination = summary.message;
+  }
+  *values = FreeValues(assembly, free, scale);
+  return outcome;
 }
 
 }  // namespace
@@ -364,74 +574,68 @@ FitResult Fit(const Case& c) {
       c.Spec(), ActiveParameters(c.Values(), free_flags));
   const std::vector<std::string> names = FreeNames(c, free, segments);
 
-  // Scale the free coordinates by the Jacobian at the start.
-  std::vector<double> scale(k, 1.0);
-  {
-    Assembly probe = Assemble(segments, free, model, c.sigma, values, scale);
-    Eigen::MatrixXd jtj;
-    double ressum;
-    if (!Information(probe, &jtj, &ressum)) {
-      IntegrationFailure failure;
-      std::string reason = "the motion blows up";
-      for (size_t s = 0; s < probe.costs.size(); ++s) {
-        std::vector<double> angles;
-        if (!probe.costs[s]->ComputeAngles(
-                segments[s].base, &angles, &failure)) {
-          reason = failure.reason + Fmt(" at t = %.4g s", failure.time) +
-                   " in segment '" + segments[s].name + "'";
-          break;
-        }
-      }
-      throw InputError(c.source +
-                       ": the motion cannot be integrated from the starting "
-                       "values (" +
-                       reason + "); check the parameters");
-    }
-    scale = ColumnScales(jtj, scale);
-  }
-
-  Assembly assembly = Assemble(segments, free, model, c.sigma, values, scale);
-  ceres::Solver::Options options;
-  options.minimizer_type = ceres::TRUST_REGION;
-  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = c.solver.max_iterations;
-  // The report's rule (the callback) decides convergence; Ceres' own
-  // tolerances only stop a fit that cannot move at all.
-  options.function_tolerance = 1e-14;
-  options.gradient_tolerance = 1e-16;
-  options.parameter_tolerance = 1e-14;
-  // SILENT also keeps Ceres from logging every rejected trial step.
-  options.logging_type = ceres::SILENT;
-  options.update_state_every_iteration = true;
-  ReportIterationCallback callback(
-      &assembly, &free, &scale, &names, dof, c.solver.tolerance);
-  options.callbacks.push_back(&callback);
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, assembly.problem.get(), &summary);
-
   FitResult result;
   result.name = c.name;
   result.model = c.model;
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.points = points;
   result.free_parameters = k;
-  result.converged = summary.termination_type == ceres::USER_SUCCESS ||
-                     summary.termination_type == ceres::CONVERGENCE;
-  if (summary.termination_type == ceres::USER_SUCCESS) {
-    result.termination =
-        "probable error changed by less than " + Fmt("%g", c.solver.tolerance);
-  } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
-    result.termination = "CONVERGENCE CRITERIA NOT SATISFIED AFTER " +
-                         std::to_string(result.iterations) + " ITERATIONS";
-  } else {
-    result.termination = summary.message;
+
+  // Continuation over the record length (see ContinuationWindows); the last
+  // stage is the whole record under the report's convergence rule.
+  const std::vector<double> windows =
+      c.solver.continuation
+          ? ContinuationWindows(segments, k)
+          : std::vector<double>{std::numeric_limits<double>::infinity()};
+  for (size_t w = 0; w < windows.size(); ++w) {
+    const bool last = w + 1 == windows.size();
+    const std::vector<PreparedSegment> stage =
+        last ? segments : Window(segments, windows[w]);
+    std::vector<double> trial = values;
+    const StageOutcome outcome = SolveStage(stage,
+                                            free,
+                                            model,
+                                            c.sigma,
+                                            names,
+                                            last ? c.solver.tolerance : 0.0,
+                                            last ? 0.0 : 1e-4,
+                                            last ? c.solver.max_iterations : 50,
+                                            &trial);
+    if (!outcome.integrable) {
+      if (w == 0) {
+        throw InputError(c.source +
+                         ": the motion cannot be integrated from the "
+                         "starting values (" +
+                         outcome.failure + "); check the parameters");
+      }
+      // A longer window with the shorter one's answer blows up: go on
+      // with the values that still integrate.
+      LOG(WARNING) << c.name << ": stage " << w + 1 << " not integrable ("
+                   << outcome.failure << ")";
+      if (last) {
+        throw std::runtime_error(c.source + ": " + outcome.failure);
+      }
+      continue;
+    }
+    values = trial;
+    result.iterations += outcome.iterations;
+    result.failed_evaluations += outcome.failed_evaluations;
+    int stage_points = 0;
+    for (const PreparedSegment& p : stage) stage_points += p.data.size();
+    result.stages.push_back({stage_points, outcome.iterations});
+    VLOG(1) << c.name << ": stage " << w + 1 << "/" << windows.size() << " ("
+            << stage_points << " samples): " << outcome.iterations
+            << " iterations, " << outcome.termination;
+    if (last) {
+      result.converged = outcome.converged;
+      result.termination = outcome.termination;
+    }
   }
   if (!result.converged) LOG(WARNING) << c.name << ": " << result.termination;
-
-  values = FreeValues(assembly, free, scale);
-
-  // Covariance at the solution, in coordinates rescaled there.
+  // Covariance at the solution. Parameters the data cannot see at all (a
+  // zero Jacobian column in physical units) are named and held; the rest
+  // are rescaled to unit columns so that the conditioning test of
+  // ceres::Covariance measures correlation, not units.
+  std::vector<double> scale(k, 1.0);
   Eigen::MatrixXd jtj;
   double ressum = 0.0;
   Assembly final_assembly =
@@ -441,11 +645,23 @@ FitResult Fit(const Case& c) {
                              ": the motion cannot be integrated at the "
                              "solution");
   }
+  const std::vector<bool> null_columns = NullColumns(jtj);
   scale = ColumnScales(jtj, scale);
   final_assembly = Assemble(segments, free, model, c.sigma, values, scale);
+  HoldCoordinates(null_columns, &final_assembly);
   Information(final_assembly, &jtj, &ressum);
   result.sum_of_residuals = std::sqrt(ressum);
   result.probable_error = std::sqrt(ressum / dof);
+  for (int g = 0; g < k; ++g) {
+    if (!null_columns[g]) continue;
+    result.warnings.push_back(names[g] +
+                              " is not determined by the data (it has no "
+                              "effect on the fitted motion)");
+    // Keep the rank analysis below away from it.
+    jtj.row(g).setZero();
+    jtj.col(g).setZero();
+    jtj(g, g) = 1.0;
+  }
 
   ceres::Covariance::Options cov_options;
   cov_options.algorithm_type = ceres::DENSE_SVD;
@@ -453,13 +669,19 @@ FitResult Fit(const Case& c) {
   cov_options.min_reciprocal_condition_number = 1e-14;
   ceres::Covariance covariance(cov_options);
   std::vector<std::pair<const double*, const double*>> pairs;
+  auto held = [&](size_t b) {
+    return final_assembly.problem->IsParameterBlockConstant(
+        final_assembly.blocks[b]);
+  };
   for (size_t i = 0; i < final_assembly.blocks.size(); ++i) {
     for (size_t j = i; j < final_assembly.blocks.size(); ++j) {
+      if (held(i) || held(j)) continue;
       pairs.emplace_back(final_assembly.blocks[i], final_assembly.blocks[j]);
     }
   }
-  Eigen::MatrixXd cov_u = Eigen::MatrixXd::Constant(k, k, kNaN);
+  Eigen::MatrixXd cov_u = Eigen::MatrixXd::Zero(k, k);
   std::vector<bool> determined(k, true);
+  for (int g = 0; g < k; ++g) determined[g] = !null_columns[g];
   // Block sizes in global order.
   std::vector<int> block_start, block_size;
   {
@@ -474,6 +696,7 @@ FitResult Fit(const Case& c) {
   if (covariance.Compute(pairs, final_assembly.problem.get())) {
     for (size_t i = 0; i < final_assembly.blocks.size(); ++i) {
       for (size_t j = i; j < final_assembly.blocks.size(); ++j) {
+        if (held(i) || held(j)) continue;
         Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
             block(block_size[i], block_size[j]);
         covariance.GetCovarianceBlock(
@@ -495,6 +718,11 @@ FitResult Fit(const Case& c) {
     Eigen::MatrixXd pinv = Eigen::MatrixXd::Zero(k, k);
     for (int e = 0; e < k; ++e) {
       const Eigen::VectorXd v = eigen.eigenvectors().col(e);
+      bool null_coordinate = false;
+      for (int g = 0; g < k; ++g) {
+        null_coordinate |= null_columns[g] && std::abs(v(g)) > 0.5;
+      }
+      if (null_coordinate) continue;  // already named
       if (lambda(e) > 1e-14 * lambda_max) {
         pinv += v * v.transpose() / lambda(e);
         continue;
@@ -508,9 +736,14 @@ FitResult Fit(const Case& c) {
           determined[g] = false;
         }
       }
-      std::string message = JoinNames(involved) +
-                            " cannot be separated (the information matrix "
-                            "is singular)";
+      std::string message =
+          involved.size() == 1
+              ? involved[0] +
+                    " is not determined by the data (it has no "
+                    "effect on the fitted motion)"
+              : JoinNames(involved) +
+                    " cannot be separated (the information matrix is "
+                    "singular)";
       if (index.size() == 2) {
         // Null direction in physical units n; determined w = (n_b, -n_a).
         const double na = scale[index[0]] * v(index[0]);
@@ -557,11 +790,11 @@ FitResult Fit(const Case& c) {
       const double error = result.probable_error * std::sqrt(w.dot(block * w));
       std::string combination = Combination(names[a], names[b], w(0), w(1));
       result.warnings.push_back(
-          names[a] + " and " + names[b] + " are " +
-          Fmt("%.2f", 100.0 * std::abs(r)) + "% correlated: " + combination +
-          " (" + names[a] + (w(1) >= 0 ? " + " : " - ") +
-          Fmt("%.4g", std::abs(w(1))) + " " + names[b] + " = " +
-          Fmt("%.6g", value) + " +- " + Fmt("%.2g", error) + ")");
+          names[a] + " and " + names[b] + " are " + Percent(std::abs(r)) +
+          " correlated: " + combination + " (" + names[a] +
+          (w(1) >= 0 ? " + " : " - ") + Fmt("%.4g", std::abs(w(1))) + " " +
+          names[b] + " = " + Fmt("%.6g", value) + " +- " + Fmt("%.2g", error) +
+          ")");
     }
   }
   // Groups of three or more nearly dependent parameters (e.g. Cm_alpha, t1,

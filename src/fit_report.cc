@@ -66,6 +66,13 @@ std::string ReportJson(const FitResult& r) {
          {"rms_residual_deg", Channels(s.rms_residual_deg)}});
   }
   report["segments"] = segments;
+  json stages = json::array();
+  for (const FitResult::Stage& stage : r.stages) {
+    stages.push_back(
+        {{"points", stage.points}, {"iterations", stage.iterations}});
+  }
+  report["stages"] = stages;
+  report["failed_evaluations"] = r.failed_evaluations;
   report["seconds"] = r.seconds;
   return report.dump(2) + "\n";
 }

@@ -95,6 +95,14 @@ bool SegmentCostFunction::EvaluatePass(const double* u,
 bool SegmentCostFunction::Evaluate(double const* const* parameters,
                                    double* residuals,
                                    double** jacobians) const {
+  const bool ok = EvaluateOrFail(parameters, residuals, jacobians);
+  if (!ok) ++failures_;
+  return ok;
+}
+
+bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
+                                         double* residuals,
+                                         double** jacobians) const {
   const int k = static_cast<int>(free_.size());
   std::vector<double> u(k);
   GatherFree(parameters, u.data());

@@ -70,6 +70,9 @@ struct SolverOptions {
   int max_iterations = 50;  // NITER
   double tolerance = 1e-6;  // BOUND, on the change of the probable error
   double step = 0.001;      // DTMIN, s
+  // Fit growing windows of the record (about two cycles first, doubling)
+  // before the whole of it; see fit.h.
+  bool continuation = true;
 };
 
 struct SimulateOptions {

@@ -67,6 +67,13 @@ struct FitResult {
   double sum_of_residuals = 0.0;
   ChannelValues rms_residual_deg;
   std::string termination;  // why the iteration stopped
+  struct Stage {
+    int points;      // samples in the stage's window
+    int iterations;  // Levenberg-Marquardt iterations
+  };
+  std::vector<Stage> stages;   // continuation stages, the whole record last
+  int failed_evaluations = 0;  // trial steps rejected because the motion
+                               // blew up (theta near 90 deg, NaN)
   std::vector<ParameterEstimate> parameters;
   std::vector<std::string> correlation_names;  // free coordinates
   Eigen::MatrixXd correlation;                 // empty if not computable

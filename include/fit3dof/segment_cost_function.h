@@ -30,6 +30,7 @@
 #ifndef FIT3DOF_SEGMENT_COST_FUNCTION_H_
 #define FIT3DOF_SEGMENT_COST_FUNCTION_H_
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -69,6 +70,9 @@ class SegmentCostFunction : public ceres::CostFunction {
                      IntegrationFailure* failure) const;
 
   const TimeHistory& data() const { return data_; }
+  // Evaluations that failed because the motion blew up (trial steps that
+  // Levenberg-Marquardt then rejects).
+  int failed_evaluations() const { return failures_.load(); }
   int num_samples() const { return data_.size(); }
   int num_free() const { return static_cast<int>(free_.size()); }
 
@@ -84,6 +88,9 @@ class SegmentCostFunction : public ceres::CostFunction {
                      int count,
                      double* residuals,
                      double** jacobians) const;
+  bool EvaluateOrFail(double const* const* parameters,
+                      double* residuals,
+                      double** jacobians) const;
   bool EvaluatePass(const double* u,
                     const int* lanes,
                     int count,
@@ -100,6 +107,7 @@ class SegmentCostFunction : public ceres::CostFunction {
   std::vector<double> scale_;
   TimeHistory data_;
   ChannelValues sigma_;
+  mutable std::atomic<int> failures_{0};
 };
 
 }  // namespace fit3dof

@@ -1,0 +1,168 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// `fit3dof fit` end to end: the built command, real files, exit codes.
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "gtest/gtest.h"
+#include "test_util.h"
+
+namespace fit3dof {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// The Table 6 config at 0.01 deg with its data path made absolute, with
+// `edit` applied (from, to).
+std::string Table6Config(const std::string& dir,
+                         const std::string& from = "",
+                         const std::string& to = "") {
+  std::string text = testing::ReadText(
+      testing::SourcePath("configs/report/table6_sigma0.01.yaml"));
+  if (!from.empty()) {
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const std::string data = "file: data/table6_clean.csv";
+  const size_t at = text.find(data);
+  if (at != std::string::npos) {
+    text.replace(
+        at,
+        data.size(),
+        "file: " + testing::SourcePath("configs/report/data/table6_clean.csv"));
+  }
+  const std::string path = dir + "/config.yaml";
+  testing::WriteText(path, text);
+  return path;
+}
+
+TEST(FitCli, WritesReportFitComparisonAndTable) {
+  const std::string dir = testing::ScratchDirectory("fit_cli_ok");
+  const auto result = testing::RunFit3dof("fit " + Table6Config(dir) +
+                                          " --out_dir=" + dir + "/out");
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  // The readable table: parameter, value, RMS error, units.
+  EXPECT_NE(result.output.find("converged"), std::string::npos);
+  EXPECT_NE(result.output.find("Cm_q_delta2"), std::string::npos);
+  EXPECT_NE(result.output.find("1/rad^3"), std::string::npos);
+
+  const json report = json::parse(testing::ReadText(dir + "/out/report.json"));
+  for (const char* key : {"name",
+                          "converged",
+                          "iterations",
+                          "points",
+                          "free_parameters",
+                          "probable_error",
+                          "sum_of_residuals",
+                          "rms_residual_deg",
+                          "parameters",
+                          "correlation",
+                          "warnings"}) {
+    EXPECT_TRUE(report.contains(key)) << key;
+  }
+  EXPECT_EQ(report["name"], "table6-sigma0.01");
+  EXPECT_TRUE(report["converged"].get<bool>());
+  EXPECT_EQ(report["points"], 800);
+  EXPECT_EQ(report["free_parameters"], 10);
+  const json& cma = report["parameters"]["Cm_alpha"];
+  EXPECT_NEAR(cma["value"].get<double>(), -0.236, 2e-5);
+  EXPECT_GT(cma["rms_error"].get<double>(), 0.0);
+  EXPECT_TRUE(cma["free"].get<bool>());
+  EXPECT_EQ(cma["units"], "1/rad");
+  const json& clp = report["parameters"]["Cl_p"];
+  EXPECT_FALSE(clp["free"].get<bool>());
+  EXPECT_TRUE(clp["rms_error"].is_null());
+  EXPECT_EQ(report["correlation"]["names"].size(), 10u);
+  EXPECT_EQ(report["correlation"]["matrix"].size(), 10u);
+  EXPECT_DOUBLE_EQ(report["correlation"]["matrix"][0][0].get<double>(), 1.0);
+  // Eq. 26 from Eq. 32: E = S / sqrt(3 N - N_free).
+  EXPECT_NEAR(
+      report["probable_error"].get<double>(),
+      report["sum_of_residuals"].get<double>() / std::sqrt(3.0 * 800 - 10),
+      1e-9);
+
+  const std::string csv = testing::ReadText(dir + "/out/fit.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "t,phi,phi_fit,theta,theta_fit,psi,psi_fit,segment");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 801);
+  // Nothing half-written left behind.
+  for (const auto& entry : fs::directory_iterator(dir + "/out")) {
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos)
+        << entry.path();
+  }
+}
+
+TEST(FitCli, NonConvergedFitSaysSoWritesWhatItHasExitsOne) {
+  const std::string dir = testing::ScratchDirectory("fit_cli_noconv");
+  const auto result = testing::RunFit3dof(
+      "fit " + Table6Config(dir, "max_iterations: 50", "max_iterations: 2") +
+      " --out_dir=" + dir + "/out");
+  EXPECT_EQ(result.exit_status, 1) << result.output;
+  EXPECT_NE(result.output.find("NOT CONVERGED"), std::string::npos)
+      << result.output;
+  const json report = json::parse(testing::ReadText(dir + "/out/report.json"));
+  EXPECT_FALSE(report["converged"].get<bool>());
+  EXPECT_NE(report["termination"].get<std::string>().find("NOT SATISFIED"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(dir + "/out/fit.csv"));
+}
+
+struct BadInput {
+  const char* from;
+  const char* to;
+  const char* message;
+};
+
+class FitCliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(FitCliBadInput, ExitsTwoWithAClearMessageAndNoOutput) {
+  const BadInput& bad = GetParam();
+  const std::string dir = testing::ScratchDirectory("fit_cli_bad");
+  std::string config = Table6Config(dir, bad.from, bad.to);
+  const auto result =
+      testing::RunFit3dof("fit " + config + " --out_dir=" + dir + "/out");
+  EXPECT_EQ(result.exit_status, 2) << result.output;
+  EXPECT_NE(result.output.find(bad.message), std::string::npos)
+      << result.output;
+  EXPECT_FALSE(fs::exists(dir + "/out/report.json"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    FitCli,
+    FitCliBadInput,
+    ::testing::Values(
+        BadInput{"file: data/table6_clean.csv",
+                 "file: data/missing.csv",
+                 "missing.csv"},
+        BadInput{"Cm_alpha: {value: -0.2, free: true}",
+                 "Cm_alfa: {value: -0.2, free: true}",
+                 "unknown parameter of the symmetric model (did you mean "
+                 "Cm_alpha?)"},
+        BadInput{"sigma: {phi: 0.01,",
+                 "sigma: {phi: -0.01,",
+                 "sigma: every sigma must be positive"},
+        BadInput{
+            "data: {file:", "data: {t_end: 0.07, file:", "too few points"}));
+
+TEST(FitCli, AllFrozenIsBadInput) {
+  const std::string dir = testing::ScratchDirectory("fit_cli_frozen");
+  std::string text = testing::ReadText(
+      testing::SourcePath("configs/report/table6_motion.yaml"));
+  text += "data: {file: " +
+          testing::SourcePath("configs/report/data/table6_clean.csv") + "}\n";
+  testing::WriteText(dir + "/frozen.yaml", text);
+  const auto result = testing::RunFit3dof(
+      "fit " + dir + "/frozen.yaml --out_dir=" + dir + "/out");
+  EXPECT_EQ(result.exit_status, 2) << result.output;
+  EXPECT_NE(result.output.find("every parameter is frozen"), std::string::npos)
+      << result.output;
+}
+
+}  // namespace
+}  // namespace fit3dof

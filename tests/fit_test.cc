@@ -1,0 +1,303 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The fit against known truth: the report's Table 6 study, the honesty of
+// the error bars, the Section 5.1 lesson, joint fits of several segments,
+// and what happens when the data cannot determine a parameter.
+
+#include "fit3dof/fit.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "fit3dof/config.h"
+#include "fit3dof/input_error.h"
+#include "fit3dof/simulator.h"
+#include "gtest/gtest.h"
+#include "test_util.h"
+
+namespace fit3dof {
+namespace {
+
+Case Load(const std::string& name) {
+  return LoadConfig(testing::SourcePath("configs/report/" + name));
+}
+
+const ParameterEstimate& Find(const FitResult& r, const std::string& name) {
+  for (const ParameterEstimate& e : r.parameters) {
+    if (e.name == name) return e;
+  }
+  ADD_FAILURE() << "no parameter " << name;
+  static ParameterEstimate none;
+  return none;
+}
+
+const char* kTable6[] = {"Cm_alpha", "Cm_q", "Cm_alpha_delta2", "Cm_q_delta2"};
+
+double Truth(const std::string& name) {
+  return testing::PaperResults()["table_6_noise_study"]["truth"][name]
+      .get<double>();
+}
+
+// Table 6, repeated: every fit converges, every coefficient lies within 3
+// RMS errors of the truth, and the RMS errors grow linearly with the noise.
+TEST(Fit, ReproducesTheTable6NoiseStudy) {
+  std::map<std::string, double> rms_per_sigma;  // RMS error / sigma
+  for (const auto& row :
+       testing::PaperResults()["table_6_noise_study"]["rows"]) {
+    const double sigma = row["sigma_deg"];
+    char name[64];
+    std::snprintf(name, sizeof(name), "table6_sigma%.2f.yaml", sigma);
+    const FitResult r = Fit(Load(name));
+    EXPECT_TRUE(r.converged) << name << ": " << r.termination;
+    EXPECT_NEAR(r.probable_error, 1.0, 0.05) << name;
+    for (const char* p : kTable6) {
+      const ParameterEstimate& e = Find(r, p);
+      EXPECT_LT(std::abs(e.value - Truth(p)), 3.0 * e.rms_error)
+          << name << " " << p << " = " << e.value << " +- " << e.rms_error;
+      // Same order as the report's own RMS deviation.
+      const double report_rms = row[p][1];
+      EXPECT_GT(e.rms_error, 0.5 * report_rms) << name << " " << p;
+      EXPECT_LT(e.rms_error, 2.0 * report_rms) << name << " " << p;
+      const double ratio = e.rms_error / sigma;
+      if (rms_per_sigma.count(p) == 0) {
+        rms_per_sigma[p] = ratio;
+      } else {
+        // Linear in sigma: the ratio stays put (within 10%).
+        EXPECT_NEAR(ratio / rms_per_sigma[p], 1.0, 0.1) << name << " " << p;
+      }
+      std::printf("sigma %.2f  %-16s %12.6g +- %.3g (report %.3g)\n",
+                  sigma,
+                  p,
+                  e.value,
+                  e.rms_error,
+                  report_rms);
+    }
+  }
+}
+
+// At 0.01 deg, a finite-difference Cramer-Rao computation on an independent
+// reimplementation gives these bounds; ours agree within 10%.
+TEST(Fit, Table6ErrorBarsMatchTheCramerRaoBound) {
+  const std::map<std::string, double> bound = {{"Cm_alpha", 3.75e-6},
+                                               {"Cm_q", 0.0018},
+                                               {"Cm_alpha_delta2", 0.00097},
+                                               {"Cm_q_delta2", 0.40}};
+  const FitResult r = Fit(Load("table6_sigma0.01.yaml"));
+  for (const auto& [name, expected] : bound) {
+    const double rms = Find(r, name).rms_error;
+    std::printf("%-16s rms %.4g  Cramer-Rao %.4g  ratio %.3f\n",
+                name.c_str(),
+                rms,
+                expected,
+                rms / expected);
+    EXPECT_NEAR(rms / expected, 1.0, 0.10) << name;
+  }
+}
+
+// Over 50 noise seeds the scatter of each coefficient matches its mean
+// reported RMS error within 25% (tools/calibrate runs 200 seeds).
+TEST(Fit, ErrorBarsAreHonestOverFiftySeeds) {
+  Case c = Load("table6_sigma0.02.yaml");
+  const int kSeeds = 50;
+  std::map<std::string, std::vector<double>> values, errors;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    c.noise.seed = 1000 + seed;
+    const FitResult r = Fit(c);
+    ASSERT_TRUE(r.converged) << "seed " << seed;
+    for (const char* p : kTable6) {
+      values[p].push_back(Find(r, p).value);
+      errors[p].push_back(Find(r, p).rms_error);
+    }
+  }
+  for (const char* p : kTable6) {
+    double mean = 0, mean_error = 0;
+    for (int i = 0; i < kSeeds; ++i) {
+      mean += values[p][i] / kSeeds;
+      mean_error += errors[p][i] / kSeeds;
+    }
+    double spread = 0;
+    for (double v : values[p]) spread += (v - mean) * (v - mean);
+    spread = std::sqrt(spread / (kSeeds - 1));
+    std::printf("%-16s scatter %.4g  mean rms error %.4g  ratio %.3f\n",
+                p,
+                spread,
+                mean_error,
+                spread / mean_error);
+    EXPECT_NEAR(spread / mean_error, 1.0, 0.25) << p;
+    EXPECT_NEAR(mean, Truth(p), 3.0 * mean_error / std::sqrt(kSeeds) + 1e-12)
+        << p;
+  }
+}
+
+// Section 5.1: Cm_q and Cm_alphadot fitted together from data with 0.01 deg
+// noise are flagged as not separable, and the sum is what is determined.
+TEST(Fit, FlagsCmqAndCmalphadotAsNotSeparable) {
+  const FitResult r = Fit(Load("section5_1_fit.yaml"));
+  EXPECT_TRUE(r.converged);
+  bool flagged = false;
+  for (const std::string& w : r.warnings) {
+    if (w.find("Cm_q and Cm_alphadot") != std::string::npos &&
+        w.find("only their sum is determined") != std::string::npos) {
+      flagged = true;
+    }
+  }
+  EXPECT_TRUE(flagged) << (r.warnings.empty() ? "no warnings" : r.warnings[0]);
+  // Each alone is poorly determined, compared with the sum.
+  EXPECT_GT(Find(r, "Cm_q").rms_error, 0.3);
+  EXPECT_TRUE(std::isfinite(Find(r, "Cm_alphadot").rms_error));
+}
+
+// Writes a record of the Table 6 model with other initial conditions.
+std::string WriteRecord(const std::string& dir,
+                        const std::string& name,
+                        double theta0,
+                        double psi0,
+                        double thetadot0,
+                        double psidot0) {
+  Case c = Load("table6_motion.yaml");
+  auto set = [&](const char* p, double v) {
+    c.parameters[FindParameter(c.model, p)].value = v;
+  };
+  set("theta0", theta0);
+  set("psi0", psi0);
+  set("thetadot0", thetadot0);
+  set("psidot0", psidot0);
+  std::vector<double> times;
+  for (int i = 0; i < 400; ++i) times.push_back(0.06 * i);
+  const std::string path = dir + "/" + name + ".csv";
+  WriteTimeHistory(path, SimulateAt(c, c.Values(), times));
+  return path;
+}
+
+// Two runs of the same model fitted jointly recover the coefficients with
+// smaller RMS errors than either run alone.
+TEST(Fit, TwoSegmentsJointlyBeatEitherAlone) {
+  const std::string dir = testing::ScratchDirectory("fit_two_segments");
+  const std::string a = WriteRecord(dir, "a", 5.18, -2.589, -26.356, -7.77);
+  const std::string b = WriteRecord(dir, "b", -3.0, 4.0, 30.0, 10.0);
+  const std::string head = testing::ReadText(
+      testing::SourcePath("configs/report/table6_sigma0.02.yaml"));
+  const std::string common = head.substr(0, head.find("data:"));
+  const std::string tail =
+      "sigma: {phi: 0.02, theta: 0.02, psi: 0.02}\n"
+      "noise: {sigma: {phi: 0.02, theta: 0.02, psi: 0.02}, seed: 7}\n"
+      "solver: {step: 0.01}\n";
+  testing::WriteText(dir + "/a.yaml", common + "data: {file: a.csv}\n" + tail);
+  testing::WriteText(
+      dir + "/b.yaml",
+      common + "data: {file: b.csv}\n" +
+          "noise: {sigma: {phi: 0.02, theta: 0.02, psi: 0.02}, seed: 8}\n"
+          "sigma: {phi: 0.02, theta: 0.02, psi: 0.02}\n"
+          "solver: {step: 0.01}\n");
+  testing::WriteText(dir + "/joint.yaml",
+                     common +
+                         "segments:\n  - {name: a, data: {file: a.csv}}\n"
+                         "  - {name: b, data: {file: b.csv}}\n" +
+                         tail);
+  const FitResult ra = Fit(LoadConfig(dir + "/a.yaml"));
+  const FitResult rb = Fit(LoadConfig(dir + "/b.yaml"));
+  const FitResult joint = Fit(LoadConfig(dir + "/joint.yaml"));
+  ASSERT_TRUE(ra.converged && rb.converged && joint.converged);
+  EXPECT_EQ(joint.segments.size(), 2u);
+  EXPECT_EQ(joint.free_parameters, 4 + 6 + 6);
+  for (const char* p : kTable6) {
+    const ParameterEstimate& e = Find(joint, p);
+    EXPECT_LT(e.rms_error, Find(ra, p).rms_error) << p;
+    EXPECT_LT(e.rms_error, Find(rb, p).rms_error) << p;
+    EXPECT_LT(std::abs(e.value - Truth(p)), 3.0 * e.rms_error) << p;
+  }
+  // Each segment keeps its own initial conditions.
+  EXPECT_NEAR(Find(joint, "b.theta0").value, -3.0, 0.01);
+  EXPECT_NEAR(Find(joint, "a.theta0").value, 5.18, 0.01);
+}
+
+// A parameter the data cannot see (Magnus with no spin) is reported as
+// undetermined, without a crash and without spoiling the others.
+TEST(Fit, NamesAParameterTheDataCannotDetermine) {
+  const std::string dir = testing::ScratchDirectory("fit_singular");
+  Case truth = Load("table6_motion.yaml");
+  auto set = [&](const char* p, double v) {
+    truth.parameters[FindParameter(truth.model, p)].value = v;
+  };
+  // No roll moments and p = phidot - psidot sin(theta) = 0 at the start:
+  // the spin stays zero and the Magnus moment p beta C4 never acts.
+  const double theta0 = 5.18, psidot0 = -7.77;
+  set("phidot0", psidot0 * std::sin(theta0 * M_PI / 180.0));
+  std::vector<double> times;
+  for (int i = 0; i < 300; ++i) times.push_back(0.06 * i);
+  WriteTimeHistory(dir + "/nospin.csv",
+                   SimulateAt(truth, truth.Values(), times));
+  std::string config = testing::ReadText(
+      testing::SourcePath("configs/report/table6_sigma0.01.yaml"));
+  config =
+      config.substr(0, config.find("data:")) +
+      "data: {file: nospin.csv}\nsigma: {phi: 0.01, theta: 0.01, psi: 0.01}\n"
+      "noise: {sigma: {phi: 0.01, theta: 0.01, psi: 0.01}, seed: 3}\n"
+      "initial_conditions: given\nsolver: {step: 0.01}\n";
+  config.replace(config.find("initial_conditions: from_data"), 29, "");
+  config.replace(config.find("  phi0: {free: true}"),
+                 20,
+                 "  Cm_p_alpha: {value: 0.0, free: true}\n  phi0: 0.0");
+  for (const char* p : {"phidot0", "theta0", "thetadot0", "psi0", "psidot0"}) {
+    const std::string from = std::string("  ") + p + ": {free: true}";
+    char value[64];
+    std::snprintf(value,
+                  sizeof(value),
+                  "%.17g",
+                  truth.parameters[FindParameter(truth.model, p)].value);
+    config.replace(
+        config.find(from), from.size(), std::string("  ") + p + ": " + value);
+  }
+  testing::WriteText(dir + "/nospin.yaml", config);
+  const FitResult r = Fit(LoadConfig(dir + "/nospin.yaml"));
+  EXPECT_TRUE(std::isnan(Find(r, "Cm_p_alpha").rms_error));
+  EXPECT_TRUE(std::isfinite(Find(r, "Cm_alpha").rms_error));
+  EXPECT_NEAR(Find(r, "Cm_alpha").value, -0.236, 1e-4);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings[0].find("Cm_p_alpha is not determined"),
+            std::string::npos)
+      << r.warnings[0];
+}
+
+TEST(Fit, RejectsBadInput) {
+  Case c = Load("table6_sigma0.01.yaml");
+  {
+    Case bad = c;
+    for (auto& p : bad.parameters) p.free = false;
+    for (auto& s : bad.segments)
+      for (auto& p : s.initial) p.free = false;
+    EXPECT_THROW(Fit(bad), InputError);
+  }
+  {
+    Case bad = c;
+    bad.segments[0].data_file = "/nonexistent/run.csv";
+    try {
+      Fit(bad);
+      FAIL();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("/nonexistent/run.csv"),
+                std::string::npos);
+    }
+  }
+  {
+    Case bad = c;
+    bad.segments[0].selection.t_end = 0.07;  // two samples, ten free
+    try {
+      Fit(bad);
+      FAIL();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("too few points"), std::string::npos)
+          << e.what();
+    }
+  }
+  {
+    Case bad = c;
+    bad.segments.clear();
+    EXPECT_THROW(Fit(bad), InputError);
+  }
+}
+
+}  // namespace
+}  // namespace fit3dof
