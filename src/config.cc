@@ -128,8 +128,10 @@ class ConfigReader {
   void ReadBody(const YAML::Node& node, Case* c) const;
   void ReadFlow(const YAML::Node& node, Case* c) const;
   void ReadParameters(const YAML::Node& node, Case* c) const;
+  // value_optional: initial conditions, which from_data can supply.
   ParameterSetting ReadParameter(const YAML::Node& node,
-                                 const std::string& key) const;
+                                 const std::string& key,
+                                 bool value_optional) const;
   ChannelValues ReadChannels(const YAML::Node& node,
                              const std::string& path,
                              bool all_required,
@@ -275,7 +277,8 @@ void ConfigReader::ReadFlow(const YAML::Node& node, Case* c) const {
 }
 
 ParameterSetting ConfigReader::ReadParameter(const YAML::Node& node,
-                                             const std::string& key) const {
+                                             const std::string& key,
+                                             bool value_optional) const {
   ParameterSetting setting;
   if (node.IsScalar()) {
     setting.value = Number(node, key);
@@ -285,7 +288,7 @@ ParameterSetting ConfigReader::ReadParameter(const YAML::Node& node,
   if (node["free"]) setting.free = Bool(node["free"], key + ".free");
   if (node["value"]) {
     setting.value = Number(node["value"], key + ".value");
-  } else if (!setting.free) {
+  } else if (!setting.free && !value_optional) {
     Fail(node, key, "a frozen parameter needs a value");
   }
   return setting;
@@ -316,7 +319,8 @@ void ConfigReader::ReadParameters(const YAML::Node& node, Case* c) const {
            key,
            "given twice (" + table[position].name + " has an alias)");
     }
-    const ParameterSetting setting = ReadParameter(item.second, key);
+    const ParameterSetting setting =
+        ReadParameter(item.second, key, IsInitialCondition(c->model, position));
     if (table[position].scaling == Scaling::kUnused &&
         (setting.value != 0.0 || setting.free)) {
       Fail(item.first, key, "is a spare slot that no equation uses");
@@ -461,7 +465,7 @@ void ConfigReader::ReadSegments(const YAML::Node& root, Case* c) const {
                    "); aerodynamic parameters are shared and go under the "
                    "top-level parameters");
         }
-        s.initial[position - first] = ReadParameter(item.second, key);
+        s.initial[position - first] = ReadParameter(item.second, key, true);
       }
     }
     c->segments.push_back(s);

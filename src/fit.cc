@@ -580,6 +580,7 @@ FitResult Fit(const Case& c) {
   result.points = points;
   result.free_parameters = k;
 
+  const std::vector<double> start_values = values;
   // Continuation over the record length (see ContinuationWindows); the last
   // stage is the whole record under the report's convergence rule.
   const std::vector<double> windows =
@@ -591,30 +592,38 @@ FitResult Fit(const Case& c) {
     const std::vector<PreparedSegment> stage =
         last ? segments : Window(segments, windows[w]);
     std::vector<double> trial = values;
-    const StageOutcome outcome = SolveStage(stage,
-                                            free,
-                                            model,
-                                            c.sigma,
-                                            names,
-                                            last ? c.solver.tolerance : 0.0,
-                                            last ? 0.0 : 1e-4,
-                                            last ? c.solver.max_iterations : 50,
-                                            &trial);
+    StageOutcome outcome = SolveStage(stage,
+                                      free,
+                                      model,
+                                      c.sigma,
+                                      names,
+                                      last ? c.solver.tolerance : 0.0,
+                                      last ? 0.0 : 1e-4,
+                                      last ? c.solver.max_iterations : 50,
+                                      &trial);
+    if (!outcome.integrable && w > 0) {
+      // The shorter window's answer blows up over this longer one: start
+      // this window again from the original values.
+      LOG(WARNING) << c.name << ": stage " << w + 1
+                   << " cannot start from the previous stage ("
+                   << outcome.failure << "); restarting it from the "
+                   << "starting values";
+      trial = start_values;
+      outcome = SolveStage(stage,
+                           free,
+                           model,
+                           c.sigma,
+                           names,
+                           last ? c.solver.tolerance : 0.0,
+                           last ? 0.0 : 1e-4,
+                           last ? c.solver.max_iterations : 50,
+                           &trial);
+    }
     if (!outcome.integrable) {
-      if (w == 0) {
-        throw InputError(c.source +
-                         ": the motion cannot be integrated from the "
-                         "starting values (" +
-                         outcome.failure + "); check the parameters");
-      }
-      // A longer window with the shorter one's answer blows up: go on
-      // with the values that still integrate.
-      LOG(WARNING) << c.name << ": stage " << w + 1 << " not integrable ("
-                   << outcome.failure << ")";
-      if (last) {
-        throw std::runtime_error(c.source + ": " + outcome.failure);
-      }
-      continue;
+      throw InputError(c.source +
+                       ": the motion cannot be integrated from the starting "
+                       "values (" +
+                       outcome.failure + "); check the parameters");
     }
     values = trial;
     result.iterations += outcome.iterations;

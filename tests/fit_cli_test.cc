@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -149,6 +150,28 @@ INSTANTIATE_TEST_SUITE_P(
                  "sigma: every sigma must be positive"},
         BadInput{
             "data: {file:", "data: {t_end: 0.07, file:", "too few points"}));
+
+// From Cm_q_delta2 = 3000 some of Levenberg-Marquardt's trial steps make the
+// motion blow up. They are rejected quietly: the fit converges and nothing
+// (no residual dump from Ceres) reaches the log.
+TEST(FitCli, BlownUpTrialStepsAreRejectedQuietly) {
+  const std::string dir = testing::ScratchDirectory("fit_cli_blowup");
+  const std::string config =
+      Table6Config(dir,
+                   "Cm_q_delta2: {value: 0.0, free: true}",
+                   "Cm_q_delta2: {value: 3000.0, free: true}");
+  const std::string command = std::string(FIT3DOF_BINARY) + " fit " + config +
+                              " --out_dir=" + dir + "/out 2>" + dir +
+                              "/stderr.txt >/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const json report = json::parse(testing::ReadText(dir + "/out/report.json"));
+  EXPECT_TRUE(report["converged"].get<bool>());
+  EXPECT_GT(report["failed_evaluations"].get<int>(), 0);
+  EXPECT_NEAR(
+      report["parameters"]["Cm_q_delta2"]["value"].get<double>(), 98.5, 2.0);
+  EXPECT_LT(testing::ReadText(dir + "/stderr.txt").size(), 200u)
+      << testing::ReadText(dir + "/stderr.txt");
+}
 
 TEST(FitCli, AllFrozenIsBadInput) {
   const std::string dir = testing::ScratchDirectory("fit_cli_frozen");

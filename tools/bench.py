@@ -1,0 +1,141 @@
+"""Driver of tools/bench (see there)."""
+
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def run_benchmark(root):
+    out = subprocess.run(
+        [os.path.join(root, "build", "evaluation_benchmark"),
+         "--benchmark_format=json", "--benchmark_repetitions=5",
+         "--benchmark_report_aggregates_only=true"],
+        check=True, capture_output=True, text=True).stdout
+    times = {}
+    for b in json.loads(out)["benchmarks"]:
+        if b.get("aggregate_name") != "median":
+            continue
+        name = b["run_name"]  # BM_Jacobian/10
+        times[name] = b["real_time"]  # ms
+    return times
+
+
+def time_fit(root, config, repeats=5):
+    fit3dof = os.path.join(root, "build", "fit3dof")
+    samples = []
+    with tempfile.TemporaryDirectory() as out:
+        for _ in range(repeats):
+            began = time.perf_counter()
+            subprocess.run([fit3dof, "fit", config, "--out_dir=" + out],
+                           check=True, capture_output=True)
+            samples.append(time.perf_counter() - began)
+        with open(os.path.join(out, "report.json")) as f:
+            report = json.load(f)
+    return statistics.median(samples), report
+
+
+def variant(root, tmp, name, edits):
+    """The Table 6 config (0.01 deg) with text edits, written to tmp."""
+    path = os.path.join(root, "configs", "report", "table6_sigma0.01.yaml")
+    with open(path) as f:
+        text = f.read()
+    text = text.replace("file: data/table6_clean.csv",
+                        "file: " + os.path.join(root, "configs", "report",
+                                                "data", "table6_clean.csv"))
+    for old, new in edits:
+        assert old in text, old
+        text = text.replace(old, new)
+    out = os.path.join(tmp, name + ".yaml")
+    with open(out, "w") as f:
+        f.write(text)
+    return out
+
+
+def main():
+    root = sys.argv[1]
+    quick = "--quick" in sys.argv
+    result = {}
+
+    print("== One Jacobian vs one forward integration (Table 6, 800 samples)")
+    times = run_benchmark(root)
+    forward = times["BM_Forward/10"]
+    rows = []
+    print(f"  forward integration: {forward:.3f} ms")
+    print("   k  Jacobian (ms)  / forward   limit (k+1)/2")
+    for k in (1, 4, 8, 10, 12, 16, 20, 24, 27):
+        jac = times[f"BM_Jacobian/{k}"]
+        rows.append({"k": k, "jacobian_ms": jac, "ratio": jac / forward})
+        print(f"  {k:2d}  {jac:12.3f}  {jac / forward:9.2f}   {(k + 1) / 2:8.1f}")
+    four_vs_all = times["BM_Jacobian/4"] / times["BM_Jacobian/27"]
+    print(f"  Jacobian with 4 free / with 27 free: {four_vs_all:.3f}")
+    result["evaluation"] = {"forward_ms": forward, "jacobian": rows,
+                            "four_over_all": four_vs_all}
+
+    print("== Whole process: fit3dof fit (median of 5)")
+    with tempfile.TemporaryDirectory() as tmp:
+        table6 = variant(root, tmp, "table6", [])
+        seconds, report = time_fit(root, table6)
+        print(f"  Table 6 (800 samples, 10 free): {seconds:.3f} s, "
+              f"{report['iterations']} iterations, converged="
+              f"{report['converged']}")
+        result["table6_seconds"] = seconds
+        by_samples = []
+        for every in (4, 2, 1):
+            cfg = variant(root, tmp, f"every{every}",
+                          [("data: {file:", f"data: {{every: {every}, file:")])
+            s, r = time_fit(root, cfg)
+            by_samples.append({"samples": r["points"], "seconds": s})
+            print(f"  {r['points']:4d} samples, 10 free: {s:.3f} s")
+        by_free = []
+        ics = ["phi0", "phidot0", "theta0", "thetadot0", "psi0", "psidot0"]
+        free4 = [(f"  {p}: {{free: true}}", f"  {p}: {{free: false}}")
+                 for p in ics]
+        extra = [("Cm_q_delta2: {value: 0.0, free: true}",
+                  "Cm_q_delta2: {value: 0.0, free: true}\n"
+                  "  Cm_alpha_delta: {value: 0.0, free: true}\n"
+                  "  Cm_p_alpha: {value: 0.0, free: true}\n"
+                  "  Cm_q_delta: {value: 0.0, free: true}\n"
+                  "  Cl_p: {value: 0.0, free: true}\n"
+                  "  Cl_0: {value: 0.0, free: true}\n"
+                  "  Cm_q_beta2: {value: 0.0, free: true}")]
+        for name, edits in (("k4", free4), ("k10", []), ("k16", extra)):
+            cfg = variant(root, tmp, name, edits)
+            s, r = time_fit(root, cfg)
+            by_free.append({"free": r["free_parameters"], "seconds": s,
+                            "iterations": r["iterations"]})
+            print(f"  800 samples, {r['free_parameters']:2d} free: {s:.3f} s "
+                  f"({r['iterations']} iterations)")
+        result["by_samples"] = by_samples
+        result["by_free"] = by_free
+
+        if not quick:
+            print("== SciPy baseline (least_squares + solve_ivp), same fit")
+            began = time.perf_counter()
+            out = subprocess.run(
+                ["/usr/bin/python3",
+                 os.path.join(root, "tools", "scipy_baseline.py"),
+                 os.path.join(root, "configs", "report", "data",
+                              "table6_clean.csv"), "0.01"],
+                check=True, capture_output=True, text=True).stdout
+            scipy = json.loads(out)
+            scipy["process_seconds"] = time.perf_counter() - began
+            ratio = scipy["process_seconds"] / seconds
+            print(f"  SciPy: {scipy['process_seconds']:.1f} s "
+                  f"(converged={scipy['converged']}, Cm_alpha="
+                  f"{scipy['Cm_alpha']:.6f}, Cm_q={scipy['Cm_q']:.4f})")
+            print(f"  fit3dof is {ratio:.0f}x faster")
+            result["scipy"] = scipy
+            result["speedup_vs_scipy"] = ratio
+
+    out = os.environ.get("FIT3DOF_BENCH_OUT", os.path.join(root, "bench.json"))
+    with open(out, "w") as f:
+        json.dump(result, f, indent=2)
+    print(f"wrote {out}")
+
+
+if __name__ == "__main__":
+    main()
