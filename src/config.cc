@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "config_node.h"
 #include "fit3dof/input_error.h"
 
 namespace fit3dof {
@@ -570,6 +571,59 @@ std::vector<bool> Case::FreeFlags() const {
   return free;
 }
 
+Case ParseConfigNode(const YAML::Node& root,
+                     const std::string& source,
+                     const std::string& base_dir) {
+  if (!root.IsDefined() || root.IsNull()) {
+    throw InputError(source + ": the config is empty");
+  }
+  return ConfigReader(source, base_dir).Read(root);
+}
+
+YAML::Node LoadYamlFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the file");
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    return YAML::Load(text.str());
+  } catch (const YAML::ParserException& e) {
+    throw InputError(path + ":" + std::to_string(e.mark.line + 1) +
+                     ": not valid YAML: " + e.msg);
+  }
+}
+
+void ResolveDataPaths(const std::string& base_dir, YAML::Node* node) {
+  if (!node->IsMap()) return;
+  auto resolve = [&](YAML::Node data) {
+    if (!data.IsMap() || !data["file"] || !data["file"].IsScalar()) return;
+    const fs::path file(data["file"].Scalar());
+    if (!file.is_absolute()) {
+      data["file"] =
+          fs::absolute(fs::path(base_dir) / file).lexically_normal().string();
+    }
+  };
+  resolve((*node)["data"]);
+  YAML::Node segments = (*node)["segments"];
+  if (segments.IsSequence()) {
+    for (size_t i = 0; i < segments.size(); ++i) resolve(segments[i]["data"]);
+  }
+}
+
+YAML::Node MergeYaml(const YAML::Node& base, const YAML::Node& overrides) {
+  if (!base.IsDefined() || !base.IsMap() || !overrides.IsMap()) {
+    return YAML::Clone(overrides);
+  }
+  YAML::Node out = YAML::Clone(base);
+  for (const auto& item : overrides) {
+    const std::string key = item.first.Scalar();
+    const YAML::Node existing = out[key];
+    out[key] = existing.IsDefined() ? MergeYaml(existing, item.second)
+                                    : YAML::Clone(item.second);
+  }
+  return out;
+}
+
 Case ParseConfig(const std::string& text,
                  const std::string& source,
                  const std::string& base_dir) {
@@ -580,10 +634,7 @@ Case ParseConfig(const std::string& text,
     throw InputError(source + ":" + std::to_string(e.mark.line + 1) +
                      ": not valid YAML: " + e.msg);
   }
-  if (!root.IsDefined() || root.IsNull()) {
-    throw InputError(source + ": the config is empty");
-  }
-  return ConfigReader(source, base_dir).Read(root);
+  return ParseConfigNode(root, source, base_dir);
 }
 
 Case LoadConfig(const std::string& path) {

@@ -7,21 +7,31 @@
 #include <glog/logging.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "fit3dof/atomic_file.h"
+#include "fit3dof/batch.h"
 #include "fit3dof/config.h"
 #include "fit3dof/fit.h"
 #include "fit3dof/fit_report.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/namelist.h"
 #include "fit3dof/simulator.h"
 #include "fit3dof/time_history.h"
 
 // clang-format off
 DEFINE_string(out, "", "Output file (simulate: CSV of t, phi, theta, psi).");
-DEFINE_string(out_dir, "", "Output directory (fit: report.json, fit.csv).");
+DEFINE_string(out_dir, "", "Output directory (fit: report.json, fit.csv; batch: one per run).");
+DEFINE_int32(jobs, 0, "batch: runs in parallel (0: one per core).");
+DEFINE_string(shard, "1/1", "batch: run only the K-th of N slices, K/N.");
+DEFINE_bool(resume, false, "batch: skip runs whose report exists for the same config.");
+DEFINE_bool(merge, false, "batch: merge the summaries of shard output directories.");
+DEFINE_bool(progress, true, "batch: live progress line on a terminal.");
+DEFINE_string(data, "", "NAMELIST decks: the data file (CSV) the fitting groups use.");
 // clang-format on
 
 namespace fit3dof {
@@ -32,6 +42,12 @@ constexpr char kUsage[] =
     "\n"
     "  fit3dof simulate CONFIG --out=FILE.csv   motion from the config\n"
     "  fit3dof fit CONFIG --out_dir=DIR          fit the config's data\n"
+    "  fit3dof batch MANIFEST --out_dir=DIR [--jobs=N] [--shard=K/N] "
+    "[--resume]\n"
+    "  fit3dof batch --merge DIR... --out_dir=DIR\n"
+    "  fit3dof namelist DECK [--data=FILE.csv] [--out=FILE.yaml]\n"
+    "\n"
+    "fit and batch also take a NAMELIST deck (with --data=FILE.csv).\n"
     "\n"
     "Exit status: 0 success, 1 the job ran but failed, 2 bad input.";
 
@@ -48,10 +64,76 @@ int Simulate(const std::vector<std::string>& args) {
   return 0;
 }
 
+// --data as an absolute path (decks name it relative to where you are).
+std::string DataFlag() {
+  if (FLAGS_data.empty()) return "";
+  return std::filesystem::absolute(FLAGS_data).lexically_normal().string();
+}
+
+int BatchCommand(const std::vector<std::string>& args) {
+  if (FLAGS_out_dir.empty())
+    throw InputError("batch: --out_dir=DIR is required");
+  if (FLAGS_merge) {
+    if (args.empty())
+      throw InputError("batch --merge: expected shard output directories");
+    std::vector<BatchSummary> parts;
+    for (const std::string& dir : args) parts.push_back(ReadSummary(dir));
+    const BatchSummary merged = MergeSummaries(parts);
+    WriteSummary(FLAGS_out_dir, merged);
+    std::cout << "merged " << merged.runs.size() << " runs from " << args.size()
+              << " directories into " << FLAGS_out_dir << "\n";
+    return merged.NumFailed() > 0 ? 1 : 0;
+  }
+  if (args.size() != 1)
+    throw InputError("batch: expected one MANIFEST argument");
+  BatchOptions options;
+  options.out_dir = FLAGS_out_dir;
+  options.jobs = FLAGS_jobs;
+  options.resume = FLAGS_resume;
+  options.progress = FLAGS_progress;
+  options.deck_data = DataFlag();
+  ParseShard(FLAGS_shard, &options.shard, &options.shards);
+  const BatchSummary summary = RunBatch(args[0], options);
+  WriteSummary(FLAGS_out_dir, summary);
+  int resumed = 0;
+  for (const RunResult& r : summary.runs) resumed += r.resumed;
+  std::cout << summary.runs.size() << " runs (" << resumed << " resumed), "
+            << summary.runs.size() - summary.NumFailed() << " converged, "
+            << summary.NumFailed() << " failed or not converged; summary in "
+            << FLAGS_out_dir << "/summary.csv\n";
+  for (const RunResult& r : summary.runs) {
+    if (r.status != "converged") {
+      std::cout << "  " << r.name << ": " << r.status << ": " << r.reason
+                << "\n";
+    }
+  }
+  return summary.NumFailed() > 0 ? 1 : 0;
+}
+
+int NamelistCommand(const std::vector<std::string>& args) {
+  if (args.size() != 1)
+    throw InputError("namelist: expected one DECK argument");
+  const Deck deck = ReadDeck(args[0]);
+  const std::string yaml = DeckToYaml(deck, DataFlag());
+  for (const DeckRun& run : DeckRuns(deck, DataFlag())) {
+    for (const std::string& v : run.ignored) {
+      std::cerr << args[0] << " group " << run.group << ": " << v
+                << " accepted and ignored\n";
+    }
+  }
+  if (FLAGS_out.empty()) {
+    std::cout << yaml;
+  } else {
+    WriteFileAtomically(FLAGS_out, yaml);
+  }
+  return 0;
+}
+
 int FitCommand(const std::vector<std::string>& args) {
   if (args.size() != 1) throw InputError("fit: expected one CONFIG argument");
   if (FLAGS_out_dir.empty()) throw InputError("fit: --out_dir=DIR is required");
-  const Case c = LoadConfig(args[0]);
+  const Case c = IsDeckFile(args[0]) ? LoadDeckCase(args[0], DataFlag())
+                                     : LoadConfig(args[0]);
   const FitResult result = Fit(c);
   WriteFitOutputs(FLAGS_out_dir, result);
   std::cout << FormatFitTable(result) << std::flush;
@@ -69,6 +151,8 @@ int Run(int argc, char** argv) {
   const std::map<std::string, Handler> commands = {
       {"simulate", &Simulate},
       {"fit", &FitCommand},
+      {"batch", &BatchCommand},
+      {"namelist", &NamelistCommand},
   };
   const auto it = commands.find(command);
   if (it == commands.end()) {

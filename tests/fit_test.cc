@@ -149,6 +149,27 @@ TEST(Fit, FlagsCmqAndCmalphadotAsNotSeparable) {
   EXPECT_TRUE(std::isfinite(Find(r, "Cm_alphadot").rms_error));
 }
 
+// The report's Eq. 43: for small motion Cm_alpha, t1 and t3 are not
+// independent; fitted together they are named, with what is determined.
+// A well-determined fit (Table 6) gets no such warning.
+TEST(Fit, NamesTheEquation43Dependence) {
+  Case c = Load("table6_sigma0.01.yaml");
+  for (const char* p : {"t1", "t3"})
+    c.parameters[FindParameter(c.model, p)].free = true;
+  const FitResult r = Fit(c);
+  bool group = false, sum = false;
+  for (const std::string& w : r.warnings) {
+    group |= w.find(
+                 "Cm_alpha, tunnel_Cm_theta and tunnel_Cn_psi are nearly "
+                 "dependent") != std::string::npos;
+    sum |= w.find("Cm_alpha and tunnel_Cm_theta") != std::string::npos &&
+           w.find("only their sum is determined") != std::string::npos;
+  }
+  EXPECT_TRUE(group);
+  EXPECT_TRUE(sum);
+  EXPECT_TRUE(Fit(Load("table6_sigma0.01.yaml")).warnings.empty());
+}
+
 // Writes a record of the Table 6 model with other initial conditions.
 std::string WriteRecord(const std::string& dir,
                         const std::string& name,

@@ -1,0 +1,415 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "fit3dof/batch.h"
+
+#include <glog/logging.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "config_node.h"
+#include "fit3dof/atomic_file.h"
+#include "fit3dof/fit.h"
+#include "fit3dof/fit_report.h"
+#include "fit3dof/input_error.h"
+#include "manifest.h"
+
+namespace fit3dof {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+json Number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+double FromJson(const json& x) {
+  return x.is_number() ? x.get<double>() : kNaN;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+RunResult FromReport(const json& report) {
+  RunResult r;
+  r.name = report.value("name", "");
+  const bool converged = report.value("converged", false);
+  r.status = converged ? "converged" : "not converged";
+  r.reason = converged ? "" : report.value("termination", "");
+  r.iterations = report.value("iterations", 0);
+  r.probable_error = FromJson(report["probable_error"]);
+  r.model = report.value("model", "");
+  for (const auto& [name, p] : report["parameters"].items()) {
+    RunParameter parameter{
+        name, FromJson(p["value"]), FromJson(p["rms_error"])};
+    r.values.push_back(parameter);
+    if (p.value("free", false)) r.free.push_back(parameter);
+  }
+  return r;
+}
+
+// The IUPDAT chain: a run starts from its predecessor's final values.
+void ApplyStartValues(const RunResult& previous, Case* c) {
+  if (previous.model != ModelName(c->model)) {
+    throw InputError(c->source + ": start_from: run '" + previous.name +
+                     "' used the " + previous.model + " model");
+  }
+  for (const RunParameter& p : previous.values) {
+    const int position = FindParameter(c->model, p.name);
+    if (position < 0 || !std::isfinite(p.value)) continue;
+    c->parameters[position].value = p.value;
+    const int first = Layout(c->model).first_initial;
+    if (IsInitialCondition(c->model, position)) {
+      for (Segment& s : c->segments)
+        s.initial[position - first].value = p.value;
+    }
+  }
+}
+
+RunResult Execute(const RunSpec& spec,
+                  const RunResult* predecessor,
+                  const BatchOptions& options) {
+  const std::string dir = options.out_dir + "/" + spec.name;
+  const std::string report_path = dir + "/report.json";
+  if (options.resume && fs::exists(report_path)) {
+    try {
+      const json report = json::parse(ReadFile(report_path));
+      if (report.value("config_hash", "") == spec.hash) {
+        RunResult r = FromReport(report);
+        r.name = spec.name;
+        r.resumed = true;
+        return r;
+      }
+    } catch (const json::exception&) {
+      // A damaged report: run again.
+    }
+  }
+  RunResult r;
+  r.name = spec.name;
+  try {
+    if (!spec.load_error.empty()) throw InputError(spec.load_error);
+    if (predecessor != nullptr && predecessor->status == "failed") {
+      throw InputError("start_from: run '" + predecessor->name + "' failed (" +
+                       predecessor->reason + ")");
+    }
+    Case c = ParseConfigNode(spec.config, spec.source, spec.base_dir);
+    c.name = spec.name;
+    if (predecessor != nullptr) ApplyStartValues(*predecessor, &c);
+    const FitResult fit = Fit(c);
+    json report = json::parse(ReportJson(fit));
+    report["config_hash"] = spec.hash;
+    if (!spec.start_from.empty()) report["start_from"] = spec.start_from;
+    YAML::Emitter config;
+    config << spec.config;
+    WriteFileAtomically(dir + "/config.yaml",
+                        std::string(config.c_str()) + "\n");
+    WriteFileAtomically(dir + "/fit.csv", FitComparisonCsv(fit));
+    WriteFileAtomically(report_path, report.dump(2) + "\n");
+    fs::remove(dir + "/error.txt");
+    r = FromReport(report);
+    r.name = spec.name;
+  } catch (const std::exception& e) {
+    r.status = "failed";
+    r.reason = e.what();
+    r.probable_error = kNaN;
+    std::error_code ec;
+    fs::remove(report_path, ec);
+    fs::remove(dir + "/fit.csv", ec);
+    try {
+      WriteFileAtomically(dir + "/error.txt", r.reason + "\n");
+    } catch (const std::exception&) {
+    }
+  }
+  return r;
+}
+
+std::string Clock(double seconds) {
+  const int s = static_cast<int>(seconds + 0.5);
+  char out[32];
+  std::snprintf(
+      out, sizeof(out), "%02d:%02d:%02d", s / 3600, (s / 60) % 60, s % 60);
+  return out;
+}
+
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c == '\n' ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+std::string CsvNumber(double x) {
+  if (!std::isfinite(x)) return "";
+  char out[32];
+  std::snprintf(out, sizeof(out), "%.10g", x);
+  return out;
+}
+
+}  // namespace
+
+int BatchSummary::NumFailed() const {
+  int failed = 0;
+  for (const RunResult& r : runs) failed += r.status != "converged";
+  return failed;
+}
+
+void ParseShard(const std::string& text, int* shard, int* shards) {
+  int k = 0, n = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &k, &n, &tail) != 2 || n < 1 ||
+      k < 1 || k > n) {
+    throw InputError("--shard=" + text + ": expected K/N with 1 <= K <= N");
+  }
+  *shard = k;
+  *shards = n;
+}
+
+BatchSummary RunBatch(const std::string& manifest,
+                      const BatchOptions& options) {
+  if (options.out_dir.empty())
+    throw InputError("batch: --out_dir=DIR is required");
+  std::vector<RunSpec> all = LoadManifest(manifest, options.deck_data);
+  std::vector<RunSpec> specs;
+  for (const RunSpec& s : all) {
+    const std::uint64_t h = std::stoull(StableHash(s.chain_root), nullptr, 16);
+    if (static_cast<int>(h % options.shards) == options.shard - 1)
+      specs.push_back(s);
+  }
+  std::map<std::string, int> index;
+  for (size_t i = 0; i < specs.size(); ++i)
+    index[specs[i].name] = static_cast<int>(i);
+  const int n = static_cast<int>(specs.size());
+  fs::create_directories(options.out_dir);
+
+  enum State { kPending, kRunning, kDone };
+  std::vector<State> state(n, kPending);
+  std::vector<RunResult> results(n);
+  std::mutex mutex;
+  std::condition_variable changed;
+  int running = 0, done = 0, failed = 0;
+  const auto start = std::chrono::steady_clock::now();
+  const bool tty = options.progress && ::isatty(STDERR_FILENO);
+
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                         start)
+        .count();
+  };
+  // Caller holds the mutex.
+  auto show = [&] {
+    if (!tty) return;
+    const double t = elapsed();
+    std::string eta = "--:--:--";
+    if (done > 0 && done < n) eta = Clock(t / done * (n - done));
+    std::fprintf(
+        stderr,
+        "\r\033[K%d/%d done, %d running, %d failed, %s elapsed, ~%s left",
+        done,
+        n,
+        running,
+        failed,
+        Clock(t).c_str(),
+        eta.c_str());
+    std::fflush(stderr);
+  };
+  auto ready = [&](int i) {
+    if (state[i] != kPending) return false;
+    const std::string& before = specs[i].start_from;
+    return before.empty() || state[index.at(before)] == kDone;
+  };
+
+  auto worker = [&] {
+    while (true) {
+      int pick = -1;
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        changed.wait(lock, [&] {
+          pick = -1;
+          bool pending = false;
+          for (int i = 0; i < n && pick < 0; ++i) {
+            pending |= state[i] == kPending;
+            if (ready(i)) pick = i;
+          }
+          return pick >= 0 || !pending;
+        });
+        if (pick < 0) return;
+        state[pick] = kRunning;
+        ++running;
+        show();
+      }
+      const RunSpec& spec = specs[pick];
+      const RunResult* predecessor = spec.start_from.empty()
+                                         ? nullptr
+                                         : &results[index.at(spec.start_from)];
+      RunResult result = Execute(spec, predecessor, options);
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        results[pick] = std::move(result);
+        state[pick] = kDone;
+        --running;
+        ++done;
+        const RunResult& r = results[pick];
+        if (r.status != "converged") ++failed;
+        if (!tty) {
+          LOG(INFO) << "[" << done << "/" << n << "] " << r.name << ": "
+                    << r.status << (r.resumed ? " (resumed)" : "")
+                    << (r.reason.empty() ? "" : " (" + r.reason + ")");
+        }
+        show();
+      }
+      changed.notify_all();
+    }
+  };
+
+  int jobs = options.jobs > 0
+                 ? options.jobs
+                 : static_cast<int>(std::thread::hardware_concurrency());
+  jobs = std::max(1, std::min(jobs, std::max(n, 1)));
+  std::atomic<bool> ticking{tty};
+  std::thread ticker([&] {
+    while (ticking) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      std::lock_guard<std::mutex> lock(mutex);
+      if (ticking) show();
+    }
+  });
+  std::vector<std::thread> threads;
+  for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
+  for (std::thread& t : threads) t.join();
+  ticking = false;
+  ticker.join();
+  if (tty) std::fprintf(stderr, "\n");
+
+  BatchSummary summary;
+  summary.runs = results;
+  std::sort(
+      summary.runs.begin(),
+      summary.runs.end(),
+      [](const RunResult& a, const RunResult& b) { return a.name < b.name; });
+  LOG(INFO) << "batch: " << n << " runs, " << n - failed << " converged, "
+            << failed << " failed or not converged, " << Clock(elapsed())
+            << " (" << jobs << " jobs)";
+  return summary;
+}
+
+void WriteSummary(const std::string& dir, const BatchSummary& summary) {
+  // Columns of the free parameters, in order of first appearance.
+  std::vector<std::string> columns;
+  std::set<std::string> seen;
+  for (const RunResult& r : summary.runs) {
+    for (const RunParameter& p : r.free) {
+      if (seen.insert(p.name).second) columns.push_back(p.name);
+    }
+  }
+  std::string csv = "name,status,reason,iterations,probable_error";
+  for (const std::string& c : columns) csv += "," + c + "," + c + "_rms";
+  csv += "\n";
+  json runs = json::array();
+  int converged = 0, not_converged = 0, failed = 0;
+  for (const RunResult& r : summary.runs) {
+    converged += r.status == "converged";
+    not_converged += r.status == "not converged";
+    failed += r.status == "failed";
+    std::map<std::string, const RunParameter*> by_name;
+    for (const RunParameter& p : r.free) by_name[p.name] = &p;
+    csv += CsvField(r.name) + "," + r.status + "," + CsvField(r.reason) + "," +
+           (r.status == "failed" ? "" : std::to_string(r.iterations)) + "," +
+           CsvNumber(r.probable_error);
+    json parameters = json::object();
+    for (const std::string& c : columns) {
+      const auto it = by_name.find(c);
+      if (it == by_name.end()) {
+        csv += ",,";
+        continue;
+      }
+      csv += "," + CsvNumber(it->second->value) + "," +
+             CsvNumber(it->second->rms_error);
+      parameters[c] = {{"value", Number(it->second->value)},
+                       {"rms_error", Number(it->second->rms_error)}};
+    }
+    csv += "\n";
+    runs.push_back({{"name", r.name},
+                    {"status", r.status},
+                    {"reason", r.reason},
+                    {"iterations", r.iterations},
+                    {"probable_error", Number(r.probable_error)},
+                    {"model", r.model},
+                    {"parameters", parameters}});
+  }
+  json out = {{"runs", runs},
+              {"counts",
+               {{"total", summary.runs.size()},
+                {"converged", converged},
+                {"not_converged", not_converged},
+                {"failed", failed}}}};
+  WriteFileAtomically(dir + "/summary.csv", csv);
+  WriteFileAtomically(dir + "/summary.json", out.dump(2) + "\n");
+}
+
+BatchSummary ReadSummary(const std::string& dir) {
+  const std::string path = dir + "/summary.json";
+  if (!fs::exists(path))
+    throw InputError(path + ": not found (not a batch output directory?)");
+  json in;
+  try {
+    in = json::parse(ReadFile(path));
+  } catch (const json::exception& e) {
+    throw InputError(path + ": not valid JSON: " + e.what());
+  }
+  BatchSummary summary;
+  for (const json& run : in["runs"]) {
+    RunResult r;
+    r.name = run.value("name", "");
+    r.status = run.value("status", "");
+    r.reason = run.value("reason", "");
+    r.iterations = run.value("iterations", 0);
+    r.probable_error = FromJson(run["probable_error"]);
+    r.model = run.value("model", "");
+    for (const auto& [name, p] : run["parameters"].items()) {
+      r.free.push_back({name, FromJson(p["value"]), FromJson(p["rms_error"])});
+    }
+    summary.runs.push_back(r);
+  }
+  return summary;
+}
+
+BatchSummary MergeSummaries(const std::vector<BatchSummary>& parts) {
+  BatchSummary merged;
+  std::set<std::string> names;
+  for (const BatchSummary& part : parts) {
+    for (const RunResult& r : part.runs) {
+      if (!names.insert(r.name).second) {
+        throw InputError("batch --merge: run '" + r.name +
+                         "' appears in two shards");
+      }
+      merged.runs.push_back(r);
+    }
+  }
+  std::sort(
+      merged.runs.begin(),
+      merged.runs.end(),
+      [](const RunResult& a, const RunResult& b) { return a.name < b.name; });
+  return merged;
+}
+
+}  // namespace fit3dof

@@ -1,0 +1,36 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// YAML-level helpers shared by the config loader and the batch manifest
+// (kept out of the public headers so that users of the library need not see
+// yaml-cpp).
+
+#ifndef FIT3DOF_SRC_CONFIG_NODE_H_
+#define FIT3DOF_SRC_CONFIG_NODE_H_
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+#include "fit3dof/case.h"
+
+namespace fit3dof {
+
+// A config from an already parsed YAML node (e.g. a merged manifest run).
+Case ParseConfigNode(const YAML::Node& root,
+                     const std::string& source,
+                     const std::string& base_dir);
+
+// Parses a YAML file; InputError names the file and line.
+YAML::Node LoadYamlFile(const std::string& path);
+
+// Makes data.file and segments[].data.file absolute against base_dir: a
+// relative path means relative to the file that wrote it.
+void ResolveDataPaths(const std::string& base_dir, YAML::Node* node);
+
+// Deep merge: mappings merge key by key, anything else in `overrides`
+// replaces what `base` has. Returns a new tree.
+YAML::Node MergeYaml(const YAML::Node& base, const YAML::Node& overrides);
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_SRC_CONFIG_NODE_H_

@@ -1,0 +1,250 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "manifest.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "config_node.h"
+#include "fit3dof/input_error.h"
+#include "fit3dof/namelist.h"
+
+namespace fit3dof {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Emit(const YAML::Node& node) {
+  YAML::Emitter out;
+  out << node;
+  return out.c_str();
+}
+
+std::string Where(const std::string& path, const YAML::Node& node) {
+  return node.Mark().line >= 0
+             ? path + ":" + std::to_string(node.Mark().line + 1)
+             : path;
+}
+
+// Runs from a YAML manifest with runs: (and defaults:).
+std::vector<RunSpec> FromManifest(const std::string& path,
+                                  const YAML::Node& root) {
+  const std::string dir = fs::path(path).parent_path().string();
+  const std::string base = dir.empty() ? "." : dir;
+  for (const auto& item : root) {
+    const std::string key = item.first.Scalar();
+    if (key != "defaults" && key != "runs") {
+      throw InputError(Where(path, item.first) + ": " + key +
+                       ": unknown key of a manifest (expected defaults and "
+                       "runs)");
+    }
+  }
+  YAML::Node defaults = YAML::Clone(root["defaults"]);
+  if (defaults.IsDefined() && !defaults.IsNull()) {
+    if (!defaults.IsMap()) {
+      throw InputError(Where(path, root["defaults"]) +
+                       ": defaults: expected a mapping of config keys");
+    }
+    ResolveDataPaths(base, &defaults);
+  } else {
+    defaults = YAML::Node(YAML::NodeType::Map);
+  }
+  const YAML::Node runs = root["runs"];
+  if (!runs.IsSequence() || runs.size() == 0) {
+    throw InputError(Where(path, root) + ": runs: expected a non-empty list");
+  }
+  std::vector<RunSpec> specs;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const YAML::Node entry = runs[i];
+    const std::string where =
+        Where(path, entry) + ": runs[" + std::to_string(i) + "]";
+    if (!entry.IsMap()) throw InputError(where + ": expected a mapping");
+    RunSpec spec;
+    spec.base_dir = base;
+    YAML::Node merged = defaults;
+    if (entry["config"]) {
+      const fs::path file = fs::path(base) / entry["config"].Scalar();
+      YAML::Node config = LoadYamlFile(file.string());
+      if (!config.IsMap()) {
+        throw InputError(file.string() + ": expected a config (a mapping)");
+      }
+      ResolveDataPaths(file.parent_path().string(), &config);
+      merged = MergeYaml(merged, config);
+      spec.name =
+          config["name"] ? config["name"].Scalar() : file.stem().string();
+    }
+    YAML::Node overrides = YAML::Clone(entry);
+    overrides.remove("config");
+    if (overrides["start_from"]) {
+      spec.start_from = overrides["start_from"].Scalar();
+      overrides.remove("start_from");
+    }
+    if (overrides["diagnose"]) {
+      try {
+        spec.diagnose = overrides["diagnose"].as<bool>();
+      } catch (const YAML::Exception&) {
+        throw InputError(where + ": diagnose: expected true or false");
+      }
+      overrides.remove("diagnose");
+    }
+    ResolveDataPaths(base, &overrides);
+    merged = MergeYaml(merged, overrides);
+    if (merged["name"]) spec.name = merged["name"].Scalar();
+    if (spec.name.empty()) {
+      throw InputError(where + ": a run needs a name (or a config: file)");
+    }
+    merged["name"] = spec.name;
+    spec.config = merged;
+    spec.source = path + " run '" + spec.name + "'";
+    specs.push_back(spec);
+  }
+  return specs;
+}
+
+std::vector<RunSpec> FromDirectory(const std::string& path) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(path)) {
+    const std::string ext = entry.path().extension().string();
+    if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml")) {
+      files.push_back(entry.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  if (files.empty()) {
+    throw InputError(path + ": the directory holds no .yaml configs");
+  }
+  std::vector<RunSpec> specs;
+  for (const fs::path& file : files) {
+    RunSpec spec;
+    spec.base_dir = file.parent_path().string();
+    YAML::Node config(YAML::NodeType::Map);
+    try {
+      config = LoadYamlFile(file.string());
+    } catch (const InputError& e) {
+      // A broken file fails its own run, named after the file.
+      spec.load_error = e.what();
+      config = YAML::Node(YAML::NodeType::Map);
+    }
+    if (config.IsMap()) ResolveDataPaths(spec.base_dir, &config);
+    spec.name = config.IsMap() && config["name"] && config["name"].IsScalar()
+                    ? config["name"].Scalar()
+                    : file.stem().string();
+    if (config.IsMap()) config["name"] = spec.name;
+    spec.config = config;
+    spec.source = file.string();
+    specs.push_back(spec);
+  }
+  return specs;
+}
+
+// Chain roots, cycle check and hashes that cover each run's predecessors.
+void Link(const std::string& path, std::vector<RunSpec>* specs) {
+  std::map<std::string, RunSpec*> by_name;
+  const std::regex safe("[A-Za-z0-9._+-]+");
+  for (RunSpec& s : *specs) {
+    if (!std::regex_match(s.name, safe) || s.name == "." || s.name == "..") {
+      throw InputError(path + ": run name '" + s.name +
+                       "' must use only letters, digits and . _ + - (it "
+                       "names the run's output directory)");
+    }
+    if (!by_name.emplace(s.name, &s).second) {
+      throw InputError(path + ": run name '" + s.name + "' is used twice");
+    }
+  }
+  for (RunSpec& s : *specs) {
+    if (!s.start_from.empty() && by_name.count(s.start_from) == 0) {
+      throw InputError(s.source + ": start_from: no run named '" +
+                       s.start_from + "'");
+    }
+  }
+  std::map<std::string, std::string> hashes;
+  for (RunSpec& s : *specs) {
+    std::vector<RunSpec*> chain;
+    std::set<std::string> seen;
+    RunSpec* current = &s;
+    while (true) {
+      if (!seen.insert(current->name).second) {
+        throw InputError(s.source + ": start_from: the chain through '" +
+                         current->name + "' is a cycle");
+      }
+      chain.push_back(current);
+      if (current->start_from.empty()) break;
+      current = by_name[current->start_from];
+    }
+    s.chain_root = chain.back()->name;
+    std::string text;
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      text += Emit((*it)->config) +
+              "\n--- diagnose: " + ((*it)->diagnose ? "true" : "false") + "\n";
+    }
+    s.hash = StableHash(text);
+  }
+}
+
+}  // namespace
+
+std::string StableHash(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char out[17];
+  std::snprintf(
+      out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
+
+std::vector<RunSpec> LoadManifest(const std::string& path,
+                                  const std::string& deck_data) {
+  std::vector<RunSpec> specs;
+  if (fs::is_directory(path)) {
+    specs = FromDirectory(path);
+  } else if (!fs::exists(path)) {
+    throw InputError(path + ": no such manifest, config, deck or directory");
+  } else if (IsDeckFile(path)) {
+    const Deck deck = ReadDeck(path);
+    const std::string dir = fs::path(path).parent_path().string();
+    for (const DeckRun& run : DeckRuns(deck, deck_data)) {
+      RunSpec spec;
+      spec.name = run.name;
+      spec.config = YAML::Load(run.config_yaml);
+      spec.base_dir = dir.empty() ? "." : dir;
+      ResolveDataPaths(spec.base_dir, &spec.config);
+      spec.start_from = run.start_from;
+      spec.source = path + " group " + std::to_string(run.group);
+      specs.push_back(spec);
+    }
+  } else {
+    const YAML::Node root = LoadYamlFile(path);
+    if (!root.IsMap()) {
+      throw InputError(path +
+                       ": expected a manifest (defaults:, runs:) or "
+                       "a config");
+    }
+    if (root["runs"]) {
+      specs = FromManifest(path, root);
+    } else {
+      RunSpec spec;
+      const fs::path file(path);
+      spec.base_dir =
+          file.parent_path().empty() ? "." : file.parent_path().string();
+      spec.config = YAML::Clone(root);
+      ResolveDataPaths(spec.base_dir, &spec.config);
+      spec.name = root["name"] ? root["name"].Scalar() : file.stem().string();
+      spec.config["name"] = spec.name;
+      spec.source = path;
+      specs.push_back(spec);
+    }
+  }
+  Link(path, &specs);
+  return specs;
+}
+
+}  // namespace fit3dof
