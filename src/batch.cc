@@ -10,6 +10,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -36,6 +37,18 @@ using nlohmann::json;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 json Number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+// Summaries carry 12 significant digits (report.json keeps every digit):
+// runs computed on different threads can differ in the last bits (Eigen's
+// vectorized reductions depend on where the heap puts a buffer), and a
+// summary must not depend on how the batch was scheduled, resumed or
+// sharded.
+double Round12(double x) {
+  if (!std::isfinite(x)) return x;
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.12g", x);
+  return std::strtod(text, nullptr);
+}
 double FromJson(const json& x) {
   return x.is_number() ? x.get<double>() : kNaN;
 }
@@ -71,6 +84,8 @@ void ApplyStartValues(const RunResult& previous, Case* c) {
     throw InputError(c->source + ": start_from: run '" + previous.name +
                      "' used the " + previous.model + " model");
   }
+  VLOG(1) << c->name << ": start_from " << previous.name << " with "
+          << previous.values.size() << " values";
   for (const RunParameter& p : previous.values) {
     const int position = FindParameter(c->model, p.name);
     if (position < 0 || !std::isfinite(p.value)) continue;
@@ -161,7 +176,7 @@ std::string CsvField(const std::string& text) {
 std::string CsvNumber(double x) {
   if (!std::isfinite(x)) return "";
   char out[32];
-  std::snprintf(out, sizeof(out), "%.10g", x);
+  std::snprintf(out, sizeof(out), "%.12g", x);
   return out;
 }
 
@@ -344,15 +359,15 @@ void WriteSummary(const std::string& dir, const BatchSummary& summary) {
       }
       csv += "," + CsvNumber(it->second->value) + "," +
              CsvNumber(it->second->rms_error);
-      parameters[c] = {{"value", Number(it->second->value)},
-                       {"rms_error", Number(it->second->rms_error)}};
+      parameters[c] = {{"value", Number(Round12(it->second->value))},
+                       {"rms_error", Number(Round12(it->second->rms_error))}};
     }
     csv += "\n";
     runs.push_back({{"name", r.name},
                     {"status", r.status},
                     {"reason", r.reason},
                     {"iterations", r.iterations},
-                    {"probable_error", Number(r.probable_error)},
+                    {"probable_error", Number(Round12(r.probable_error))},
                     {"model", r.model},
                     {"parameters", parameters}});
   }

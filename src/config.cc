@@ -614,12 +614,20 @@ YAML::Node MergeYaml(const YAML::Node& base, const YAML::Node& overrides) {
   if (!base.IsDefined() || !base.IsMap() || !overrides.IsMap()) {
     return YAML::Clone(overrides);
   }
-  YAML::Node out = YAML::Clone(base);
+  // Built afresh (reading base and overrides only through const handles):
+  // YAML::Node assignment writes through to shared nodes.
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& item : base) {
+    const std::string key = item.first.Scalar();
+    const YAML::Node over = static_cast<const YAML::Node&>(overrides)[key];
+    out[key] = over.IsDefined() ? MergeYaml(item.second, over)
+                                : YAML::Clone(item.second);
+  }
   for (const auto& item : overrides) {
     const std::string key = item.first.Scalar();
-    const YAML::Node existing = out[key];
-    out[key] = existing.IsDefined() ? MergeYaml(existing, item.second)
-                                    : YAML::Clone(item.second);
+    if (!static_cast<const YAML::Node&>(base)[key].IsDefined()) {
+      out[key] = YAML::Clone(item.second);
+    }
   }
   return out;
 }

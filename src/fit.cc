@@ -581,6 +581,11 @@ FitResult Fit(const Case& c) {
   result.free_parameters = k;
 
   const std::vector<double> start_values = values;
+  if (VLOG_IS_ON(1)) {
+    std::ostringstream start;
+    for (int g = 0; g < k; ++g) start << " " << names[g] << "=" << values[g];
+    VLOG(1) << c.name << ": starting values" << start.str();
+  }
   // Continuation over the record length (see ContinuationWindows); the last
   // stage is the whole record under the report's convergence rule.
   const std::vector<double> windows =

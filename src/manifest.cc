@@ -67,7 +67,9 @@ std::vector<RunSpec> FromManifest(const std::string& path,
     if (!entry.IsMap()) throw InputError(where + ": expected a mapping");
     RunSpec spec;
     spec.base_dir = base;
-    YAML::Node merged = defaults;
+    // Note: assigning one YAML::Node to another writes through to the node
+    // the left side refers to; reset() rebinds the handle instead.
+    YAML::Node merged = YAML::Clone(defaults);
     if (entry["config"]) {
       const fs::path file = fs::path(base) / entry["config"].Scalar();
       YAML::Node config = LoadYamlFile(file.string());
@@ -75,7 +77,7 @@ std::vector<RunSpec> FromManifest(const std::string& path,
         throw InputError(file.string() + ": expected a config (a mapping)");
       }
       ResolveDataPaths(file.parent_path().string(), &config);
-      merged = MergeYaml(merged, config);
+      merged.reset(MergeYaml(merged, config));
       spec.name =
           config["name"] ? config["name"].Scalar() : file.stem().string();
     }
@@ -94,7 +96,7 @@ std::vector<RunSpec> FromManifest(const std::string& path,
       overrides.remove("diagnose");
     }
     ResolveDataPaths(base, &overrides);
-    merged = MergeYaml(merged, overrides);
+    merged.reset(MergeYaml(merged, overrides));
     if (merged["name"]) spec.name = merged["name"].Scalar();
     if (spec.name.empty()) {
       throw InputError(where + ": a run needs a name (or a config: file)");
@@ -125,11 +127,10 @@ std::vector<RunSpec> FromDirectory(const std::string& path) {
     spec.base_dir = file.parent_path().string();
     YAML::Node config(YAML::NodeType::Map);
     try {
-      config = LoadYamlFile(file.string());
+      config.reset(LoadYamlFile(file.string()));
     } catch (const InputError& e) {
       // A broken file fails its own run, named after the file.
       spec.load_error = e.what();
-      config = YAML::Node(YAML::NodeType::Map);
     }
     if (config.IsMap()) ResolveDataPaths(spec.base_dir, &config);
     spec.name = config.IsMap() && config["name"] && config["name"].IsScalar()

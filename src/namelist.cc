@@ -263,6 +263,10 @@ class DeckParser {
     }
     char* end = nullptr;
     const double x = std::strtod(number.c_str(), &end);
+    if (!token.empty() && std::isalpha(static_cast<unsigned char>(token[0]))) {
+      Fail(variable + ": expected a value, found '" + token +
+           "' (a variable needs '=' after its name)");
+    }
     if (number.empty() || *end != '\0' || !std::isfinite(x) ||
         number.find_first_of("0123456789") == std::string::npos) {
       Fail(variable + ": '" + token + "' is not a number, logical or string");

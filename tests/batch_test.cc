@@ -1,0 +1,293 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// `fit3dof batch` end to end: the built command on real manifests.
+
+#include "fit3dof/batch.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "gtest/gtest.h"
+#include "test_util.h"
+
+namespace fit3dof {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A manifest of `runs` Table 6 fits (the first 161 samples, so they are quick),
+// one noise seed per run; `extra` maps run index to extra YAML flow keys.
+std::string Manifest(const std::string& dir,
+                     int runs,
+                     const std::map<int, std::string>& extra = {}) {
+  std::ostringstream m;
+  m << "defaults:\n"
+       "  model: symmetric\n"
+       "  body: {area: 0.390, diameter: 0.7047, Ix: 0.0372, Iy: 0.244}\n"
+       "  flow: {velocity: 4774.0, dynamic_pressure: 150.4}\n"
+       "  parameters:\n"
+       "    Cm_alpha: {value: -0.2, free: true}\n"
+       "    Cm_q: {value: 0.0, free: true}\n"
+       "    Cm_alpha_delta2: {value: 0.0, free: true}\n"
+       "    Cm_q_delta2: {value: 0.0, free: true}\n"
+       "    phi0: {free: true}\n    phidot0: {free: true}\n    theta0: {free: "
+       "true}\n"
+       "    thetadot0: {free: true}\n    psi0: {free: true}\n    psidot0: "
+       "{free: true}\n"
+       "  data: {file: "
+    << testing::SourcePath("configs/report/data/table6_clean.csv")
+    << ", t_end: 9.6}\n"
+       "  sigma: {phi: 0.02, theta: 0.02, psi: 0.02}\n"
+       "  noise: {sigma: {phi: 0.02, theta: 0.02, psi: 0.02}, seed: 1}\n"
+       "  solver: {step: 0.01}\n"
+       "runs:\n";
+  for (int i = 0; i < runs; ++i) {
+    char name[16];
+    std::snprintf(name, sizeof(name), "r%03d", i);
+    m << "  - name: " << name << "\n    noise: {seed: " << 100 + i << "}\n";
+    const auto it = extra.find(i);
+    if (it != extra.end()) m << it->second;
+  }
+  const std::string path = dir + "/manifest.yaml";
+  testing::WriteText(path, m.str());
+  return path;
+}
+
+json Summary(const std::string& dir) {
+  return json::parse(testing::ReadText(dir + "/summary.json"));
+}
+
+const json& RunIn(const json& summary, const std::string& name) {
+  for (const json& r : summary["runs"]) {
+    if (r["name"] == name) return r;
+  }
+  ADD_FAILURE() << "no run " << name;
+  static json none;
+  return none;
+}
+
+TEST(Batch, HundredRunsThreeBrokenTheRestFinish) {
+  const std::string dir = testing::ScratchDirectory("batch_hundred");
+  const std::string manifest =
+      Manifest(dir,
+               100,
+               {{13, "    data: {file: missing.csv}\n"},
+                {42, "    parameters: {Cm_alfa: {value: 1.0, free: true}}\n"},
+                {77, "    solver: {max_iterations: 1}\n"}});
+  const auto result =
+      testing::RunFit3dof("batch " + manifest + " --jobs=2 --out_dir=" + dir +
+                          "/out --progress=false");
+  EXPECT_EQ(result.exit_status, 1) << result.output;
+  const json summary = Summary(dir + "/out");
+  EXPECT_EQ(summary["counts"]["total"], 100);
+  EXPECT_EQ(summary["counts"]["converged"], 97);
+  EXPECT_EQ(summary["counts"]["failed"], 2);
+  EXPECT_EQ(summary["counts"]["not_converged"], 1);
+  EXPECT_EQ(RunIn(summary, "r013")["status"], "failed");
+  EXPECT_NE(
+      RunIn(summary, "r013")["reason"].get<std::string>().find("missing.csv"),
+      std::string::npos);
+  EXPECT_EQ(RunIn(summary, "r042")["status"], "failed");
+  EXPECT_NE(RunIn(summary, "r042")["reason"].get<std::string>().find("Cm_alfa"),
+            std::string::npos);
+  EXPECT_EQ(RunIn(summary, "r077")["status"], "not converged");
+  // The terminal report names the three and why.
+  EXPECT_NE(result.output.find("r042: failed:"), std::string::npos)
+      << result.output;
+  // Every converged run has its report, fit and config; failed runs say why.
+  EXPECT_TRUE(fs::exists(dir + "/out/r000/report.json"));
+  EXPECT_TRUE(fs::exists(dir + "/out/r000/fit.csv"));
+  EXPECT_TRUE(fs::exists(dir + "/out/r000/config.yaml"));
+  EXPECT_TRUE(fs::exists(dir + "/out/r013/error.txt"));
+  // The summary CSV: a row per run, value and RMS columns per parameter.
+  const std::string csv = testing::ReadText(dir + "/out/summary.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 101);
+  EXPECT_NE(csv.find(",Cm_alpha,Cm_alpha_rms,"), std::string::npos);
+  // The coefficients are right.
+  EXPECT_NEAR(
+      RunIn(summary, "r000")["parameters"]["Cm_alpha"]["value"].get<double>(),
+      -0.236,
+      1e-4);
+}
+
+TEST(Batch, ResumeAfterAKillRedoesOnlyTheUnfinishedRuns) {
+  const std::string dir = testing::ScratchDirectory("batch_resume");
+  const std::string manifest = Manifest(dir, 30);
+  // The uninterrupted reference.
+  ASSERT_EQ(testing::RunFit3dof("batch " + manifest +
+                                " --jobs=2 --progress=false --out_dir=" + dir +
+                                "/whole")
+                .exit_status,
+            0);
+  // Kill -9 a one-job batch once five runs have finished.
+  const std::string out = dir + "/killed";
+  const std::string script =
+      "( " + std::string(FIT3DOF_BINARY) + " batch " + manifest +
+      " --jobs=1 --out_dir=" + out +
+      " --progress=false >/dev/null 2>&1 & pid=$!; "
+      "while [ $(ls " +
+      out +
+      "/*/report.json 2>/dev/null | wc -l) -lt 5 ]; do sleep 0.02; done; "
+      "kill -9 $pid; wait $pid 2>/dev/null; true )";
+  ASSERT_EQ(std::system(script.c_str()), 0);
+  ASSERT_FALSE(fs::exists(out + "/summary.json"));
+  std::map<std::string, std::string> finished;
+  for (const auto& entry : fs::directory_iterator(out)) {
+    const std::string report = entry.path().string() + "/report.json";
+    if (fs::exists(report)) {
+      finished[entry.path().filename()] = testing::ReadText(report);
+      EXPECT_NO_THROW(json::parse(
+          finished[entry.path().filename()]));  // never half-written
+    }
+  }
+  ASSERT_GE(finished.size(), 5u);
+  ASSERT_LT(finished.size(), 30u);
+  const auto resumed = testing::RunFit3dof(
+      "batch " + manifest +
+      " --jobs=2 --resume --progress=false --out_dir=" + out);
+  ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("30 runs (" + std::to_string(finished.size()) +
+                                " resumed)"),
+            std::string::npos)
+      << resumed.output;
+  // Finished runs were not redone (their reports, timing included, are
+  // untouched); the summary equals the uninterrupted one.
+  for (const auto& [name, text] : finished) {
+    EXPECT_EQ(testing::ReadText(out + "/" + name + "/report.json"), text)
+        << name;
+  }
+  EXPECT_TRUE(testing::ReadText(out + "/summary.json") ==
+              testing::ReadText(dir + "/whole/summary.json"))
+      << "diff " << out << "/summary.json " << dir << "/whole/summary.json";
+  EXPECT_TRUE(testing::ReadText(out + "/summary.csv") ==
+              testing::ReadText(dir + "/whole/summary.csv"));
+  // A changed config is redone.
+  std::string changed = testing::ReadText(manifest);
+  changed.replace(changed.find("seed: 100}"), 10, "seed: 999}");
+  testing::WriteText(manifest, changed);
+  const auto again = testing::RunFit3dof(
+      "batch " + manifest +
+      " --jobs=2 --resume --progress=false --out_dir=" + out);
+  EXPECT_NE(again.output.find("30 runs (29 resumed)"), std::string::npos)
+      << again.output;
+}
+
+TEST(Batch, ShardsMergedEqualTheWholeBatch) {
+  const std::string dir = testing::ScratchDirectory("batch_shards");
+  // Runs 1 and 2 form a start_from chain: a shard keeps chains together.
+  const std::string manifest = Manifest(
+      dir, 12, {{2, "    start_from: r001\n"}, {5, "    start_from: r002\n"}});
+  ASSERT_EQ(testing::RunFit3dof("batch " + manifest +
+                                " --progress=false --out_dir=" + dir + "/whole")
+                .exit_status,
+            0);
+  int total = 0;
+  for (int k = 1; k <= 3; ++k) {
+    const std::string out = dir + "/shard" + std::to_string(k);
+    const auto r = testing::RunFit3dof(
+        "batch " + manifest + " --progress=false --shard=" + std::to_string(k) +
+        "/3 --out_dir=" + out);
+    ASSERT_EQ(r.exit_status, 0) << r.output;
+    total += Summary(out)["counts"]["total"].get<int>();
+  }
+  EXPECT_EQ(total, 12);
+  const auto merged = testing::RunFit3dof(
+      "batch --merge " + dir + "/shard1 " + dir + "/shard2 " + dir +
+      "/shard3 --out_dir=" + dir + "/merged");
+  ASSERT_EQ(merged.exit_status, 0) << merged.output;
+  EXPECT_TRUE(testing::ReadText(dir + "/merged/summary.json") ==
+              testing::ReadText(dir + "/whole/summary.json"))
+      << "diff " << dir << "/merged/summary.json " << dir
+      << "/whole/summary.json";
+  EXPECT_TRUE(testing::ReadText(dir + "/merged/summary.csv") ==
+              testing::ReadText(dir + "/whole/summary.csv"));
+  EXPECT_EQ(testing::RunFit3dof("batch --shard=4/3 " + manifest +
+                                " --out_dir=" + dir + "/x")
+                .exit_status,
+            2);
+}
+
+// start_from (IUPDAT): a run starts from its predecessor's result. Here
+// r002 freezes Cm_alpha at a wrong value, which start_from replaces with
+// r000's fitted one; r001 keeps the wrong value and cannot fit the data.
+TEST(Batch, StartFromTakesThePredecessorsResult) {
+  const std::string dir = testing::ScratchDirectory("batch_chain");
+  const std::string frozen = "    parameters: {Cm_alpha: -0.2}\n";
+  const std::string manifest =
+      Manifest(dir, 3, {{1, frozen}, {2, frozen + "    start_from: r000\n"}});
+  testing::RunFit3dof("batch " + manifest +
+                      " --progress=false --out_dir=" + dir + "/out");
+  const json summary = Summary(dir + "/out");
+  EXPECT_EQ(RunIn(summary, "r000")["status"], "converged");
+  EXPECT_EQ(RunIn(summary, "r002")["status"], "converged");
+  const json r0 = json::parse(testing::ReadText(dir + "/out/r000/report.json"));
+  const json r1 = json::parse(testing::ReadText(dir + "/out/r001/report.json"));
+  const json r2 = json::parse(testing::ReadText(dir + "/out/r002/report.json"));
+  EXPECT_EQ(r2["start_from"], "r000");
+  EXPECT_FALSE(r2["parameters"]["Cm_alpha"]["free"].get<bool>());
+  EXPECT_DOUBLE_EQ(r2["parameters"]["Cm_alpha"]["value"].get<double>(),
+                   r0["parameters"]["Cm_alpha"]["value"].get<double>());
+  EXPECT_LT(r2["probable_error"].get<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(r1["parameters"]["Cm_alpha"]["value"].get<double>(), -0.2);
+  EXPECT_GT(r1["probable_error"].get<double>(), 10.0);
+}
+
+TEST(Batch, DirectoryOfConfigsIsAManifest) {
+  const std::string dir = testing::ScratchDirectory("batch_directory");
+  fs::create_directories(dir + "/configs");
+  for (const char* sigma : {"0.01", "0.05"}) {
+    fs::copy_file(
+        testing::SourcePath(std::string("configs/report/table6_sigma") + sigma +
+                            ".yaml"),
+        dir + "/configs/table6_sigma" + sigma + ".yaml");
+  }
+  fs::create_directories(dir + "/configs/data");
+  fs::copy_file(testing::SourcePath("configs/report/data/table6_clean.csv"),
+                dir + "/configs/data/table6_clean.csv");
+  testing::WriteText(dir + "/configs/broken.yaml", "model: [unclosed\n");
+  const auto r = testing::RunFit3dof(
+      "batch " + dir + "/configs --progress=false --out_dir=" + dir + "/out");
+  EXPECT_EQ(r.exit_status, 1) << r.output;
+  const json summary = Summary(dir + "/out");
+  EXPECT_EQ(summary["counts"]["total"], 3);
+  EXPECT_EQ(RunIn(summary, "table6-sigma0.01")["status"], "converged");
+  EXPECT_EQ(RunIn(summary, "broken")["status"], "failed");
+  EXPECT_NE(RunIn(summary, "broken")["reason"].get<std::string>().find(
+                "not valid YAML"),
+            std::string::npos);
+}
+
+TEST(Batch, BadManifestsExitTwo) {
+  const std::string dir = testing::ScratchDirectory("batch_bad");
+  testing::WriteText(dir + "/dup.yaml",
+                     "runs:\n  - {name: a}\n  - {name: a}\n");
+  auto r = testing::RunFit3dof("batch " + dir + "/dup.yaml --out_dir=" + dir +
+                               "/out");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_NE(r.output.find("'a' is used twice"), std::string::npos) << r.output;
+  testing::WriteText(dir + "/from.yaml",
+                     "runs:\n  - {name: a, start_from: b}\n");
+  r = testing::RunFit3dof("batch " + dir + "/from.yaml --out_dir=" + dir +
+                          "/out");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_NE(r.output.find("no run named 'b'"), std::string::npos) << r.output;
+  testing::WriteText(
+      dir + "/cycle.yaml",
+      "runs:\n  - {name: a, start_from: b}\n  - {name: b, start_from: a}\n");
+  r = testing::RunFit3dof("batch " + dir + "/cycle.yaml --out_dir=" + dir +
+                          "/out");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_NE(r.output.find("cycle"), std::string::npos) << r.output;
+  r = testing::RunFit3dof("batch " + dir + "/nothing.yaml --out_dir=" + dir +
+                          "/out");
+  EXPECT_EQ(r.exit_status, 2);
+}
+
+}  // namespace
+}  // namespace fit3dof
