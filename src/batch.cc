@@ -235,7 +235,7 @@ BatchSummary RunBatch(const std::string& manifest,
     if (!tty) return;
     const double t = elapsed();
     std::string eta = "--:--:--";
-    if (done > 0 && done < n) eta = Clock(t / done * (n - done));
+    if (done > 0) eta = Clock(t / done * (n - done));
     std::fprintf(
         stderr,
         "\r\033[K%d/%d done, %d running, %d failed, %s elapsed, ~%s left",

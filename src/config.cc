@@ -285,8 +285,29 @@ ParameterSetting ConfigReader::ReadParameter(const YAML::Node& node,
     setting.value = Number(node, key);
     return setting;
   }
-  CheckKeys(node, key, {"value", "free"});
+  CheckKeys(node, key, {"value", "free", "start"});
   if (node["free"]) setting.free = Bool(node["free"], key + ".free");
+  const bool auto_value = node["value"] && node["value"].IsScalar() &&
+                          node["value"].Scalar() == "auto";
+  if (node["start"]) {
+    if (String(node["start"], key + ".start") != "auto") {
+      Fail(node["start"], key + ".start", "expected 'auto' (or give value:)");
+    }
+    if (node["value"] && !auto_value) {
+      Fail(node["start"], key + ".start", "give either value: or start: auto");
+    }
+  }
+  if (auto_value || node["start"] || (!node["value"] && setting.free)) {
+    if (!setting.free) {
+      if (value_optional) return setting;
+      Fail(node,
+           key,
+           "a frozen parameter needs a value (auto starting values are for "
+           "free parameters)");
+    }
+    setting.auto_start = true;
+    return setting;
+  }
   if (node["value"]) {
     setting.value = Number(node["value"], key + ".value");
   } else if (!setting.free && !value_optional) {
@@ -495,8 +516,37 @@ void ConfigReader::ReadNoise(const YAML::Node& node, Case* c) const {
 }
 
 void ConfigReader::ReadSolver(const YAML::Node& node, Case* c) const {
-  CheckKeys(
-      node, "solver", {"max_iterations", "tolerance", "step", "continuation"});
+  CheckKeys(node,
+            "solver",
+            {"max_iterations",
+             "tolerance",
+             "step",
+             "continuation",
+             "method",
+             "max_probable_error",
+             "multi_start",
+             "starts"});
+  if (node["method"]) {
+    c->solver.method = String(node["method"], "solver.method");
+    if (c->solver.method != "levenberg_marquardt" &&
+        c->solver.method != "gauss_newton") {
+      Fail(node["method"],
+           "solver.method",
+           "expected levenberg_marquardt or gauss_newton, got '" +
+               c->solver.method + "'");
+    }
+  }
+  if (node["max_probable_error"]) {
+    c->solver.max_probable_error =
+        NonNegative(node["max_probable_error"], "solver.max_probable_error");
+  }
+  if (node["multi_start"]) {
+    c->solver.multi_start = Bool(node["multi_start"], "solver.multi_start");
+  }
+  if (node["starts"]) {
+    c->solver.starts =
+        static_cast<int>(Integer(node["starts"], "solver.starts", 0));
+  }
   if (node["continuation"]) {
     c->solver.continuation = Bool(node["continuation"], "solver.continuation");
   }

@@ -6,12 +6,14 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include "ceres/ceres.h"
 #include "fit3dof/data_selection.h"
@@ -19,6 +21,7 @@
 #include "fit3dof/input_error.h"
 #include "fit3dof/noise.h"
 #include "fit3dof/segment_cost_function.h"
+#include "fit3dof/start_values.h"
 
 namespace fit3dof {
 namespace {
@@ -84,13 +87,18 @@ PreparedSegment PrepareSegment(const Case& c, const Segment& s, int index) {
   const ParameterLayout& layout = Layout(c.model);
   p.from_data = s.initial_conditions == InitialConditionMode::kFromData;
   std::array<double, 6> initial;
-  if (p.from_data) {
-    initial = EstimateInitialConditions(c.model,
-                                        p.data,
-                                        p.base[layout.theta_offset],
-                                        p.base[layout.psi_offset]);
-  } else {
-    for (int j = 0; j < 6; ++j) initial[j] = s.initial[j].value;
+  for (int j = 0; j < 6; ++j) initial[j] = s.initial[j].value;
+  bool any_auto = false;
+  for (int j = 0; j < 6; ++j) any_auto |= s.initial[j].auto_start;
+  if (p.from_data || any_auto) {
+    const std::array<double, 6> estimate =
+        EstimateInitialConditions(c.model,
+                                  p.data,
+                                  p.base[layout.theta_offset],
+                                  p.base[layout.psi_offset]);
+    for (int j = 0; j < 6; ++j) {
+      if (p.from_data || s.initial[j].auto_start) initial[j] = estimate[j];
+    }
   }
   for (int j = 0; j < 6; ++j) {
     p.base[layout.first_initial + j] = initial[j];
@@ -165,12 +173,17 @@ std::vector<double> FreeValues(const Assembly& a,
 
 // J^T J of the weighted residuals (columns in global free order) and the
 // residual sum of squares; false if the motion cannot be integrated.
-bool Information(const Assembly& a, Eigen::MatrixXd* jtj, double* ressum) {
+bool Information(const Assembly& a,
+                 Eigen::MatrixXd* jtj,
+                 double* ressum,
+                 Eigen::VectorXd* jtr = nullptr) {
   ceres::Problem::EvaluateOptions options;
   options.parameter_blocks = a.blocks;
   double cost = 0.0;
   ceres::CRSMatrix crs;
-  if (!a.problem->Evaluate(options, &cost, nullptr, nullptr, &crs)) {
+  std::vector<double> residuals;
+  if (!a.problem->Evaluate(
+          options, &cost, jtr ? &residuals : nullptr, nullptr, &crs)) {
     return false;
   }
   *ressum = 2.0 * cost;
@@ -184,6 +197,10 @@ bool Information(const Assembly& a, Eigen::MatrixXd* jtj, double* ressum) {
   }
   j.setFromTriplets(entries.begin(), entries.end());
   *jtj = Eigen::MatrixXd(j.transpose() * j);
+  if (jtr != nullptr) {
+    *jtr = j.transpose() * Eigen::Map<const Eigen::VectorXd>(residuals.data(),
+                                                             residuals.size());
+  }
   return true;
 }
 
@@ -419,6 +436,7 @@ struct StageOutcome {
   bool converged = false;
   int iterations = 0;
   int failed_evaluations = 0;  // rejected trial steps that blew up
+  double ressum = 0.0;         // weighted residual sum of squares at the end
   std::string termination;
   std::string failure;  // why the start values could not be integrated
 };
@@ -516,7 +534,199 @@ StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
     outcome.termination = summary.message;
   }
   *values = FreeValues(assembly, free, scale);
+  outcome.ressum = 2.0 * summary.final_cost;
   return outcome;
+}
+
+// The 1978 program's iteration: the full Gauss-Newton step, no damping, no
+// step rejection, stopped by the same probable-error rule.
+StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
+                              const FreeLayout& free,
+                              const std::shared_ptr<const MotionModel>& model,
+                              const ChannelValues& sigma,
+                              double tolerance,
+                              int max_iterations,
+                              std::vector<double>* values) {
+  StageOutcome outcome;
+  const int k = free.size();
+  int points = 0;
+  for (const PreparedSegment& p : segments) points += p.data.size();
+  const int dof = 3 * points - k;
+  std::vector<double> scale(k, 1.0);
+  double old_e = -1.0;
+  std::vector<double> last_good = *values;
+  for (int iteration = 0;; ++iteration) {
+    Assembly a = Assemble(segments, free, model, sigma, *values, scale);
+    Eigen::MatrixXd jtj;
+    Eigen::VectorXd jtr;
+    double ressum;
+    if (!Information(a, &jtj, &ressum, &jtr)) {
+      if (iteration == 0) {
+        outcome.integrable = false;
+        outcome.failure = "the motion blows up";
+      } else {
+        outcome.termination =
+            "the Gauss-Newton iteration diverged (the motion blew up)";
+        ++outcome.failed_evaluations;
+        *values = last_good;  // the last iterate that still integrates
+      }
+      return outcome;
+    }
+    if (iteration == 0) {
+      // Unit columns, as for Levenberg-Marquardt; then re-evaluate.
+      scale = ColumnScales(jtj, scale);
+      a = Assemble(segments, free, model, sigma, *values, scale);
+      Information(a, &jtj, &ressum, &jtr);
+    }
+    outcome.ressum = ressum;
+    last_good = *values;
+    const double e = std::sqrt(ressum / dof);
+    if (old_e >= 0.0 && std::abs(e - old_e) < tolerance) {
+      outcome.converged = true;
+      outcome.termination =
+          "probable error changed by less than " + Fmt("%g", tolerance);
+      return outcome;
+    }
+    if (iteration == max_iterations) {
+      outcome.termination = "CONVERGENCE CRITERIA NOT SATISFIED AFTER " +
+                            std::to_string(iteration) + " ITERATIONS";
+      return outcome;
+    }
+    old_e = e;
+    // Solve J^T J du = -J^T r (pseudo-inverse: a singular direction gets no
+    // correction, as the listing's INV would divide by zero instead).
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(jtj);
+    const Eigen::VectorXd lambda = eigen.eigenvalues();
+    Eigen::VectorXd du = Eigen::VectorXd::Zero(k);
+    for (int j = 0; j < k; ++j) {
+      if (lambda(j) > 1e-14 * lambda.maxCoeff()) {
+        const Eigen::VectorXd v = eigen.eigenvectors().col(j);
+        du -= v * (v.dot(jtr) / lambda(j));
+      }
+    }
+    const std::vector<double> u =
+        FreeValues(a, free, std::vector<double>(k, 1.0));
+    for (int g = 0; g < k; ++g) (*values)[g] = scale[g] * (u[g] + du(g));
+    outcome.iterations = iteration + 1;
+  }
+}
+
+struct PipelineOutcome {
+  bool integrable = true;
+  std::string failure;
+  bool converged = false;
+  std::string termination;
+  int iterations = 0;
+  int failed_evaluations = 0;
+  double probable_error = 0.0;
+  std::vector<FitResult::Stage> stages;
+};
+
+// One attempt from `values` (updated in place): the continuation stages,
+// then the whole record under the report's rule, by the configured method.
+PipelineOutcome RunPipeline(const Case& c,
+                            const std::vector<PreparedSegment>& segments,
+                            const FreeLayout& free,
+                            const std::shared_ptr<const MotionModel>& model,
+                            const std::vector<std::string>& names,
+                            std::vector<double>* values) {
+  PipelineOutcome result;
+  const int k = free.size();
+  const bool gauss_newton = c.solver.method == "gauss_newton";
+  // The report's plain method fits the whole record at once.
+  const std::vector<double> windows =
+      c.solver.continuation && !gauss_newton
+          ? ContinuationWindows(segments, k)
+          : std::vector<double>{std::numeric_limits<double>::infinity()};
+  const std::vector<double> start = *values;
+  for (size_t w = 0; w < windows.size(); ++w) {
+    const bool last = w + 1 == windows.size();
+    const std::vector<PreparedSegment> stage =
+        last ? segments : Window(segments, windows[w]);
+    auto solve = [&](std::vector<double>* trial) {
+      if (gauss_newton) {
+        return SolveGaussNewton(stage,
+                                free,
+                                model,
+                                c.sigma,
+                                c.solver.tolerance,
+                                c.solver.max_iterations,
+                                trial);
+      }
+      return SolveStage(stage,
+                        free,
+                        model,
+                        c.sigma,
+                        names,
+                        last ? c.solver.tolerance : 0.0,
+                        last ? 0.0 : 1e-4,
+                        last ? c.solver.max_iterations : 50,
+                        trial);
+    };
+    std::vector<double> trial = *values;
+    StageOutcome outcome = solve(&trial);
+    if (!outcome.integrable && w > 0) {
+      // The shorter window's answer blows up over this longer one: start
+      // this window again from the original values.
+      VLOG(1) << c.name << ": stage " << w + 1
+              << " cannot start from the previous stage (" << outcome.failure
+              << "); restarting it from the starting values";
+      trial = start;
+      outcome = solve(&trial);
+    }
+    if (!outcome.integrable) {
+      result.integrable = false;
+      result.failure = outcome.failure;
+      return result;
+    }
+    *values = trial;
+    result.iterations += outcome.iterations;
+    result.failed_evaluations += outcome.failed_evaluations;
+    int stage_points = 0;
+    for (const PreparedSegment& p : stage) stage_points += p.data.size();
+    result.stages.push_back({stage_points, outcome.iterations});
+    VLOG(1) << c.name << ": stage " << w + 1 << "/" << windows.size() << " ("
+            << stage_points << " samples): " << outcome.iterations
+            << " iterations, " << outcome.termination;
+    if (last) {
+      result.converged = outcome.converged;
+      result.termination = outcome.termination;
+      result.probable_error =
+          std::sqrt(outcome.ressum / (3 * stage_points - k));
+    }
+  }
+  return result;
+}
+
+// Starting points for the multi-start: the stiffness scaled, the damping
+// moved across its plausible range, the other terms zeroed or kept.
+std::vector<std::vector<double>> SpreadStarts(const Case& c,
+                                              const FreeLayout& free,
+                                              const std::vector<double>& base,
+                                              int count) {
+  static const double kStiffness[] = {0.5, 2.0, 0.7, 1.4, 0.3, 3.0, 0.85, 1.2};
+  static const double kDamping[] = {
+      -5.0, 0.0, -15.0, -2.0, -10.0, 2.0, -25.0, -8.0};
+  const auto& table = ParameterTable(c.model);
+  std::vector<std::vector<double>> starts;
+  for (int j = 0; j < count; ++j) {
+    std::vector<double> s = base;
+    for (int g = 0; g < free.size(); ++g) {
+      if (free.segment[g] >= 0) continue;  // initial conditions: from data
+      const std::string& name = table[free.position[g]].name;
+      if (name == "Cm_alpha" || name == "Cn_beta") {
+        s[g] = base[g] * kStiffness[j % 8];
+        if (s[g] == 0.0)
+          s[g] = (name == "Cm_alpha" ? -0.1 : 0.1) * kStiffness[j % 8];
+      } else if (name == "Cm_q" || name == "Cn_r") {
+        s[g] = kDamping[j % 8];
+      } else if (j % 2 == 0) {
+        s[g] = 0.0;
+      }
+    }
+    starts.push_back(s);
+  }
+  return starts;
 }
 
 }  // namespace
@@ -580,69 +790,118 @@ FitResult Fit(const Case& c) {
   result.points = points;
   result.free_parameters = k;
 
+  // Starting values from the data for the free parameters given none.
+  std::vector<bool> auto_start(c.parameters.size(), false);
+  bool any_auto = false;
+  for (int g = 0; g < k; ++g) {
+    if (free.segment[g] < 0 && c.parameters[free.position[g]].auto_start) {
+      auto_start[free.position[g]] = true;
+      any_auto = true;
+    }
+  }
+  if (any_auto) {
+    std::vector<double> full = c.Values();
+    for (const std::string& line :
+         EstimateStartValues(c, segments[0].data, auto_start, &full)) {
+      result.pipeline.push_back("starting value: " + line);
+      VLOG(1) << c.name << ": starting value " << line;
+    }
+    for (int g = 0; g < k; ++g) {
+      if (free.segment[g] < 0 && auto_start[free.position[g]]) {
+        values[g] = full[free.position[g]];
+      }
+    }
+  }
+
   const std::vector<double> start_values = values;
   if (VLOG_IS_ON(1)) {
     std::ostringstream start;
     for (int g = 0; g < k; ++g) start << " " << names[g] << "=" << values[g];
     VLOG(1) << c.name << ": starting values" << start.str();
   }
-  // Continuation over the record length (see ContinuationWindows); the last
-  // stage is the whole record under the report's convergence rule.
-  const std::vector<double> windows =
-      c.solver.continuation
-          ? ContinuationWindows(segments, k)
-          : std::vector<double>{std::numeric_limits<double>::infinity()};
-  for (size_t w = 0; w < windows.size(); ++w) {
-    const bool last = w + 1 == windows.size();
-    const std::vector<PreparedSegment> stage =
-        last ? segments : Window(segments, windows[w]);
-    std::vector<double> trial = values;
-    StageOutcome outcome = SolveStage(stage,
-                                      free,
-                                      model,
-                                      c.sigma,
-                                      names,
-                                      last ? c.solver.tolerance : 0.0,
-                                      last ? 0.0 : 1e-4,
-                                      last ? c.solver.max_iterations : 50,
-                                      &trial);
-    if (!outcome.integrable && w > 0) {
-      // The shorter window's answer blows up over this longer one: start
-      // this window again from the original values.
-      LOG(WARNING) << c.name << ": stage " << w + 1
-                   << " cannot start from the previous stage ("
-                   << outcome.failure << "); restarting it from the "
-                   << "starting values";
-      trial = start_values;
-      outcome = SolveStage(stage,
-                           free,
-                           model,
-                           c.sigma,
-                           names,
-                           last ? c.solver.tolerance : 0.0,
-                           last ? 0.0 : 1e-4,
-                           last ? c.solver.max_iterations : 50,
-                           &trial);
+  PipelineOutcome outcome =
+      RunPipeline(c, segments, free, model, names, &values);
+  if (!outcome.integrable) {
+    throw InputError(c.source +
+                     ": the motion cannot be integrated from the starting "
+                     "values (" +
+                     outcome.failure + "); check the parameters");
+  }
+  const double limit = c.solver.max_probable_error;
+  const bool plain =
+      c.solver.method == "gauss_newton" || !c.solver.continuation;
+  if (limit > 0.0 && outcome.probable_error > limit && c.solver.multi_start &&
+      !plain && c.solver.starts > 0) {
+    // Far above the noise level: a local minimum is likely. Restart from a
+    // spread of starting points, in parallel, and keep the best.
+    const auto starts = SpreadStarts(c, free, start_values, c.solver.starts);
+    std::vector<PipelineOutcome> outcomes(starts.size());
+    std::vector<std::vector<double>> finals = starts;
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+      for (size_t j = next++; j < starts.size(); j = next++) {
+        try {
+          outcomes[j] =
+              RunPipeline(c, segments, free, model, names, &finals[j]);
+        } catch (const std::exception& e) {
+          outcomes[j].integrable = false;
+          outcomes[j].failure = e.what();
+        }
+      }
+    };
+    const int threads = std::max(
+        1,
+        std::min<int>(static_cast<int>(std::thread::hardware_concurrency()),
+                      static_cast<int>(starts.size())));
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t) pool.emplace_back(work);
+    for (std::thread& t : pool) t.join();
+    double best = outcome.probable_error;
+    int best_index = -1;
+    for (size_t j = 0; j < starts.size(); ++j) {
+      if (outcomes[j].integrable && outcomes[j].probable_error < best) {
+        best = outcomes[j].probable_error;
+        best_index = static_cast<int>(j);
+      }
+      result.iterations += outcomes[j].iterations;
     }
-    if (!outcome.integrable) {
-      throw InputError(c.source +
-                       ": the motion cannot be integrated from the starting "
-                       "values (" +
-                       outcome.failure + "); check the parameters");
+    int reached =
+        std::abs(outcome.probable_error - best) <= 0.01 * best ? 1 : 0;
+    for (const PipelineOutcome& o : outcomes) {
+      reached +=
+          o.integrable && std::abs(o.probable_error - best) <= 0.01 * best;
     }
-    values = trial;
-    result.iterations += outcome.iterations;
-    result.failed_evaluations += outcome.failed_evaluations;
-    int stage_points = 0;
-    for (const PreparedSegment& p : stage) stage_points += p.data.size();
-    result.stages.push_back({stage_points, outcome.iterations});
-    VLOG(1) << c.name << ": stage " << w + 1 << "/" << windows.size() << " ("
-            << stage_points << " samples): " << outcome.iterations
-            << " iterations, " << outcome.termination;
-    if (last) {
-      result.converged = outcome.converged;
-      result.termination = outcome.termination;
+    if (best_index >= 0) {
+      result.iterations += outcome.iterations;
+      outcome.iterations = 0;
+      outcome = outcomes[best_index];
+      values = finals[best_index];
     }
+    result.starts_tried = static_cast<int>(starts.size()) + 1;
+    result.starts_reached_best = reached;
+    result.pipeline.push_back(
+        "multi-start: probable error " + Fmt("%.3g", outcome.probable_error) +
+        " after " + std::to_string(result.starts_tried) + " starts, " +
+        std::to_string(reached) + " reached the best minimum");
+  }
+  result.iterations += outcome.iterations;
+  result.failed_evaluations += outcome.failed_evaluations;
+  result.stages = outcome.stages;
+  result.converged = outcome.converged;
+  result.termination = outcome.termination;
+  if (result.stages.size() > 1) {
+    result.pipeline.push_back(
+        "continuation: " + std::to_string(result.stages.size()) +
+        " stages up to the whole record");
+  }
+  if (limit > 0.0 && outcome.probable_error > limit) {
+    // Never call a fit converged that does not reach the noise level.
+    result.converged = false;
+    result.termination =
+        "the fit did not reach the noise level: probable error " +
+        Fmt("%.3g", outcome.probable_error) + " > " + Fmt("%g", limit) +
+        " (a local minimum, a missing effect, or sigma smaller than the "
+        "noise)";
   }
   if (!result.converged) LOG(WARNING) << c.name << ": " << result.termination;
   // Covariance at the solution. Parameters the data cannot see at all (a

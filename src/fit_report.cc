@@ -73,6 +73,11 @@ std::string ReportJson(const FitResult& r) {
   }
   report["stages"] = stages;
   report["failed_evaluations"] = r.failed_evaluations;
+  report["pipeline"] = r.pipeline;
+  if (r.starts_tried > 0) {
+    report["multi_start"] = {{"tried", r.starts_tried},
+                             {"reached_best", r.starts_reached_best}};
+  }
   report["seconds"] = r.seconds;
   return report.dump(2) + "\n";
 }

@@ -13,6 +13,7 @@
 
 #include "fit3dof/config.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/noise.h"
 #include "fit3dof/simulator.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
@@ -280,6 +281,72 @@ TEST(Fit, NamesAParameterTheDataCannotDetermine) {
   EXPECT_NE(r.warnings[0].find("Cm_p_alpha is not determined"),
             std::string::npos)
       << r.warnings[0];
+}
+
+// With no starting values at all (every free coefficient auto) the fits
+// reach the truth: Table 6, and both check cases as simulated data with
+// noise.
+TEST(Fit, AutoStartingValuesReachTheTruth) {
+  {
+    Case c = Load("table6_sigma0.02.yaml");
+    for (const char* p : kTable6) {
+      c.parameters[FindParameter(c.model, p)].auto_start = true;
+      c.parameters[FindParameter(c.model, p)].value = 0.0;
+    }
+    const FitResult r = Fit(c);
+    ASSERT_TRUE(r.converged) << r.termination;
+    for (const char* p : kTable6) {
+      const ParameterEstimate& e = Find(r, p);
+      EXPECT_LT(std::abs(e.value - Truth(p)), 3.0 * e.rms_error)
+          << p << " " << e.value;
+    }
+  }
+  const std::string dir = testing::ScratchDirectory("fit_auto_check_cases");
+  struct CheckCase {
+    const char* config;
+    std::vector<const char*> free;
+    double duration;
+  };
+  for (const CheckCase& k :
+       {CheckCase{"check_case_1.yaml",
+                  {"Cm_alpha", "Cn_beta", "Cm_q", "Cn_r", "Cl_p"},
+                  30.0},
+        CheckCase{"check_case_2.yaml", {"Cm_alpha", "Cn_beta"}, 19.9}}) {
+    Case truth = Load(k.config);
+    std::vector<double> times;
+    for (double t = 0.0; t <= k.duration + 1e-9; t += 0.02) times.push_back(t);
+    TimeHistory data = SimulateAt(truth, truth.Values(), times);
+    NoiseOptions noise;
+    noise.enabled = true;
+    noise.sigma = {0.02, 0.01, 0.01};
+    noise.seed = 5;
+    AddNoise(noise, &data);
+    const std::string csv = dir + "/" + k.config + ".csv";
+    WriteTimeHistory(csv, data);
+    Case c = truth;
+    c.solver.step = 0.005;
+    c.sigma = {0.02, 0.01, 0.01};
+    Segment s;
+    s.name = truth.name;
+    s.data_file = csv;
+    s.initial_conditions = InitialConditionMode::kFromData;
+    for (int j = 0; j < 6; ++j) s.initial[j].free = true;
+    c.segments = {s};
+    for (const char* p : k.free) {
+      ParameterSetting& setting = c.parameters[FindParameter(c.model, p)];
+      setting.free = true;
+      setting.auto_start = true;
+      setting.value = 0.0;
+    }
+    const FitResult r = Fit(c);
+    ASSERT_TRUE(r.converged) << k.config << ": " << r.termination;
+    for (const char* p : k.free) {
+      const ParameterEstimate& e = Find(r, p);
+      const double expected = truth.parameters[FindParameter(c.model, p)].value;
+      EXPECT_LT(std::abs(e.value - expected), 3.0 * e.rms_error)
+          << k.config << " " << p << " = " << e.value << " +- " << e.rms_error;
+    }
+  }
 }
 
 TEST(Fit, RejectsBadInput) {

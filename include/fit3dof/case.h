@@ -22,7 +22,9 @@ namespace fit3dof {
 
 struct ParameterSetting {
   double value = 0.0;
-  bool free = false;  // the report's NCON(i) = 1
+  bool free = false;        // the report's NCON(i) = 1
+  bool auto_start = false;  // free without a value (or value: auto): the
+                            // fit estimates a starting value from the data
 };
 
 // Per-channel numbers: sigma weights, noise levels, biases (degrees).
@@ -73,6 +75,14 @@ struct SolverOptions {
   // Fit growing windows of the record (about two cycles first, doubling)
   // before the whole of it; see fit.h.
   bool continuation = true;
+  // levenberg_marquardt, or gauss_newton: the 1978 program's undamped full
+  // step over the whole record (no continuation, no multi-start).
+  std::string method = "levenberg_marquardt";
+  // A fit whose probable error stays above this is not called converged
+  // (residuals more than this many sigmas); 0 disables the check.
+  double max_probable_error = 3.0;
+  bool multi_start = true;  // restart from a spread of points when above it
+  int starts = 8;
 };
 
 struct SimulateOptions {

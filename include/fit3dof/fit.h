@@ -71,7 +71,11 @@ struct FitResult {
     int points;      // samples in the stage's window
     int iterations;  // Levenberg-Marquardt iterations
   };
-  std::vector<Stage> stages;   // continuation stages, the whole record last
+  std::vector<Stage> stages;  // continuation stages, the whole record last
+  std::vector<std::string> pipeline;  // what ran: starting values,
+                                      // continuation, multi-start
+  int starts_tried = 0;               // multi-start (0: not needed)
+  int starts_reached_best = 0;
   int failed_evaluations = 0;  // trial steps rejected because the motion
                                // blew up (theta near 90 deg, NaN)
   std::vector<ParameterEstimate> parameters;
