@@ -819,22 +819,60 @@ FitResult Fit(const Case& c) {
     for (int g = 0; g < k; ++g) start << " " << names[g] << "=" << values[g];
     VLOG(1) << c.name << ": starting values" << start.str();
   }
-  PipelineOutcome outcome =
-      RunPipeline(c, segments, free, model, names, &values);
-  if (!outcome.integrable) {
-    throw InputError(c.source +
-                     ": the motion cannot be integrated from the starting "
-                     "values (" +
-                     outcome.failure + "); check the parameters");
-  }
   const double limit = c.solver.max_probable_error;
   const bool plain =
       c.solver.method == "gauss_newton" || !c.solver.continuation;
-  if (limit > 0.0 && outcome.probable_error > limit && c.solver.multi_start &&
-      !plain && c.solver.starts > 0) {
+  const bool robust = !plain && c.solver.multi_start && c.solver.starts > 0;
+  PipelineOutcome outcome =
+      RunPipeline(c, segments, free, model, names, &values);
+  if (!outcome.integrable) {
+    const std::string message =
+        "the motion cannot be integrated from the "
+        "starting values (" +
+        outcome.failure + ")";
+    if (!robust || limit <= 0.0) {
+      throw InputError(c.source + ": " + message + "; check the parameters");
+    }
+    // The robust pipeline restarts from the data instead.
+    result.pipeline.push_back(message + ": restarting from the data");
+    outcome.probable_error = std::numeric_limits<double>::infinity();
+    values = start_values;
+  }
+  if (limit > 0.0 && outcome.probable_error > limit && robust) {
     // Far above the noise level: a local minimum is likely. Restart from a
     // spread of starting points, in parallel, and keep the best.
-    const auto starts = SpreadStarts(c, free, start_values, c.solver.starts);
+    // The restarts ignore the given values: they start from what the data
+    // say (linear-theory estimates of every free coefficient, nonlinear
+    // terms at zero, initial conditions from the data), then spread from
+    // there.
+    std::vector<double> data_start = start_values;
+    {
+      std::vector<bool> all(c.parameters.size(), false);
+      for (int g = 0; g < k; ++g) {
+        if (free.segment[g] < 0) all[free.position[g]] = true;
+      }
+      std::vector<double> full = c.Values();
+      EstimateStartValues(c, segments[0].data, all, &full);
+      const ParameterLayout& layout = Layout(c.model);
+      for (int g = 0; g < k; ++g) {
+        if (free.segment[g] < 0) {
+          data_start[g] = full[free.position[g]];
+        } else {
+          const PreparedSegment& p = segments[free.segment[g]];
+          const std::array<double, 6> estimate =
+              EstimateInitialConditions(c.model,
+                                        p.data,
+                                        full[layout.theta_offset],
+                                        full[layout.psi_offset]);
+          data_start[g] = estimate[free.position[g] - layout.first_initial];
+        }
+      }
+    }
+    std::vector<std::vector<double>> starts = {data_start};
+    for (const auto& s :
+         SpreadStarts(c, free, data_start, c.solver.starts - 1)) {
+      starts.push_back(s);
+    }
     std::vector<PipelineOutcome> outcomes(starts.size());
     std::vector<std::vector<double>> finals = starts;
     std::atomic<size_t> next{0};
@@ -876,6 +914,12 @@ FitResult Fit(const Case& c) {
       outcome.iterations = 0;
       outcome = outcomes[best_index];
       values = finals[best_index];
+    } else if (!outcome.integrable) {
+      throw InputError(c.source +
+                       ": the motion cannot be integrated from the starting "
+                       "values nor from any restart (" +
+                       outcome.failure +
+                       "); check the body and flow constants");
     }
     result.starts_tried = static_cast<int>(starts.size()) + 1;
     result.starts_reached_best = reached;

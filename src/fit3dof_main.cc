@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "fit3dof/atomic_file.h"
+#include "fit3dof/basin.h"
 #include "fit3dof/batch.h"
 #include "fit3dof/config.h"
 #include "fit3dof/fit.h"
@@ -32,6 +33,10 @@ DEFINE_bool(resume, false, "batch: skip runs whose report exists for the same co
 DEFINE_bool(merge, false, "batch: merge the summaries of shard output directories.");
 DEFINE_bool(progress, true, "batch: live progress line on a terminal.");
 DEFINE_string(data, "", "NAMELIST decks: the data file (CSV) the fitting groups use.");
+DEFINE_int32(starts, 200, "basin: starting guesses drawn from the box.");
+DEFINE_uint64(seed, 1, "basin: seed of the draws.");
+DEFINE_string(methods, "gauss_newton,levenberg_marquardt,robust",
+              "basin: methods to compare, comma-separated.");
 // clang-format on
 
 namespace fit3dof {
@@ -46,6 +51,7 @@ constexpr char kUsage[] =
     "[--resume]\n"
     "  fit3dof batch --merge DIR... --out_dir=DIR\n"
     "  fit3dof namelist DECK [--data=FILE.csv] [--out=FILE.yaml]\n"
+    "  fit3dof basin CONFIG [--starts=200] [--methods=...] [--out=FILE.json]\n"
     "\n"
     "fit and batch also take a NAMELIST deck (with --data=FILE.csv).\n"
     "\n"
@@ -129,6 +135,29 @@ int NamelistCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
+int BasinCommand(const std::vector<std::string>& args) {
+  if (args.size() != 1) throw InputError("basin: expected one CONFIG argument");
+  const Case c = IsDeckFile(args[0]) ? LoadDeckCase(args[0], DataFlag())
+                                     : LoadConfig(args[0]);
+  BasinOptions options;
+  options.starts = FLAGS_starts;
+  options.seed = FLAGS_seed;
+  options.jobs = FLAGS_jobs;
+  options.methods.clear();
+  std::string methods = FLAGS_methods;
+  for (size_t at = 0; at <= methods.size();) {
+    const size_t comma = std::min(methods.find(',', at), methods.size());
+    if (comma > at) options.methods.push_back(methods.substr(at, comma - at));
+    at = comma + 1;
+  }
+  // Hundreds of deliberately poor fits: keep their warnings out of the way.
+  FLAGS_minloglevel = std::max(FLAGS_minloglevel, 2);
+  const BasinResult result = RunBasinStudy(c, options);
+  std::cout << FormatBasin(result);
+  if (!FLAGS_out.empty()) WriteFileAtomically(FLAGS_out, BasinJson(result));
+  return 0;
+}
+
 int FitCommand(const std::vector<std::string>& args) {
   if (args.size() != 1) throw InputError("fit: expected one CONFIG argument");
   if (FLAGS_out_dir.empty()) throw InputError("fit: --out_dir=DIR is required");
@@ -153,6 +182,7 @@ int Run(int argc, char** argv) {
       {"fit", &FitCommand},
       {"batch", &BatchCommand},
       {"namelist", &NamelistCommand},
+      {"basin", &BasinCommand},
   };
   const auto it = commands.find(command);
   if (it == commands.end()) {

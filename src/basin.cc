@@ -1,0 +1,180 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "fit3dof/basin.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <thread>
+
+#include "fit3dof/fit.h"
+#include "fit3dof/input_error.h"
+
+namespace fit3dof {
+namespace {
+
+// The reference solution as a case: every free value at the fitted one,
+// initial conditions as fitted and given.
+Case ReferenceCase(const Case& c, const FitResult& r) {
+  Case ref = c;
+  for (const ParameterEstimate& e : r.parameters) {
+    if (e.segment.empty() && !IsInitialCondition(c.model, e.position)) {
+      ref.parameters[e.position].value = e.value;
+      ref.parameters[e.position].auto_start = false;
+    }
+  }
+  for (size_t s = 0; s < ref.segments.size(); ++s) {
+    ref.segments[s].initial_conditions = InitialConditionMode::kGiven;
+    for (int j = 0; j < 6; ++j) {
+      ref.segments[s].initial[j].value = r.segments[s].initial[j];
+      ref.segments[s].initial[j].auto_start = false;
+    }
+  }
+  return ref;
+}
+
+// One starting guess from the box around the reference.
+Case DrawStart(const Case& ref, std::mt19937_64* rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto uniform = [&](double a, double b) { return a + (b - a) * unit(*rng); };
+  Case start = ref;
+  const auto& table = ParameterTable(ref.model);
+  for (int i = 0; i < NumParameters(ref.model); ++i) {
+    ParameterSetting& p = start.parameters[i];
+    if (!p.free || IsInitialCondition(ref.model, i)) continue;
+    const std::string& name = table[i].name;
+    if (name == "Cm_alpha" || name == "Cn_beta" || name == "Cl_p") {
+      p.value *= std::exp(uniform(std::log(0.2), std::log(5.0)));
+    } else if (name == "Cm_q" || name == "Cn_r") {
+      p.value = uniform(-20.0, 5.0);
+    } else {
+      p.value *= uniform(-10.0, 10.0);
+    }
+  }
+  // Initial rates off by up to 50%: the rate entries of each program.
+  const bool symmetric = ref.model == ModelKind::kSymmetric;
+  for (Segment& s : start.segments) {
+    for (int j = 0; j < 6; ++j) {
+      const bool rate = symmetric ? (j % 2 == 1) : (j >= 3);
+      if (rate && s.initial[j].free) s.initial[j].value *= uniform(0.5, 1.5);
+    }
+  }
+  return start;
+}
+
+void ApplyMethod(const std::string& method, Case* c) {
+  if (method == "gauss_newton") {
+    c->solver.method = "gauss_newton";
+    c->solver.multi_start = false;
+  } else if (method == "levenberg_marquardt") {
+    c->solver.method = "levenberg_marquardt";
+    c->solver.continuation = false;
+    c->solver.multi_start = false;
+  } else if (method == "robust") {
+    c->solver.method = "levenberg_marquardt";
+    c->solver.continuation = true;
+    c->solver.multi_start = true;
+  } else {
+    throw InputError("basin: unknown method '" + method +
+                     "' (gauss_newton, levenberg_marquardt, robust)");
+  }
+}
+
+}  // namespace
+
+BasinResult RunBasinStudy(const Case& c, const BasinOptions& options) {
+  Case robust = c;
+  ApplyMethod("robust", &robust);
+  const FitResult reference = Fit(robust);
+  if (!reference.converged) {
+    throw InputError(c.source + ": the reference fit does not converge (" +
+                     reference.termination + "); a basin study needs one");
+  }
+  BasinResult result;
+  result.name = c.name;
+  result.reference_probable_error = reference.probable_error;
+  const Case ref = ReferenceCase(c, reference);
+  std::mt19937_64 rng(options.seed);
+  std::vector<Case> starts;
+  for (int i = 0; i < options.starts; ++i)
+    starts.push_back(DrawStart(ref, &rng));
+  const double target = reference.probable_error * 1.01 + 1e-12;
+  const int jobs = options.jobs > 0
+                       ? options.jobs
+                       : static_cast<int>(std::thread::hardware_concurrency());
+  for (const std::string& method : options.methods) {
+    BasinMethod m;
+    m.method = method;
+    m.tried = options.starts;
+    Case probe = c;
+    ApplyMethod(method, &probe);  // validates the name up front
+    std::atomic<int> next{0}, reached{0};
+    const auto began = std::chrono::steady_clock::now();
+    auto work = [&] {
+      for (int i = next++; i < options.starts; i = next++) {
+        Case start = starts[i];
+        ApplyMethod(method, &start);
+        try {
+          const FitResult r = Fit(start);
+          if (r.converged && r.probable_error <= target) ++reached;
+        } catch (const std::exception&) {
+          // A start the motion cannot be integrated from: not reached.
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 0; t < std::max(1, jobs); ++t) pool.emplace_back(work);
+    for (std::thread& t : pool) t.join();
+    m.reached = reached;
+    m.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - began)
+            .count();
+    result.methods.push_back(m);
+  }
+  return result;
+}
+
+std::string FormatBasin(const BasinResult& r) {
+  std::string out = r.name + ": convergence basin (reference probable error " +
+                    std::to_string(r.reference_probable_error) + ")\n";
+  char line[160];
+  std::snprintf(line,
+                sizeof(line),
+                "  %-22s %24s %10s\n",
+                "method",
+                "reached global minimum",
+                "time");
+  out += line;
+  for (const BasinMethod& m : r.methods) {
+    std::snprintf(line,
+                  sizeof(line),
+                  "  %-22s %10d/%-4d (%5.1f%%) %9.1f s\n",
+                  m.method.c_str(),
+                  m.reached,
+                  m.tried,
+                  100.0 * m.reached / std::max(1, m.tried),
+                  m.seconds);
+    out += line;
+  }
+  return out;
+}
+
+std::string BasinJson(const BasinResult& r) {
+  nlohmann::json out;
+  out["name"] = r.name;
+  out["reference_probable_error"] = r.reference_probable_error;
+  for (const BasinMethod& m : r.methods) {
+    out["methods"].push_back(
+        {{"method", m.method},
+         {"tried", m.tried},
+         {"reached", m.reached},
+         {"rate", static_cast<double>(m.reached) / std::max(1, m.tried)},
+         {"seconds", m.seconds}});
+  }
+  return out.dump(2) + "\n";
+}
+
+}  // namespace fit3dof
