@@ -1010,7 +1010,17 @@ FitResult Fit(const Case& c) {
       offset += size;
     }
   }
-  if (covariance.Compute(pairs, final_assembly.problem.get())) {
+  // ceres::Covariance refuses (and logs an error) when the reciprocal
+  // condition number is below its limit; check first, so that a
+  // rank-deficient fit goes straight to the named-null-space path below.
+  bool well_conditioned = false;
+  {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(jtj);
+    const Eigen::VectorXd lambda = eigen.eigenvalues();
+    well_conditioned = lambda.minCoeff() > 1e-13 * lambda.maxCoeff();
+  }
+  if (well_conditioned &&
+      covariance.Compute(pairs, final_assembly.problem.get())) {
     for (size_t i = 0; i < final_assembly.blocks.size(); ++i) {
       for (size_t j = i; j < final_assembly.blocks.size(); ++j) {
         if (held(i) || held(j)) continue;

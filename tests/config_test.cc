@@ -93,6 +93,30 @@ TEST(Config, ReadsEveryKey) {
   EXPECT_EQ(c.simulate.NumSamples(), 1001);
 }
 
+TEST(Config, AutoStartingValuesAndSolverMethod) {
+  std::string text = Replace(
+      kValid, "Cm_alpha: {value: -0.2, free: true}", "Cm_alpha: {free: true}");
+  text = Replace(text,
+                 "Cm_q: {value: 0.0, free: true}",
+                 "Cm_q: {value: auto, free: true}");
+  text = Replace(text,
+                 "step: 0.002}",
+                 "step: 0.002, method: gauss_newton, max_probable_error: 5}");
+  const Case c = Parse(text);
+  EXPECT_TRUE(c.parameters[0].auto_start);
+  EXPECT_TRUE(c.parameters[1].auto_start);
+  EXPECT_FALSE(c.parameters[12].auto_start);
+  EXPECT_EQ(c.solver.method, "gauss_newton");
+  EXPECT_DOUBLE_EQ(c.solver.max_probable_error, 5.0);
+  EXPECT_NE(Error(Replace(kValid, "Cl_p: -0.0081", "Cl_p: {value: auto}"))
+                .find("a frozen parameter needs a value"),
+            std::string::npos);
+  EXPECT_NE(
+      Error(Replace(kValid, "step: 0.002}", "step: 0.002, method: newton}"))
+          .find("solver.method: expected levenberg_marquardt or gauss_newton"),
+      std::string::npos);
+}
+
 TEST(Config, DensityGivesTheDynamicPressure) {
   const Case c =
       Parse(Replace(kValid, "dynamic_pressure: 150.4", "density: 0.00002"));
