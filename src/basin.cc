@@ -73,13 +73,18 @@ void ApplyMethod(const std::string& method, Case* c) {
     c->solver.method = "levenberg_marquardt";
     c->solver.continuation = false;
     c->solver.multi_start = false;
+  } else if (method == "continuation") {
+    c->solver.method = "levenberg_marquardt";
+    c->solver.continuation = true;
+    c->solver.multi_start = false;
   } else if (method == "robust") {
     c->solver.method = "levenberg_marquardt";
     c->solver.continuation = true;
     c->solver.multi_start = true;
   } else {
     throw InputError("basin: unknown method '" + method +
-                     "' (gauss_newton, levenberg_marquardt, robust)");
+                     "' (gauss_newton, levenberg_marquardt, continuation, "
+                     "robust)");
   }
 }
 

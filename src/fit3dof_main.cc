@@ -151,7 +151,7 @@ int BasinCommand(const std::vector<std::string>& args) {
     at = comma + 1;
   }
   // Hundreds of deliberately poor fits: keep their warnings out of the way.
-  FLAGS_minloglevel = std::max(FLAGS_minloglevel, 2);
+  FLAGS_minloglevel = std::max(FLAGS_minloglevel, 3);
   const BasinResult result = RunBasinStudy(c, options);
   std::cout << FormatBasin(result);
   if (!FLAGS_out.empty()) WriteFileAtomically(FLAGS_out, BasinJson(result));

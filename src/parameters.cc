@@ -110,6 +110,31 @@ std::vector<ParameterInfo> MakeSymmetricTable() {
       {28, "thetadot0", "", "deg/s", S::kAngleRate, "initial pitch rate"},
       {29, "psi0", "", "deg", S::kAngle, "initial yaw angle"},
       {30, "psidot0", "", "deg/s", S::kAngleRate, "initial yaw rate"},
+      // fit3dof extensions: roll interaction (Section 5.2, Figs. 9-12).
+      {31,
+       "theta_cos_phi",
+       "",
+       "deg",
+       S::kAngle,
+       "roll interaction: pitch reading error, cos(phi) harmonic"},
+      {32,
+       "theta_sin_phi",
+       "",
+       "deg",
+       S::kAngle,
+       "roll interaction: pitch reading error, sin(phi) harmonic"},
+      {33,
+       "psi_cos_phi",
+       "",
+       "deg",
+       S::kAngle,
+       "roll interaction: yaw reading error, cos(phi) harmonic"},
+      {34,
+       "psi_sin_phi",
+       "",
+       "deg",
+       S::kAngle,
+       "roll interaction: yaw reading error, sin(phi) harmonic"},
   };
 }
 
@@ -365,6 +390,31 @@ std::vector<ParameterInfo> MakeAsymmetricTable() {
       {70, "p0", "", "deg/s", S::kAngleRate, "initial body roll rate"},
       {71, "q0", "", "deg/s", S::kAngleRate, "initial body pitch rate"},
       {72, "r0", "", "deg/s", S::kAngleRate, "initial body yaw rate"},
+      // fit3dof extensions: roll interaction (Section 5.2, Figs. 9-12).
+      {73,
+       "theta_cos_phi",
+       "",
+       "deg",
+       S::kAngle,
+       "roll interaction: pitch reading error, cos(phi) harmonic"},
+      {74,
+       "theta_sin_phi",
+       "",
+       "deg",
+       S::kAngle,
+       "roll interaction: pitch reading error, sin(phi) harmonic"},
+      {75,
+       "psi_cos_phi",
+       "",
+       "deg",
+       S::kAngle,
+       "roll interaction: yaw reading error, cos(phi) harmonic"},
+      {76,
+       "psi_sin_phi",
+       "",
+       "deg",
+       S::kAngle,
+       "roll interaction: yaw reading error, sin(phi) harmonic"},
   };
 }
 
@@ -427,8 +477,8 @@ std::string SuggestParameter(ModelKind model, std::string_view name) {
 }
 
 const ParameterLayout& Layout(ModelKind model) {
-  static const ParameterLayout symmetric{22, 23, 24, -1};
-  static const ParameterLayout asymmetric{64, 65, 66, 59};
+  static const ParameterLayout symmetric{22, 23, 24, -1, 30};
+  static const ParameterLayout asymmetric{64, 65, 66, 59, 72};
   return model == ModelKind::kSymmetric ? symmetric : asymmetric;
 }
 

@@ -40,7 +40,7 @@ TEST(AsymmetricDynamics, TorqueFreeMotionConservesMomentumAndEnergy) {
   spec.body = {0.3491, 0.6667, 0.0301, 0.2583, 0.2465};
   spec.flow = {2000.0, 400.0};
   spec.max_step = 0.0005;
-  std::vector<double> values(72, 0.0);
+  std::vector<double> values(NumParameters(ModelKind::kAsymmetric), 0.0);
   values[59] = 0.012;  // Izx
   values[66] = 5.0;    // phi0
   values[67] = 12.0;   // theta0

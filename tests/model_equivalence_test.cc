@@ -30,7 +30,8 @@ struct Pair {
 };
 
 Pair MatchingParameters() {
-  Pair p{std::vector<double>(30, 0.0), std::vector<double>(72, 0.0)};
+  Pair p{std::vector<double>(NumParameters(ModelKind::kSymmetric), 0.0),
+         std::vector<double>(NumParameters(ModelKind::kAsymmetric), 0.0)};
   auto& s = p.symmetric;
   auto& a = p.asymmetric;
   s[Sym("Cm_alpha")] = -0.236;

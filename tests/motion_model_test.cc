@@ -22,7 +22,7 @@ ModelSpec SymmetricSpec(Incidence incidence) {
 }
 
 std::vector<double> SymmetricValues() {
-  std::vector<double> v(30, 0.0);
+  std::vector<double> v(NumParameters(ModelKind::kSymmetric), 0.0);
   auto set = [&](const char* name, double value) {
     v[FindParameter(ModelKind::kSymmetric, name)] = value;
   };
@@ -52,11 +52,15 @@ std::vector<double> SymmetricValues() {
   set("thetadot0", -26.356);
   set("psi0", -2.589);
   set("psidot0", -7.77);
+  set("theta_cos_phi", 0.05);
+  set("theta_sin_phi", -0.03);
+  set("psi_cos_phi", 0.04);
+  set("psi_sin_phi", 0.02);
   return v;
 }
 
 std::vector<double> AsymmetricValues() {
-  std::vector<double> v(72, 0.0);
+  std::vector<double> v(NumParameters(ModelKind::kAsymmetric), 0.0);
   for (int i = 0; i < 57; ++i) v[i] = 0.02 * ((i * 7) % 11 - 5);  // all terms
   v[FindParameter(ModelKind::kAsymmetric, "Cm_alpha")] = -0.23;
   v[FindParameter(ModelKind::kAsymmetric, "Cn_beta")] = 0.22;
@@ -157,7 +161,7 @@ TEST(MotionModel, AsymmetricJetDerivativesMatchCentralDifferences) {
 // Skipping the terms of frozen zero parameters changes nothing.
 TEST(MotionModel, InactiveTermsAreExactlyZero) {
   const ModelSpec spec = SymmetricSpec(Incidence::kVelocityRatio);
-  std::vector<double> values(30, 0.0);
+  std::vector<double> values(NumParameters(ModelKind::kSymmetric), 0.0);
   values[0] = -0.236;
   values[1] = -4.0;
   values[25] = 641.0;
@@ -176,7 +180,7 @@ TEST(MotionModel, InactiveTermsAreExactlyZero) {
 // theta_T and psi_T shift the measured angles and nothing else.
 TEST(MotionModel, FlowOffsetsShiftTheMeasurement) {
   const ModelSpec spec = SymmetricSpec(Incidence::kVelocityRatio);
-  std::vector<double> values(30, 0.0);
+  std::vector<double> values(NumParameters(ModelKind::kSymmetric), 0.0);
   values[0] = -0.236;
   values[26] = 5.0;
   const std::vector<double> times = {0.0, 0.5, 1.0};
@@ -198,7 +202,7 @@ TEST(MotionModel, FlowOffsetsShiftTheMeasurement) {
 
 TEST(MotionModel, ReportsABlowUp) {
   ModelSpec spec = SymmetricSpec(Incidence::kVelocityRatio);
-  std::vector<double> values(30, 0.0);
+  std::vector<double> values(NumParameters(ModelKind::kSymmetric), 0.0);
   values[0] = +16.0;  // statically unstable: theta runs away
   values[26] = 5.0;
   std::vector<double> times;

@@ -43,7 +43,7 @@ TEST(SymmetricDynamics, TorqueFreeMotionConservesMomentumAndEnergy) {
   spec.body = {0.39, 0.7047, 0.0372, 0.244, 0.244};
   spec.flow = {4774.0, 150.4};
   spec.max_step = 0.001;
-  std::vector<double> values(30, 0.0);
+  std::vector<double> values(NumParameters(ModelKind::kSymmetric), 0.0);
   // A large coning motion: theta up to ~25 deg, spin 641 deg/s.
   values[24] = 10.0;   // phi0
   values[25] = 641.0;  // phidot0

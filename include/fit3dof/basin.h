@@ -15,6 +15,7 @@
 // and each is fitted by every method:
 //   gauss_newton          the 1978 program: undamped full steps, whole record;
 //   levenberg_marquardt   plain LM on the whole record;
+//   continuation          LM on growing windows, no multi-start;
 //   robust                the default pipeline (continuation, multi-start).
 // A start reaches the global minimum when the fit converges to a probable
 // error within 1% of the reference.

@@ -141,13 +141,25 @@ bool MotionModel::Evaluate(const T* values,
   const int psi_index = symmetric ? int{kSymPsi} : int{kAsymPsi};
   const double kToDegrees = 180.0 / M_PI;
   // Measurement model (INTGRL): theta_m = theta + theta_T,
-  // psi_m = psi + psi_T.
+  // psi_m = psi + psi_T; plus the roll-interaction reading error of Section
+  // 5.2 (first harmonics in phi), when any of its parameters is active.
+  const int ri = layout.roll_interaction;
+  const bool roll_interaction =
+      active_[ri] || active_[ri + 1] || active_[ri + 2] || active_[ri + 3];
   auto observe = [&](int i, const T* x) {
+    using std::cos;
+    using std::sin;
+    T theta = x[theta_index] + internal[layout.theta_offset];
+    T psi = x[psi_index] + internal[layout.psi_offset];
+    if (roll_interaction) {
+      const T c = cos(x[phi_index]);
+      const T s = sin(x[phi_index]);
+      theta += internal[ri] * c + internal[ri + 1] * s;
+      psi += internal[ri + 2] * c + internal[ri + 3] * s;
+    }
     angles[3 * i + 0] = x[phi_index] * kToDegrees;
-    angles[3 * i + 1] =
-        (x[theta_index] + internal[layout.theta_offset]) * kToDegrees;
-    angles[3 * i + 2] =
-        (x[psi_index] + internal[layout.psi_offset]) * kToDegrees;
+    angles[3 * i + 1] = theta * kToDegrees;
+    angles[3 * i + 2] = psi * kToDegrees;
   };
   return Integrate(values, times, n, &internal, observe, failure);
 }

@@ -6,6 +6,11 @@
 // name parameters by these names (see shared/design/parameters.md); the
 // 1-based report index is what a legacy NAMELIST deck (AACON, NCON) uses.
 //
+// After the report's lists come four fit3dof extensions (symmetric 31-34,
+// asymmetric 73-76), the roll-interaction measurement error of Section 5.2:
+// theta_m = theta + theta_cos_phi cos(phi) + theta_sin_phi sin(phi), and
+// the same for psi (degrees). They have no NAMELIST equivalent.
+//
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
 // coefficients are scaled the way the listings' REG subroutine does it; the
@@ -21,7 +26,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 72;
+inline constexpr int kMaxParameters = 76;
 
 enum class ModelKind {
   kSymmetric,   // axial symmetry, aeroballistic axes (Table 1, Eq. 6)
@@ -84,6 +89,8 @@ struct ParameterLayout {
   int psi_offset;          // psi_T
   int first_initial;       // first of the six initial-condition parameters
   int product_of_inertia;  // I_zx, or -1 for the symmetric model
+  int roll_interaction;    // first of theta_cos_phi, theta_sin_phi,
+                           // psi_cos_phi, psi_sin_phi
 };
 const ParameterLayout& Layout(ModelKind model);
 
