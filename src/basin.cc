@@ -16,26 +16,6 @@
 namespace fit3dof {
 namespace {
 
-// The reference solution as a case: every free value at the fitted one,
-// initial conditions as fitted and given.
-Case ReferenceCase(const Case& c, const FitResult& r) {
-  Case ref = c;
-  for (const ParameterEstimate& e : r.parameters) {
-    if (e.segment.empty() && !IsInitialCondition(c.model, e.position)) {
-      ref.parameters[e.position].value = e.value;
-      ref.parameters[e.position].auto_start = false;
-    }
-  }
-  for (size_t s = 0; s < ref.segments.size(); ++s) {
-    ref.segments[s].initial_conditions = InitialConditionMode::kGiven;
-    for (int j = 0; j < 6; ++j) {
-      ref.segments[s].initial[j].value = r.segments[s].initial[j];
-      ref.segments[s].initial[j].auto_start = false;
-    }
-  }
-  return ref;
-}
-
 // One starting guess from the box around the reference.
 Case DrawStart(const Case& ref, std::mt19937_64* rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -101,7 +81,7 @@ BasinResult RunBasinStudy(const Case& c, const BasinOptions& options) {
   BasinResult result;
   result.name = c.name;
   result.reference_probable_error = reference.probable_error;
-  const Case ref = ReferenceCase(c, reference);
+  const Case ref = CaseAtSolution(c, reference);
   std::mt19937_64 rng(options.seed);
   std::vector<Case> starts;
   for (int i = 0; i < options.starts; ++i)

@@ -9,6 +9,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -702,6 +704,181 @@ Case LoadConfig(const std::string& path) {
   text << in.rdbuf();
   const fs::path parent = fs::path(path).parent_path();
   return ParseConfig(text.str(), path, parent.empty() ? "." : parent.string());
+}
+
+}  // namespace fit3dof
+
+namespace fit3dof {
+namespace {
+
+std::string YamlDouble(double x) {
+  char out[40];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(out, sizeof(out), "%.*g", digits, x);
+    if (std::strtod(out, nullptr) == x) break;
+  }
+  std::string text = out;
+  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string Setting(const ParameterSetting& p) {
+  if (p.auto_start) return "{value: auto, free: true}";
+  return "{value: " + YamlDouble(p.value) +
+         ", free: " + (p.free ? "true" : "false") + "}";
+}
+
+}  // namespace
+
+std::string CaseToYaml(const Case& c) {
+  std::ostringstream y;
+  y << "name: " << c.name << "\nmodel: " << ModelName(c.model)
+    << "\nincidence: " << IncidenceName(c.incidence) << "\n";
+  y << "body: {area: " << YamlDouble(c.body.area)
+    << ", diameter: " << YamlDouble(c.body.diameter)
+    << ", Ix: " << YamlDouble(c.body.Ix) << ", Iy: " << YamlDouble(c.body.Iy);
+  if (c.model == ModelKind::kAsymmetric) y << ", Iz: " << YamlDouble(c.body.Iz);
+  y << "}\nflow: {velocity: " << YamlDouble(c.flow.velocity)
+    << ", dynamic_pressure: " << YamlDouble(c.flow.dynamic_pressure) << "}\n";
+  y << "parameters:\n";
+  const auto& table = ParameterTable(c.model);
+  for (int i = 0; i < NumParameters(c.model); ++i) {
+    const ParameterSetting& p = c.parameters[i];
+    if (IsInitialCondition(c.model, i)) continue;  // per segment below
+    if (p.value == 0.0 && !p.free && !p.auto_start) continue;
+    y << "  " << table[i].name << ": " << Setting(p) << "\n";
+  }
+  y << "segments:\n";
+  const int first = Layout(c.model).first_initial;
+  for (const Segment& s : c.segments) {
+    y << "  - name: " << s.name << "\n    data: {file: " << s.data_file
+      << ", start: " << s.selection.start
+      << ", fraction: " << YamlDouble(s.selection.fraction)
+      << ", every: " << s.selection.every;
+    if (s.selection.t_start > -1e299)
+      y << ", t_start: " << YamlDouble(s.selection.t_start);
+    if (s.selection.t_end < 1e299)
+      y << ", t_end: " << YamlDouble(s.selection.t_end);
+    y << "}\n    initial_conditions: "
+      << (s.initial_conditions == InitialConditionMode::kFromData ? "from_data"
+                                                                  : "given")
+      << "\n    parameters:\n";
+    for (int j = 0; j < 6; ++j) {
+      y << "      " << table[first + j].name << ": " << Setting(s.initial[j])
+        << "\n";
+    }
+  }
+  y << "sigma: {phi: " << YamlDouble(c.sigma.phi)
+    << ", theta: " << YamlDouble(c.sigma.theta)
+    << ", psi: " << YamlDouble(c.sigma.psi) << "}\n";
+  if (c.noise.enabled) {
+    y << "noise:\n  sigma: {phi: " << YamlDouble(c.noise.sigma.phi)
+      << ", theta: " << YamlDouble(c.noise.sigma.theta)
+      << ", psi: " << YamlDouble(c.noise.sigma.psi)
+      << "}\n  bias: {phi: " << YamlDouble(c.noise.bias.phi)
+      << ", theta: " << YamlDouble(c.noise.bias.theta)
+      << ", psi: " << YamlDouble(c.noise.bias.psi)
+      << "}\n  seed: " << c.noise.seed << "\n";
+  }
+  y << "solver: {max_iterations: " << c.solver.max_iterations
+    << ", tolerance: " << YamlDouble(c.solver.tolerance)
+    << ", step: " << YamlDouble(c.solver.step)
+    << ", continuation: " << (c.solver.continuation ? "true" : "false")
+    << ", method: " << c.solver.method
+    << ", max_probable_error: " << YamlDouble(c.solver.max_probable_error)
+    << ", multi_start: " << (c.solver.multi_start ? "true" : "false")
+    << ", starts: " << c.solver.starts << "}\n";
+  return y.str();
+}
+
+Case ToAsymmetric(const Case& c) {
+  if (c.model == ModelKind::kAsymmetric) return c;
+  Case a = c;
+  a.model = ModelKind::kAsymmetric;
+  a.body.Iz = c.body.Iy;
+  a.parameters.assign(NumParameters(ModelKind::kAsymmetric),
+                      ParameterSetting{});
+  auto from = [&](const char* name) -> const ParameterSetting& {
+    return c.parameters[FindParameter(ModelKind::kSymmetric, name)];
+  };
+  auto to = [&](const char* name, const ParameterSetting& p, double sign) {
+    ParameterSetting q = p;
+    q.value = sign * p.value;
+    a.parameters[FindParameter(ModelKind::kAsymmetric, name)] = q;
+  };
+  for (const char* name : {"Cm_alpha_delta",
+                           "Cm_q_beta2",
+                           "Cm_r_alpha_beta",
+                           "Cm_q_delta",
+                           "Cl_p_delta",
+                           "Cm_p_alpha_delta2",
+                           "Cm_alphadot"}) {
+    const ParameterSetting& p = from(name);
+    if (p.value != 0.0 || p.free) {
+      throw InputError(c.source + ": " + name +
+                       " has no image in the asymmetric program");
+    }
+  }
+  to("Cm_alpha", from("Cm_alpha"), 1.0);
+  to("Cn_beta", from("Cm_alpha"), -1.0);
+  for (const char* n : {"Cm_alpha3", "Cm_alpha_beta2"})
+    to(n, from("Cm_alpha_delta2"), 1.0);
+  for (const char* n : {"Cn_beta3", "Cn_alpha2_beta"})
+    to(n, from("Cm_alpha_delta2"), -1.0);
+  to("Cm_q", from("Cm_q"), 1.0);
+  to("Cn_r", from("Cm_q"), 1.0);
+  for (const char* n :
+       {"Cm_q_alpha2", "Cm_q_beta2", "Cn_r_alpha2", "Cn_r_beta2"}) {
+    to(n, from("Cm_q_delta2"), 1.0);
+  }
+  to("Cm_p_beta", from("Cm_p_alpha"), 1.0);
+  to("Cn_p_alpha", from("Cm_p_alpha"), 1.0);
+  to("Cl_0", from("Cl_0"), 1.0);
+  to("Cl_p", from("Cl_p"), 1.0);
+  to("Cl_p_alpha2", from("Cl_p_delta2"), 1.0);
+  to("Cl_p_beta2", from("Cl_p_delta2"), 1.0);
+  for (const char* n : {"t1",
+                        "t2",
+                        "t3",
+                        "t4",
+                        "theta_T",
+                        "psi_T",
+                        "theta_cos_phi",
+                        "theta_sin_phi",
+                        "psi_cos_phi",
+                        "psi_sin_phi"}) {
+    to(n, from(n), 1.0);
+  }
+  // Initial conditions: Euler rates to body rates (the listing's ICS).
+  const int sym_first = Layout(ModelKind::kSymmetric).first_initial;
+  const int asym_first = Layout(ModelKind::kAsymmetric).first_initial;
+  auto convert = [&](const std::array<ParameterSetting, 6>& in) {
+    std::array<ParameterSetting, 6> out;
+    const double d = M_PI / 180.0;
+    const double phi = in[0].value, phidot = in[1].value, theta = in[2].value,
+                 thetadot = in[3].value, psi = in[4].value,
+                 psidot = in[5].value;
+    const double sf = std::sin(phi * d), cf = std::cos(phi * d);
+    const double st = std::sin(theta * d), ct = std::cos(theta * d);
+    const double values[6] = {phi,
+                              theta,
+                              psi,
+                              phidot - psidot * st,
+                              thetadot * cf + psidot * ct * sf,
+                              psidot * ct * cf - thetadot * sf};
+    const int order[6] = {0, 2, 4, 1, 3, 5};  // which symmetric entry's flags
+    for (int j = 0; j < 6; ++j) {
+      out[j] = in[order[j]];
+      out[j].value = values[j];
+    }
+    return out;
+  };
+  std::array<ParameterSetting, 6> defaults;
+  for (int j = 0; j < 6; ++j) defaults[j] = c.parameters[sym_first + j];
+  const auto converted = convert(defaults);
+  for (int j = 0; j < 6; ++j) a.parameters[asym_first + j] = converted[j];
+  for (Segment& s : a.segments) s.initial = convert(s.initial);
+  return a;
 }
 
 }  // namespace fit3dof

@@ -731,6 +731,64 @@ std::vector<std::vector<double>> SpreadStarts(const Case& c,
 
 }  // namespace
 
+Case CaseAtSolution(const Case& c, const FitResult& r) {
+  Case at = c;
+  for (const ParameterEstimate& e : r.parameters) {
+    if (e.segment.empty() && !IsInitialCondition(c.model, e.position)) {
+      at.parameters[e.position].value = e.value;
+      at.parameters[e.position].auto_start = false;
+    }
+  }
+  for (size_t s = 0; s < at.segments.size() && s < r.segments.size(); ++s) {
+    at.segments[s].initial_conditions = InitialConditionMode::kGiven;
+    for (int j = 0; j < 6; ++j) {
+      at.segments[s].initial[j].value = r.segments[s].initial[j];
+      at.segments[s].initial[j].auto_start = false;
+    }
+  }
+  return at;
+}
+
+bool Linearize(const Case& c, Linearization* out) {
+  std::vector<PreparedSegment> segments;
+  for (size_t s = 0; s < c.segments.size(); ++s) {
+    segments.push_back(PrepareSegment(c, c.segments[s], static_cast<int>(s)));
+  }
+  FreeLayout free;
+  for (int i = 0; i < NumParameters(c.model); ++i) {
+    if (c.parameters[i].free && !IsInitialCondition(c.model, i)) {
+      free.shared.push_back(i);
+      free.position.push_back(i);
+      free.segment.push_back(-1);
+    }
+  }
+  int points = 0;
+  for (size_t s = 0; s < segments.size(); ++s) {
+    free.own_offset.push_back(free.size());
+    for (int position : segments[s].own) {
+      free.position.push_back(position);
+      free.segment.push_back(static_cast<int>(s));
+    }
+    points += segments[s].data.size();
+  }
+  const int k = free.size();
+  std::vector<double> values(k);
+  for (int g = 0; g < k; ++g) {
+    values[g] = free.segment[g] < 0
+                    ? c.parameters[free.position[g]].value
+                    : segments[free.segment[g]].base[free.position[g]];
+  }
+  auto model = std::make_shared<const MotionModel>(
+      c.Spec(), ActiveParameters(c.Values(), c.FreeFlags()));
+  Assembly a = Assemble(
+      segments, free, model, c.sigma, values, std::vector<double>(k, 1.0));
+  out->names = FreeNames(c, free, segments);
+  out->positions = free.position;
+  out->segments = free.segment;
+  out->points = points;
+  return Information(a, &out->jtj, &out->ressum, &out->jtr);
+}
+
 FitResult Fit(const Case& c) {
   const auto start_time = std::chrono::steady_clock::now();
   if (c.segments.empty()) {

@@ -17,6 +17,7 @@
 #include "fit3dof/basin.h"
 #include "fit3dof/batch.h"
 #include "fit3dof/config.h"
+#include "fit3dof/diagnose.h"
 #include "fit3dof/fit.h"
 #include "fit3dof/fit_report.h"
 #include "fit3dof/input_error.h"
@@ -52,6 +53,8 @@ constexpr char kUsage[] =
     "  fit3dof batch --merge DIR... --out_dir=DIR\n"
     "  fit3dof namelist DECK [--data=FILE.csv] [--out=FILE.yaml]\n"
     "  fit3dof basin CONFIG [--starts=200] [--methods=...] [--out=FILE.json]\n"
+    "  fit3dof diagnose CONFIG --out_dir=DIR      find, name and add missing "
+    "effects\n"
     "\n"
     "fit and batch also take a NAMELIST deck (with --data=FILE.csv).\n"
     "\n"
@@ -158,6 +161,25 @@ int BasinCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
+int DiagnoseCommand(const std::vector<std::string>& args) {
+  if (args.size() != 1)
+    throw InputError("diagnose: expected one CONFIG argument");
+  if (FLAGS_out_dir.empty())
+    throw InputError("diagnose: --out_dir=DIR is required");
+  const Case c = IsDeckFile(args[0]) ? LoadDeckCase(args[0], DataFlag())
+                                     : LoadConfig(args[0]);
+  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  for (size_t i = 0; i < d.fits.size(); ++i) {
+    WriteFitOutputs(FLAGS_out_dir + "/step" + std::to_string(i), d.fits[i]);
+  }
+  WriteFileAtomically(FLAGS_out_dir + "/final.yaml", CaseToYaml(d.final_case));
+  WriteFileAtomically(FLAGS_out_dir + "/diagnosis.json", DiagnosisJson(d, c));
+  std::cout << FormatDiagnosis(d) << "fits of each step: " << FLAGS_out_dir
+            << "/step*/ (tools/plot draws them); rerun: " << FLAGS_out_dir
+            << "/final.yaml\n";
+  return d.final.at_noise_level ? 0 : 1;
+}
+
 int FitCommand(const std::vector<std::string>& args) {
   if (args.size() != 1) throw InputError("fit: expected one CONFIG argument");
   if (FLAGS_out_dir.empty()) throw InputError("fit: --out_dir=DIR is required");
@@ -183,6 +205,7 @@ int Run(int argc, char** argv) {
       {"batch", &BatchCommand},
       {"namelist", &NamelistCommand},
       {"basin", &BasinCommand},
+      {"diagnose", &DiagnoseCommand},
   };
   const auto it = commands.find(command);
   if (it == commands.end()) {

@@ -92,6 +92,26 @@ struct FitResult {
 // returns normally with converged = false.
 FitResult Fit(const Case& c);
 
+// The case with every free value at the fit's result and each segment's
+// initial conditions given as fitted.
+Case CaseAtSolution(const Case& c, const FitResult& result);
+
+// The normal equations of the weighted residuals at the case's values (no
+// solving): J^T J, J^T r and the residual sum of squares, with the free
+// coordinates in the order of `names` (positions in ParameterTable, and
+// the segment for initial conditions, -1 for shared ones).
+struct Linearization {
+  std::vector<std::string> names;
+  std::vector<int> positions;
+  std::vector<int> segments;
+  Eigen::MatrixXd jtj;
+  Eigen::VectorXd jtr;
+  double ressum = 0.0;
+  int points = 0;
+};
+// False when the motion cannot be integrated at the case's values.
+bool Linearize(const Case& c, Linearization* out);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_FIT_H_
