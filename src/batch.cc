@@ -23,6 +23,8 @@
 
 #include "config_node.h"
 #include "fit3dof/atomic_file.h"
+#include "fit3dof/config.h"
+#include "fit3dof/diagnose.h"
 #include "fit3dof/fit.h"
 #include "fit3dof/fit_report.h"
 #include "fit3dof/input_error.h"
@@ -66,6 +68,7 @@ RunResult FromReport(const json& report) {
   const bool converged = report.value("converged", false);
   r.status = converged ? "converged" : "not converged";
   r.reason = converged ? "" : report.value("termination", "");
+  if (report.contains("diagnosis")) r.reason = report["diagnosis"];
   r.iterations = report.value("iterations", 0);
   r.probable_error = FromJson(report["probable_error"]);
   r.model = report.value("model", "");
@@ -127,10 +130,29 @@ RunResult Execute(const RunSpec& spec,
     Case c = ParseConfigNode(spec.config, spec.source, spec.base_dir);
     c.name = spec.name;
     if (predecessor != nullptr) ApplyStartValues(*predecessor, &c);
-    const FitResult fit = Fit(c);
+    FitResult fit;
+    std::string diagnosis_note;
+    if (spec.diagnose) {
+      // The discrepancy workflow: the run's report is its final fit.
+      const Diagnosis d = Diagnose(c, DiagnoseOptions());
+      for (size_t i = 0; i < d.fits.size(); ++i) {
+        WriteFitOutputs(dir + "/step" + std::to_string(i), d.fits[i]);
+      }
+      WriteFileAtomically(dir + "/final.yaml", CaseToYaml(d.final_case));
+      WriteFileAtomically(dir + "/diagnosis.json", DiagnosisJson(d, c));
+      fit = d.fits.back();
+      for (const DiagnosisStep& step : d.steps) {
+        diagnosis_note +=
+            (diagnosis_note.empty() ? "added " : ", ") + step.effect;
+      }
+      diagnosis_note += (diagnosis_note.empty() ? "" : "; ") + d.verdict;
+    } else {
+      fit = Fit(c);
+    }
     json report = json::parse(ReportJson(fit));
     report["config_hash"] = spec.hash;
     if (!spec.start_from.empty()) report["start_from"] = spec.start_from;
+    if (spec.diagnose) report["diagnosis"] = diagnosis_note;
     YAML::Emitter config;
     config << spec.config;
     WriteFileAtomically(dir + "/config.yaml",
@@ -140,6 +162,7 @@ RunResult Execute(const RunSpec& spec,
     fs::remove(dir + "/error.txt");
     r = FromReport(report);
     r.name = spec.name;
+    if (spec.diagnose) r.reason = diagnosis_note;
   } catch (const std::exception& e) {
     r.status = "failed";
     r.reason = e.what();

@@ -383,7 +383,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   return out.dump(2) + "\n";
 }
 
-std::string FormatDiagnosis(const Diagnosis& d) {
+std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   std::string out;
   char line[512];
   ResidualCheck before = d.initial;
@@ -405,13 +405,15 @@ std::string FormatDiagnosis(const Diagnosis& d) {
         line,
         sizeof(line),
         "missing effect: %s (%s); theta residual %.3g deg -> %.3g deg, psi "
-        "%.3g -> %.3g deg\n",
+        "%.3g -> %.3g deg (noise %.3g, %.3g deg)\n",
         s.description.c_str(),
         values.c_str(),
         before.rms_deg.theta,
         s.after.rms_deg.theta,
         before.rms_deg.psi,
-        s.after.rms_deg.psi);
+        s.after.rms_deg.psi,
+        sigma.theta,
+        sigma.psi);
     out += line;
     before = s.after;
   }

@@ -174,7 +174,8 @@ int DiagnoseCommand(const std::vector<std::string>& args) {
   }
   WriteFileAtomically(FLAGS_out_dir + "/final.yaml", CaseToYaml(d.final_case));
   WriteFileAtomically(FLAGS_out_dir + "/diagnosis.json", DiagnosisJson(d, c));
-  std::cout << FormatDiagnosis(d) << "fits of each step: " << FLAGS_out_dir
+  std::cout << FormatDiagnosis(d, c.sigma)
+            << "fits of each step: " << FLAGS_out_dir
             << "/step*/ (tools/plot draws them); rerun: " << FLAGS_out_dir
             << "/final.yaml\n";
   return d.final.at_noise_level ? 0 : 1;

@@ -7,6 +7,7 @@
 #include "fit3dof/diagnose.h"
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <string>
@@ -136,6 +137,47 @@ INSTANTIATE_TEST_SUITE_P(
       return info.param.effect;
     });
 
+// The workflow in a batch (diagnose: true) and on the command line.
+TEST(Diagnose, RunsInABatchAndOnTheCommandLine) {
+  const std::string dir = testing::ScratchDirectory("diagnose_batch");
+  Case truth = Truth();
+  truth.parameters[FindParameter(truth.model, "theta_T")].value = -0.134;
+  truth.parameters[FindParameter(truth.model, "psi_T")].value = 0.152;
+  Simulate(truth, dir + "/data.csv", 9);
+  testing::WriteText(dir + "/config.yaml",
+                     CaseToYaml(FitConfig(Truth(), dir + "/data.csv")));
+  testing::WriteText(
+      dir + "/manifest.yaml",
+      "runs:\n  - {name: plain, config: config.yaml}\n"
+      "  - {name: diagnosed, config: config.yaml, diagnose: true}\n");
+  const auto batch = testing::RunFit3dof(
+      "batch " + dir + "/manifest.yaml --progress=false --out_dir=" + dir +
+      "/out");
+  EXPECT_EQ(batch.exit_status, 1)
+      << batch.output;  // the plain run is not at noise level
+  const std::string summary = testing::ReadText(dir + "/out/summary.csv");
+  EXPECT_NE(summary.find("diagnosed,converged,added flow_angularity; residuals "
+                         "at noise level"),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("plain,not converged"), std::string::npos) << summary;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/diagnosed/diagnosis.json"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/diagnosed/step1/fit.csv"));
+
+  const auto cli = testing::RunFit3dof(
+      "diagnose " + dir + "/config.yaml --out_dir=" + dir + "/cli");
+  EXPECT_EQ(cli.exit_status, 0) << cli.output;
+  EXPECT_NE(cli.output.find("missing effect: flow angularity"),
+            std::string::npos)
+      << cli.output;
+  EXPECT_NE(cli.output.find("(noise 0.01, 0.01 deg)"), std::string::npos)
+      << cli.output;
+  // final.yaml reruns: it loads, with the added effect free.
+  const Case final_case = LoadConfig(dir + "/cli/final.yaml");
+  EXPECT_TRUE(
+      final_case.parameters[FindParameter(final_case.model, "theta_T")].free);
+}
+
 TEST(Diagnose, FindsTwoHiddenEffects) {
   const std::string dir = testing::ScratchDirectory("diagnose_two");
   Case truth = Truth();
@@ -148,8 +190,10 @@ TEST(Diagnose, FindsTwoHiddenEffects) {
       Diagnose(FitConfig(Truth(), dir + "/data.csv"), DiagnoseOptions());
   std::set<std::string> found;
   for (const DiagnosisStep& s : d.steps) found.insert(s.effect);
-  EXPECT_TRUE(found.count("tunnel_stiffness")) << FormatDiagnosis(d);
-  EXPECT_TRUE(found.count("flow_angularity")) << FormatDiagnosis(d);
+  EXPECT_TRUE(found.count("tunnel_stiffness"))
+      << FormatDiagnosis(d, ChannelValues{0.01, 0.01, 0.01});
+  EXPECT_TRUE(found.count("flow_angularity"))
+      << FormatDiagnosis(d, ChannelValues{0.01, 0.01, 0.01});
   EXPECT_TRUE(d.final.at_noise_level) << d.verdict;
 }
 

@@ -100,7 +100,8 @@ ResidualCheck CheckResiduals(const FitResult& fit,
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options);
 
 std::string DiagnosisJson(const Diagnosis& d, const Case& noise_reference);
-std::string FormatDiagnosis(const Diagnosis& d);
+// `sigma`: the stated noise level, quoted beside the residuals.
+std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma);
 
 }  // namespace fit3dof
 
