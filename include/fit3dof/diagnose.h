@@ -7,9 +7,11 @@
 //
 // Noise or model? The residuals are at the noise level when the probable
 // error (Eq. 26, residuals in units of the configured sigma) is below
-// `noise_limit` (1.1) and no channel's residual has a lag-1
-// autocorrelation above `whiteness_limit` (0.3); measurement noise is
-// white, a missing effect leaves slow, structured residuals.
+// `noise_limit` (1.1), no channel's residual has a lag-1 autocorrelation
+// above `whiteness_limit` (0.3), and the periodogram of theta + i psi has
+// no line above `spectral_limit` (4 ln N) times its mean: measurement noise
+// is white with a flat spectrum, a missing effect leaves slow, structured
+// residuals with lines near the motion's frequencies.
 //
 // Which effect? Every catalog effect not yet in the model is scored at the
 // current solution by a score (Lagrange-multiplier) test: with g = J_c^T r
@@ -53,6 +55,7 @@ const std::vector<Effect>& EffectCatalog();
 struct DiagnoseOptions {
   double noise_limit = 1.1;
   double whiteness_limit = 0.3;
+  double spectral_factor = 4.0;  // spectral_limit = factor * ln(N)
   int refit = 5;
   double min_bic_drop = 10.0;
   int max_steps = 5;
@@ -63,6 +66,12 @@ struct ResidualCheck {
   double probable_error = 0.0;
   ChannelValues rms_deg;
   ChannelValues lag1;  // autocorrelation at lag 1
+  // Periodogram of the complex residual theta + i psi (first segment): the
+  // largest power over the mean power, and where it sits. White noise
+  // gives about ln(N); a missing effect a sharp line near the motion's
+  // frequencies.
+  double peak_ratio = 0.0;
+  double peak_frequency_hz = 0.0;
   bool at_noise_level = false;
 };
 
