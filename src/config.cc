@@ -623,6 +623,17 @@ std::vector<bool> Case::FreeFlags() const {
   return free;
 }
 
+std::string ShortestNumber(double x) {
+  char out[40];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(out, sizeof(out), "%.*g", digits, x);
+    if (std::strtod(out, nullptr) == x) break;
+  }
+  std::string text = out;
+  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+  return text;
+}
+
 Case ParseConfigNode(const YAML::Node& root,
                      const std::string& source,
                      const std::string& base_dir) {
@@ -711,20 +722,9 @@ Case LoadConfig(const std::string& path) {
 namespace fit3dof {
 namespace {
 
-std::string YamlDouble(double x) {
-  char out[40];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(out, sizeof(out), "%.*g", digits, x);
-    if (std::strtod(out, nullptr) == x) break;
-  }
-  std::string text = out;
-  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
-  return text;
-}
-
 std::string Setting(const ParameterSetting& p) {
   if (p.auto_start) return "{value: auto, free: true}";
-  return "{value: " + YamlDouble(p.value) +
+  return "{value: " + ShortestNumber(p.value) +
          ", free: " + (p.free ? "true" : "false") + "}";
 }
 
@@ -734,12 +734,15 @@ std::string CaseToYaml(const Case& c) {
   std::ostringstream y;
   y << "name: " << c.name << "\nmodel: " << ModelName(c.model)
     << "\nincidence: " << IncidenceName(c.incidence) << "\n";
-  y << "body: {area: " << YamlDouble(c.body.area)
-    << ", diameter: " << YamlDouble(c.body.diameter)
-    << ", Ix: " << YamlDouble(c.body.Ix) << ", Iy: " << YamlDouble(c.body.Iy);
-  if (c.model == ModelKind::kAsymmetric) y << ", Iz: " << YamlDouble(c.body.Iz);
-  y << "}\nflow: {velocity: " << YamlDouble(c.flow.velocity)
-    << ", dynamic_pressure: " << YamlDouble(c.flow.dynamic_pressure) << "}\n";
+  y << "body: {area: " << ShortestNumber(c.body.area)
+    << ", diameter: " << ShortestNumber(c.body.diameter)
+    << ", Ix: " << ShortestNumber(c.body.Ix)
+    << ", Iy: " << ShortestNumber(c.body.Iy);
+  if (c.model == ModelKind::kAsymmetric)
+    y << ", Iz: " << ShortestNumber(c.body.Iz);
+  y << "}\nflow: {velocity: " << ShortestNumber(c.flow.velocity)
+    << ", dynamic_pressure: " << ShortestNumber(c.flow.dynamic_pressure)
+    << "}\n";
   y << "parameters:\n";
   const auto& table = ParameterTable(c.model);
   for (int i = 0; i < NumParameters(c.model); ++i) {
@@ -753,12 +756,12 @@ std::string CaseToYaml(const Case& c) {
   for (const Segment& s : c.segments) {
     y << "  - name: " << s.name << "\n    data: {file: " << s.data_file
       << ", start: " << s.selection.start
-      << ", fraction: " << YamlDouble(s.selection.fraction)
+      << ", fraction: " << ShortestNumber(s.selection.fraction)
       << ", every: " << s.selection.every;
     if (s.selection.t_start > -1e299)
-      y << ", t_start: " << YamlDouble(s.selection.t_start);
+      y << ", t_start: " << ShortestNumber(s.selection.t_start);
     if (s.selection.t_end < 1e299)
-      y << ", t_end: " << YamlDouble(s.selection.t_end);
+      y << ", t_end: " << ShortestNumber(s.selection.t_end);
     y << "}\n    initial_conditions: "
       << (s.initial_conditions == InitialConditionMode::kFromData ? "from_data"
                                                                   : "given")
@@ -768,24 +771,24 @@ std::string CaseToYaml(const Case& c) {
         << "\n";
     }
   }
-  y << "sigma: {phi: " << YamlDouble(c.sigma.phi)
-    << ", theta: " << YamlDouble(c.sigma.theta)
-    << ", psi: " << YamlDouble(c.sigma.psi) << "}\n";
+  y << "sigma: {phi: " << ShortestNumber(c.sigma.phi)
+    << ", theta: " << ShortestNumber(c.sigma.theta)
+    << ", psi: " << ShortestNumber(c.sigma.psi) << "}\n";
   if (c.noise.enabled) {
-    y << "noise:\n  sigma: {phi: " << YamlDouble(c.noise.sigma.phi)
-      << ", theta: " << YamlDouble(c.noise.sigma.theta)
-      << ", psi: " << YamlDouble(c.noise.sigma.psi)
-      << "}\n  bias: {phi: " << YamlDouble(c.noise.bias.phi)
-      << ", theta: " << YamlDouble(c.noise.bias.theta)
-      << ", psi: " << YamlDouble(c.noise.bias.psi)
+    y << "noise:\n  sigma: {phi: " << ShortestNumber(c.noise.sigma.phi)
+      << ", theta: " << ShortestNumber(c.noise.sigma.theta)
+      << ", psi: " << ShortestNumber(c.noise.sigma.psi)
+      << "}\n  bias: {phi: " << ShortestNumber(c.noise.bias.phi)
+      << ", theta: " << ShortestNumber(c.noise.bias.theta)
+      << ", psi: " << ShortestNumber(c.noise.bias.psi)
       << "}\n  seed: " << c.noise.seed << "\n";
   }
   y << "solver: {max_iterations: " << c.solver.max_iterations
-    << ", tolerance: " << YamlDouble(c.solver.tolerance)
-    << ", step: " << YamlDouble(c.solver.step)
+    << ", tolerance: " << ShortestNumber(c.solver.tolerance)
+    << ", step: " << ShortestNumber(c.solver.step)
     << ", continuation: " << (c.solver.continuation ? "true" : "false")
     << ", method: " << c.solver.method
-    << ", max_probable_error: " << YamlDouble(c.solver.max_probable_error)
+    << ", max_probable_error: " << ShortestNumber(c.solver.max_probable_error)
     << ", multi_start: " << (c.solver.multi_start ? "true" : "false")
     << ", starts: " << c.solver.starts << "}\n";
   return y.str();

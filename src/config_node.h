@@ -31,6 +31,10 @@ void ResolveDataPaths(const std::string& base_dir, YAML::Node* node);
 // replaces what `base` has. Returns a new tree.
 YAML::Node MergeYaml(const YAML::Node& base, const YAML::Node& overrides);
 
+// The shortest decimal that reads back as the same double (with a decimal
+// point, so YAML reads it as a number of the right kind).
+std::string ShortestNumber(double x);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_SRC_CONFIG_NODE_H_

@@ -729,6 +729,47 @@ std::vector<std::vector<double>> SpreadStarts(const Case& c,
   return starts;
 }
 
+// A case made ready to fit: its segments' samples, the layout of the free
+// coordinates, their starting values and the motion model.
+struct Problem {
+  std::vector<PreparedSegment> segments;
+  FreeLayout free;
+  std::vector<double> values;
+  int points = 0;
+  std::shared_ptr<const MotionModel> model;
+};
+
+Problem Prepare(const Case& c) {
+  Problem p;
+  for (size_t s = 0; s < c.segments.size(); ++s) {
+    p.segments.push_back(PrepareSegment(c, c.segments[s], static_cast<int>(s)));
+  }
+  for (int i = 0; i < NumParameters(c.model); ++i) {
+    if (c.parameters[i].free && !IsInitialCondition(c.model, i)) {
+      p.free.shared.push_back(i);
+      p.free.position.push_back(i);
+      p.free.segment.push_back(-1);
+    }
+  }
+  for (size_t s = 0; s < p.segments.size(); ++s) {
+    p.free.own_offset.push_back(p.free.size());
+    for (int position : p.segments[s].own) {
+      p.free.position.push_back(position);
+      p.free.segment.push_back(static_cast<int>(s));
+    }
+    p.points += p.segments[s].data.size();
+  }
+  p.values.resize(p.free.size());
+  for (int g = 0; g < p.free.size(); ++g) {
+    p.values[g] = p.free.segment[g] < 0
+                      ? c.parameters[p.free.position[g]].value
+                      : p.segments[p.free.segment[g]].base[p.free.position[g]];
+  }
+  p.model = std::make_shared<const MotionModel>(
+      c.Spec(), ActiveParameters(c.Values(), c.FreeFlags()));
+  return p;
+}
+
 }  // namespace
 
 Case CaseAtSolution(const Case& c, const FitResult& r) {
@@ -750,42 +791,17 @@ Case CaseAtSolution(const Case& c, const FitResult& r) {
 }
 
 bool Linearize(const Case& c, Linearization* out) {
-  std::vector<PreparedSegment> segments;
-  for (size_t s = 0; s < c.segments.size(); ++s) {
-    segments.push_back(PrepareSegment(c, c.segments[s], static_cast<int>(s)));
-  }
-  FreeLayout free;
-  for (int i = 0; i < NumParameters(c.model); ++i) {
-    if (c.parameters[i].free && !IsInitialCondition(c.model, i)) {
-      free.shared.push_back(i);
-      free.position.push_back(i);
-      free.segment.push_back(-1);
-    }
-  }
-  int points = 0;
-  for (size_t s = 0; s < segments.size(); ++s) {
-    free.own_offset.push_back(free.size());
-    for (int position : segments[s].own) {
-      free.position.push_back(position);
-      free.segment.push_back(static_cast<int>(s));
-    }
-    points += segments[s].data.size();
-  }
-  const int k = free.size();
-  std::vector<double> values(k);
-  for (int g = 0; g < k; ++g) {
-    values[g] = free.segment[g] < 0
-                    ? c.parameters[free.position[g]].value
-                    : segments[free.segment[g]].base[free.position[g]];
-  }
-  auto model = std::make_shared<const MotionModel>(
-      c.Spec(), ActiveParameters(c.Values(), c.FreeFlags()));
-  Assembly a = Assemble(
-      segments, free, model, c.sigma, values, std::vector<double>(k, 1.0));
-  out->names = FreeNames(c, free, segments);
-  out->positions = free.position;
-  out->segments = free.segment;
-  out->points = points;
+  const Problem p = Prepare(c);
+  Assembly a = Assemble(p.segments,
+                        p.free,
+                        p.model,
+                        c.sigma,
+                        p.values,
+                        std::vector<double>(p.free.size(), 1.0));
+  out->names = FreeNames(c, p.free, p.segments);
+  out->positions = p.free.position;
+  out->segments = p.free.segment;
+  out->points = p.points;
   return Information(a, &out->jtj, &out->ressum, &out->jtr);
 }
 
@@ -795,28 +811,10 @@ FitResult Fit(const Case& c) {
     throw InputError(c.source +
                      ": data: missing (a fit needs data: or segments:)");
   }
-  std::vector<PreparedSegment> segments;
-  for (size_t s = 0; s < c.segments.size(); ++s) {
-    segments.push_back(PrepareSegment(c, c.segments[s], static_cast<int>(s)));
-  }
-
-  FreeLayout free;
-  for (int i = 0; i < NumParameters(c.model); ++i) {
-    if (c.parameters[i].free && !IsInitialCondition(c.model, i)) {
-      free.shared.push_back(i);
-      free.position.push_back(i);
-      free.segment.push_back(-1);
-    }
-  }
-  int points = 0;
-  for (size_t s = 0; s < segments.size(); ++s) {
-    free.own_offset.push_back(free.size());
-    for (int position : segments[s].own) {
-      free.position.push_back(position);
-      free.segment.push_back(static_cast<int>(s));
-    }
-    points += segments[s].data.size();
-  }
+  const Problem prepared = Prepare(c);
+  const std::vector<PreparedSegment>& segments = prepared.segments;
+  const FreeLayout& free = prepared.free;
+  const int points = prepared.points;
   const int k = free.size();
   if (k == 0) {
     throw InputError(c.source +
@@ -831,15 +829,8 @@ FitResult Fit(const Case& c) {
                      " free parameters");
   }
 
-  std::vector<double> values(k);
-  for (int g = 0; g < k; ++g) {
-    values[g] = free.segment[g] < 0
-                    ? c.parameters[free.position[g]].value
-                    : segments[free.segment[g]].base[free.position[g]];
-  }
-  std::vector<bool> free_flags = c.FreeFlags();
-  auto model = std::make_shared<const MotionModel>(
-      c.Spec(), ActiveParameters(c.Values(), free_flags));
+  std::vector<double> values = prepared.values;
+  const std::shared_ptr<const MotionModel>& model = prepared.model;
   const std::vector<std::string> names = FreeNames(c, free, segments);
 
   FitResult result;

@@ -353,18 +353,6 @@ void Apply(const std::string& source,
   state->line[a.variable] = a.line;
 }
 
-// The shortest decimal that reads back as the same double.
-std::string YamlNumber(double x) {
-  char out[40];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(out, sizeof(out), "%.*g", digits, x);
-    if (std::strtod(out, nullptr) == x) break;
-  }
-  std::string s = out;
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
-
 // The config of one group, from the state after it.
 std::string GroupConfig(const Deck& deck,
                         const DeckState& state,
@@ -408,13 +396,14 @@ std::string GroupConfig(const Deck& deck,
   y << "incidence: "
     << (state.Number("IANGLE", 0) == 0 ? "velocity_ratio" : "angle_of_attack")
     << "\n";
-  y << "body:\n  area: " << YamlNumber(require("AREA", "body.area"))
-    << "\n  diameter: " << YamlNumber(require("DIA", "body.diameter"))
-    << "\n  Ix: " << YamlNumber(require("IX", "body.Ix"))
-    << "\n  Iy: " << YamlNumber(require("IY", "body.Iy")) << "\n";
-  if (asymmetric) y << "  Iz: " << YamlNumber(require("IZ", "body.Iz")) << "\n";
-  y << "flow:\n  velocity: " << YamlNumber(require("U", "flow.velocity"))
-    << "\n  density: " << YamlNumber(require("RO", "flow.density")) << "\n";
+  y << "body:\n  area: " << ShortestNumber(require("AREA", "body.area"))
+    << "\n  diameter: " << ShortestNumber(require("DIA", "body.diameter"))
+    << "\n  Ix: " << ShortestNumber(require("IX", "body.Ix"))
+    << "\n  Iy: " << ShortestNumber(require("IY", "body.Iy")) << "\n";
+  if (asymmetric)
+    y << "  Iz: " << ShortestNumber(require("IZ", "body.Iz")) << "\n";
+  y << "flow:\n  velocity: " << ShortestNumber(require("U", "flow.velocity"))
+    << "\n  density: " << ShortestNumber(require("RO", "flow.density")) << "\n";
   y << "parameters:\n";
   for (int i = 1; i <= NumParameters(model); ++i) {
     double value = 0.0;
@@ -436,7 +425,7 @@ std::string GroupConfig(const Deck& deck,
       continue;
     }
     if (value == 0.0 && !free) continue;
-    y << "  " << info.name << ": {value: " << YamlNumber(value)
+    y << "  " << info.name << ": {value: " << ShortestNumber(value)
       << ", free: " << (free ? "true" : "false") << "}  # AACON(" << i << ")\n";
   }
   y << "initial_conditions: "
@@ -444,13 +433,13 @@ std::string GroupConfig(const Deck& deck,
   if (nswtch == 0 && !data_file.empty()) {
     y << "data:\n  file: " << data_file
       << "\n  start: " << static_cast<long>(state.Number("NSTART", 1))
-      << "\n  fraction: " << YamlNumber(state.Number("SAMPLE", 1.0))
+      << "\n  fraction: " << ShortestNumber(state.Number("SAMPLE", 1.0))
       << "\n  every: " << static_cast<long>(state.Number("NDELTA", 1)) << "\n";
   }
   if (state.Has("SIGPHI") || state.Has("SIGTHA") || state.Has("SIGPSI")) {
-    y << "sigma: {phi: " << YamlNumber(state.Number("SIGPHI", 1.0))
-      << ", theta: " << YamlNumber(state.Number("SIGTHA", 1.0))
-      << ", psi: " << YamlNumber(state.Number("SIGPSI", 1.0)) << "}\n";
+    y << "sigma: {phi: " << ShortestNumber(state.Number("SIGPHI", 1.0))
+      << ", theta: " << ShortestNumber(state.Number("SIGTHA", 1.0))
+      << ", psi: " << ShortestNumber(state.Number("SIGPSI", 1.0)) << "}\n";
   }
   if (state.Number("NSESWH", 0) == 1) {
     const double stheta =
@@ -459,12 +448,13 @@ std::string GroupConfig(const Deck& deck,
                                               : state.Number("AMTHA", 0);
     y << "noise:  # NSESWH = 1; the 1978 program seeded its RANDU from the "
          "clock\n"
-      << "  sigma: {phi: " << YamlNumber(state.Number("SPHI", 0))
-      << ", theta: " << YamlNumber(stheta)
-      << ", psi: " << YamlNumber(state.Number("SPSI", 0)) << "}\n"
-      << "  bias: {phi: " << YamlNumber(state.Number("AMPHI", 0))
-      << ", theta: " << YamlNumber(btheta)
-      << ", psi: " << YamlNumber(state.Number("AMPSI", 0)) << "}\n  seed: 1\n";
+      << "  sigma: {phi: " << ShortestNumber(state.Number("SPHI", 0))
+      << ", theta: " << ShortestNumber(stheta)
+      << ", psi: " << ShortestNumber(state.Number("SPSI", 0)) << "}\n"
+      << "  bias: {phi: " << ShortestNumber(state.Number("AMPHI", 0))
+      << ", theta: " << ShortestNumber(btheta)
+      << ", psi: " << ShortestNumber(state.Number("AMPSI", 0))
+      << "}\n  seed: 1\n";
   }
   y << "solver:\n";
   if (state.Has("NITER")) {
@@ -472,11 +462,11 @@ std::string GroupConfig(const Deck& deck,
       << "\n";
   }
   if (state.Has("BOUND"))
-    y << "  tolerance: " << YamlNumber(state.Number("BOUND", 0)) << "\n";
+    y << "  tolerance: " << ShortestNumber(state.Number("BOUND", 0)) << "\n";
   if (state.Has("DTMIN"))
-    y << "  step: " << YamlNumber(state.Number("DTMIN", 0)) << "\n";
+    y << "  step: " << ShortestNumber(state.Number("DTMIN", 0)) << "\n";
   if (nswtch != 0) {
-    y << "simulate:\n  dt: " << YamlNumber(require("DTGEN", "simulate.dt"))
+    y << "simulate:\n  dt: " << ShortestNumber(require("DTGEN", "simulate.dt"))
       << "\n  samples: "
       << static_cast<long>(require("NTOT", "simulate.samples")) << "\n";
   } else if (state.Has("NTOT")) {
