@@ -228,8 +228,31 @@ int Run(int argc, char** argv) {
 }  // namespace
 }  // namespace fit3dof
 
+// gflags exits with status 1 on an unknown flag; bad input is status 2.
+bool KnownFlags(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg == "--") break;
+    if (arg.size() < 2 || arg[0] != '-') continue;
+    arg = arg.substr(arg[1] == '-' ? 2 : 1);
+    const std::string name = arg.substr(0, arg.find('='));
+    gflags::CommandLineFlagInfo info;
+    if (gflags::GetCommandLineFlagInfo(name.c_str(), &info)) continue;
+    if (name.rfind("no", 0) == 0 &&
+        gflags::GetCommandLineFlagInfo(name.substr(2).c_str(), &info) &&
+        info.type == "bool") {
+      continue;
+    }
+    std::cerr << "fit3dof: unknown flag '" << argv[i]
+              << "' (fit3dof --help lists the flags)\n";
+    return false;
+  }
+  return true;
+}
+
 int main(int argc, char** argv) {
   FLAGS_logtostderr = true;
+  if (!KnownFlags(argc, argv)) return 2;
   gflags::SetUsageMessage(fit3dof::kUsage);
   gflags::ParseCommandLineFlags(&argc, &argv, true);
   google::InitGoogleLogging(argv[0]);

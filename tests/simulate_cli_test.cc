@@ -91,6 +91,14 @@ TEST(SimulateCli, UsageErrorsExitTwo) {
   EXPECT_EQ(testing::RunFit3dof("").exit_status, 2);
   EXPECT_EQ(testing::RunFit3dof("frobnicate x").exit_status, 2);
   EXPECT_EQ(testing::RunFit3dof("simulate").exit_status, 2);
+  const auto flag = testing::RunFit3dof("simulate x.yaml --outt=y.csv");
+  EXPECT_EQ(flag.exit_status, 2);
+  EXPECT_NE(flag.output.find("unknown flag '--outt=y.csv'"), std::string::npos)
+      << flag.output;
+  EXPECT_NE(testing::RunFit3dof(
+                "simulate /nonexistent.yaml --nologtostderr --out=/tmp/x.csv")
+                .output.find("/nonexistent.yaml"),
+            std::string::npos);
   const auto missing =
       testing::RunFit3dof("simulate /nonexistent.yaml --out=/tmp/x.csv");
   EXPECT_EQ(missing.exit_status, 2);
