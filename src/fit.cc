@@ -107,6 +107,13 @@ PreparedSegment PrepareSegment(const Case& c, const Segment& s, int index) {
   return p;
 }
 
+// Samples in all segments.
+int CountPoints(const std::vector<PreparedSegment>& segments) {
+  int points = 0;
+  for (const PreparedSegment& p : segments) points += p.data.size();
+  return points;
+}
+
 // Builds the problem for physical values `values` (global free order) in
 // scaled coordinates u = value / scale.
 Assembly Assemble(const std::vector<PreparedSegment>& segments,
@@ -453,8 +460,7 @@ StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
                         std::vector<double>* values) {
   StageOutcome outcome;
   const int k = free.size();
-  int points = 0;
-  for (const PreparedSegment& p : segments) points += p.data.size();
+  const int points = CountPoints(segments);
   std::vector<double> scale(k, 1.0);
   std::vector<bool> null_columns;
   {
@@ -549,8 +555,7 @@ StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
                               std::vector<double>* values) {
   StageOutcome outcome;
   const int k = free.size();
-  int points = 0;
-  for (const PreparedSegment& p : segments) points += p.data.size();
+  const int points = CountPoints(segments);
   const int dof = 3 * points - k;
   std::vector<double> scale(k, 1.0);
   double old_e = -1.0;
@@ -682,8 +687,7 @@ PipelineOutcome RunPipeline(const Case& c,
     *values = trial;
     result.iterations += outcome.iterations;
     result.failed_evaluations += outcome.failed_evaluations;
-    int stage_points = 0;
-    for (const PreparedSegment& p : stage) stage_points += p.data.size();
+    const int stage_points = CountPoints(stage);
     result.stages.push_back({stage_points, outcome.iterations});
     VLOG(1) << c.name << ": stage " << w + 1 << "/" << windows.size() << " ("
             << stage_points << " samples): " << outcome.iterations
