@@ -28,6 +28,7 @@
 #include "fit3dof/fit.h"
 #include "fit3dof/fit_report.h"
 #include "fit3dof/input_error.h"
+#include "json_values.h"
 #include "manifest.h"
 
 namespace fit3dof {
@@ -37,8 +38,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-json Number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 
 // Summaries carry 12 significant digits (report.json keeps every digit):
 // runs computed on different threads can differ in the last bits (Eigen's
@@ -382,15 +381,16 @@ void WriteSummary(const std::string& dir, const BatchSummary& summary) {
       }
       csv += "," + CsvNumber(it->second->value) + "," +
              CsvNumber(it->second->rms_error);
-      parameters[c] = {{"value", Number(Round12(it->second->value))},
-                       {"rms_error", Number(Round12(it->second->rms_error))}};
+      parameters[c] = {
+          {"value", JsonNumber(Round12(it->second->value))},
+          {"rms_error", JsonNumber(Round12(it->second->rms_error))}};
     }
     csv += "\n";
     runs.push_back({{"name", r.name},
                     {"status", r.status},
                     {"reason", r.reason},
                     {"iterations", r.iterations},
-                    {"probable_error", Number(Round12(r.probable_error))},
+                    {"probable_error", JsonNumber(Round12(r.probable_error))},
                     {"model", r.model},
                     {"parameters", parameters}});
   }

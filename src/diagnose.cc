@@ -13,6 +13,7 @@
 
 #include "fit3dof/config.h"
 #include "fit3dof/input_error.h"
+#include "json_values.h"
 
 namespace fit3dof {
 namespace {
@@ -140,14 +141,10 @@ double Bic(const FitResult& r) {
   return n * std::log(rss / n) + r.free_parameters * std::log(n);
 }
 
-json Channels(const ChannelValues& v) {
-  return {{"phi", v.phi}, {"theta", v.theta}, {"psi", v.psi}};
-}
-
 json Check(const ResidualCheck& r) {
   return {{"probable_error", r.probable_error},
-          {"rms_residual_deg", Channels(r.rms_deg)},
-          {"lag1_autocorrelation", Channels(r.lag1)},
+          {"rms_residual_deg", JsonChannels(r.rms_deg)},
+          {"lag1_autocorrelation", JsonChannels(r.lag1)},
           {"spectrum",
            {{"peak_over_mean", r.peak_ratio},
             {"peak_frequency_hz", r.peak_frequency_hz}}},
@@ -214,9 +211,7 @@ const std::vector<Effect>& EffectCatalog() {
 }
 
 ResidualCheck CheckResiduals(const FitResult& fit,
-                             const Case& c,
                              const DiagnoseOptions& options) {
-  (void)c;
   ResidualCheck check;
   check.probable_error = fit.probable_error;
   check.rms_deg = fit.rms_residual_deg;
@@ -285,7 +280,7 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
   Case current = c;
   FitResult fit = Fit(current);
   d.fits.push_back(fit);
-  d.initial = CheckResiduals(fit, current, options);
+  d.initial = CheckResiduals(fit, options);
   ResidualCheck check = d.initial;
   for (int step = 0; step < options.max_steps && !check.at_noise_level;
        ++step) {
@@ -353,7 +348,7 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
     current = chosen.c;
     fit = best_fit;
     d.fits.push_back(fit);
-    check = CheckResiduals(fit, current, options);
+    check = CheckResiduals(fit, options);
     record.after = check;
     d.steps.push_back(record);
   }
@@ -387,20 +382,18 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
 std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   json out;
   out["name"] = c.name;
-  out["initial_rms_residual_deg"] = Channels(d.initial.rms_deg);
-  out["final_rms_residual_deg"] = Channels(d.final.rms_deg);
-  out["noise_sigma_deg"] = Channels(c.sigma);
+  out["initial_rms_residual_deg"] = JsonChannels(d.initial.rms_deg);
+  out["final_rms_residual_deg"] = JsonChannels(d.final.rms_deg);
+  out["noise_sigma_deg"] = JsonChannels(c.sigma);
   out["initial"] = Check(d.initial);
   out["final"] = Check(d.final);
   out["steps"] = json::array();
   for (const DiagnosisStep& s : d.steps) {
     json parameters = json::object();
     for (const ParameterEstimate& e : s.parameters) {
-      parameters[e.name] = {
-          {"value", e.value},
-          {"rms_error",
-           std::isfinite(e.rms_error) ? json(e.rms_error) : json()},
-          {"units", e.units}};
+      parameters[e.name] = {{"value", e.value},
+                            {"rms_error", JsonNumber(e.rms_error)},
+                            {"units", e.units}};
     }
     json ranking = json::array();
     for (const CandidateScore& k : s.ranking) {
@@ -413,7 +406,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
          {"parameters", parameters},
          {"statistic",
           {{"score", s.score}, {"bic_drop", s.bic_drop}, {"ranking", ranking}}},
-         {"rms_residual_deg", Channels(s.after.rms_deg)},
+         {"rms_residual_deg", JsonChannels(s.after.rms_deg)},
          {"probable_error", s.after.probable_error}});
   }
   out["verdict"] = d.verdict;

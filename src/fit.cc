@@ -107,6 +107,14 @@ PreparedSegment PrepareSegment(const Case& c, const Segment& s, int index) {
   return p;
 }
 
+// The full parameter vector segment `s` sees in the assembly.
+std::vector<double> SegmentFullValues(const Assembly& a, size_t s) {
+  std::vector<const double*> blocks;
+  if (!a.shared_u.empty()) blocks.push_back(a.shared_u.data());
+  if (!a.own_u[s].empty()) blocks.push_back(a.own_u[s].data());
+  return a.costs[s]->FullValues(blocks.data());
+}
+
 // Samples in all segments.
 int CountPoints(const std::vector<PreparedSegment>& segments) {
   int points = 0;
@@ -277,13 +285,10 @@ class ReportIterationCallback : public ceres::IterationCallback {
     old_e_ = e;
     previous_ = values;
     if (change < std::max(tolerance_, relative_tolerance_ * e)) {
-      converged_by_rule_ = true;
       return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     }
     return ceres::SOLVER_CONTINUE;
   }
-
-  bool converged_by_rule() const { return converged_by_rule_; }
 
  private:
   const Assembly* assembly_;
@@ -295,7 +300,6 @@ class ReportIterationCallback : public ceres::IterationCallback {
   double relative_tolerance_;
   double old_e_ = 0.0;
   std::vector<double> previous_;
-  bool converged_by_rule_ = false;
 };
 
 // A correlation as a percentage with enough digits to tell it from 100%.
@@ -474,17 +478,8 @@ StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
       for (size_t s = 0; s < probe.costs.size(); ++s) {
         IntegrationFailure failure;
         std::vector<double> angles;
-        const std::vector<double*>& blocks = probe.blocks;
-        (void)blocks;
-        std::vector<const double*> segment_blocks;
-        if (!probe.shared_u.empty())
-          segment_blocks.push_back(probe.shared_u.data());
-        if (!probe.own_u[s].empty())
-          segment_blocks.push_back(probe.own_u[s].data());
         if (!probe.costs[s]->ComputeAngles(
-                probe.costs[s]->FullValues(segment_blocks.data()),
-                &angles,
-                &failure)) {
+                SegmentFullValues(probe, s), &angles, &failure)) {
           outcome.failure = failure.reason +
                             Fmt(" at t = %.4g s", failure.time) +
                             " in segment '" + segments[s].name + "'";
@@ -1234,14 +1229,7 @@ FitResult Fit(const Case& c) {
   for (size_t s = 0; s < segments.size(); ++s) {
     const PreparedSegment& p = segments[s];
     SegmentCostFunction* cost = final_assembly.costs[s];
-    std::vector<const double*> blocks;
-    if (!final_assembly.shared_u.empty()) {
-      blocks.push_back(final_assembly.shared_u.data());
-    }
-    if (!final_assembly.own_u[s].empty()) {
-      blocks.push_back(final_assembly.own_u[s].data());
-    }
-    const std::vector<double> full = cost->FullValues(blocks.data());
+    const std::vector<double> full = SegmentFullValues(final_assembly, s);
     SegmentFit fit;
     fit.name = p.name;
     fit.data = p.data;

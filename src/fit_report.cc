@@ -7,22 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "fit3dof/atomic_file.h"
+#include "json_values.h"
 
 namespace fit3dof {
-namespace {
 
 using nlohmann::json;
-
-// JSON has no NaN: undetermined numbers are null.
-json Number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
-
-json Channels(const ChannelValues& v) {
-  return {{"phi", Number(v.phi)},
-          {"theta", Number(v.theta)},
-          {"psi", Number(v.psi)}};
-}
-
-}  // namespace
 
 std::string ReportJson(const FitResult& r) {
   json report;
@@ -33,15 +22,16 @@ std::string ReportJson(const FitResult& r) {
   report["iterations"] = r.iterations;
   report["points"] = r.points;
   report["free_parameters"] = r.free_parameters;
-  report["probable_error"] = Number(r.probable_error);
-  report["sum_of_residuals"] = Number(r.sum_of_residuals);
-  report["rms_residual_deg"] = Channels(r.rms_residual_deg);
+  report["probable_error"] = JsonNumber(r.probable_error);
+  report["sum_of_residuals"] = JsonNumber(r.sum_of_residuals);
+  report["rms_residual_deg"] = JsonChannels(r.rms_residual_deg);
   json parameters = json::object();
   for (const ParameterEstimate& e : r.parameters) {
-    parameters[e.name] = {{"value", Number(e.value)},
-                          {"rms_error", e.free ? Number(e.rms_error) : json()},
-                          {"free", e.free},
-                          {"units", e.units}};
+    parameters[e.name] = {
+        {"value", JsonNumber(e.value)},
+        {"rms_error", e.free ? JsonNumber(e.rms_error) : json()},
+        {"free", e.free},
+        {"units", e.units}};
     if (!e.segment.empty()) parameters[e.name]["segment"] = e.segment;
   }
   report["parameters"] = parameters;
@@ -49,7 +39,7 @@ std::string ReportJson(const FitResult& r) {
   for (int a = 0; a < r.correlation.rows(); ++a) {
     json row = json::array();
     for (int b = 0; b < r.correlation.cols(); ++b) {
-      row.push_back(Number(r.correlation(a, b)));
+      row.push_back(JsonNumber(r.correlation(a, b)));
     }
     matrix.push_back(row);
   }
@@ -63,7 +53,7 @@ std::string ReportJson(const FitResult& r) {
          {"t_start", s.data.t.front()},
          {"t_end", s.data.t.back()},
          {"initial_conditions", s.initial_from_data ? "from_data" : "given"},
-         {"rms_residual_deg", Channels(s.rms_residual_deg)}});
+         {"rms_residual_deg", JsonChannels(s.rms_residual_deg)}});
   }
   report["segments"] = segments;
   json stages = json::array();

@@ -102,7 +102,6 @@ struct Diagnosis {
 };
 
 ResidualCheck CheckResiduals(const FitResult& fit,
-                             const Case& c,
                              const DiagnoseOptions& options);
 
 // Throws InputError for bad input (as Fit does).
