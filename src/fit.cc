@@ -202,6 +202,12 @@ bool Information(const Assembly& a,
     return false;
   }
   *ressum = 2.0 * cost;
+  // Columns in global free order need every coordinate in the Jacobian: an
+  // assembly with held coordinates (SubsetManifold) has fewer columns.
+  int ambient = 0;
+  for (double* block : a.blocks) ambient += a.problem->ParameterBlockSize(block);
+  CHECK_EQ(crs.num_cols, ambient)
+      << "Information() needs an assembly without held coordinates";
   Eigen::SparseMatrix<double, Eigen::RowMajor> j(crs.num_rows, crs.num_cols);
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(crs.values.size());
@@ -1013,12 +1019,19 @@ FitResult Fit(const Case& c) {
   const std::vector<bool> null_columns = NullColumns(jtj);
   scale = ColumnScales(jtj, scale);
   final_assembly = Assemble(segments, free, model, c.sigma, values, scale);
-  HoldCoordinates(null_columns, &final_assembly);
+  // The information matrix in global coordinates first: once a block holds
+  // some of its coordinates (a SubsetManifold), Evaluate returns only the
+  // tangent-space columns.
   Information(final_assembly, &jtj, &ressum);
+  HoldCoordinates(null_columns, &final_assembly);
   result.sum_of_residuals = std::sqrt(ressum);
-  result.probable_error = std::sqrt(ressum / dof);
+  // A parameter the data do not determine spends no degree of freedom: the
+  // probable error (Eq. 26) counts only the determined directions, so that
+  // the others get the error bars of a fit with it frozen.
+  int undetermined = 0;
   for (int g = 0; g < k; ++g) {
     if (!null_columns[g]) continue;
+    ++undetermined;
     result.warnings.push_back(names[g] +
                               " is not determined by the data (it has no "
                               "effect on the fitted motion)");
@@ -1102,6 +1115,7 @@ FitResult Fit(const Case& c) {
         pinv += v * v.transpose() / lambda(e);
         continue;
       }
+      ++undetermined;
       std::vector<std::string> involved;
       std::vector<int> index;
       for (int g = 0; g < k; ++g) {
@@ -1130,6 +1144,7 @@ FitResult Fit(const Case& c) {
     cov_u = pinv;
   }
 
+  result.probable_error = std::sqrt(ressum / (dof + undetermined));
   // Physical covariance and RMS errors (Eq. 27).
   Eigen::MatrixXd cov(k, k);
   for (int a = 0; a < k; ++a) {

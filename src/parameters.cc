@@ -1,7 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
 // Tables 4b and 4c of AEDC-TR-78-10 with the names of
-// shared/design/parameters.md. The scaling of each entry follows the
+// docs/parameters.md. The scaling of each entry follows the
 // listings' REG subroutines (Table 1: symmetric, Table 2: asymmetric).
 
 #include "fit3dof/parameters.h"

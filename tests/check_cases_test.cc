@@ -2,7 +2,7 @@
 //
 // The report's two check cases against its 6DOF comparison (Section 5.1),
 // from the configs in configs/report/ and the numbers in
-// shared/reference/paper_results.json.
+// tests/data/report_numbers.json.
 
 #include <cmath>
 #include <cstdio>

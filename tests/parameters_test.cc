@@ -13,11 +13,9 @@
 namespace fit3dof {
 namespace {
 
-// Names by index from shared/design/parameters.md, the project's naming
-// contract.
+// Names by index from docs/parameters.md, the project's naming contract.
 std::map<int, std::string> DesignNames(const std::string& heading) {
-  const std::string text = testing::ReadText(std::string(FIT3DOF_SHARED_DIR) +
-                                             "/design/parameters.md");
+  const std::string text = testing::ReadText(testing::SourcePath("docs/parameters.md"));
   const size_t begin = text.find(heading);
   EXPECT_NE(begin, std::string::npos);
   const size_t end = text.find("\n## ", begin + 1);

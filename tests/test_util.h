@@ -1,6 +1,6 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// Helpers shared by the tests: where the sources, the shared reference data
+// Helpers shared by the tests: where the sources, the report's published numbers
 // and the built command are, scratch directories, running the command.
 
 #ifndef FIT3DOF_TESTS_TEST_UTIL_H_
@@ -11,7 +11,7 @@
 
 namespace fit3dof::testing {
 
-// The report's published numbers, shared/reference/paper_results.json.
+// The report's published numbers, tests/data/report_numbers.json.
 const nlohmann::json& PaperResults();
 
 // A path under the source tree, e.g. SourcePath("configs/report/x.yaml").

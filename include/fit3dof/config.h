@@ -1,6 +1,6 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// Loads a YAML config (format: shared/design/interface.md) into a validated
+// Loads a YAML config (format: docs/formats.md) into a validated
 // Case. Every problem is reported as an InputError whose message names the
 // file, the line and the key and says what was expected, e.g.
 //

@@ -1,6 +1,6 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// What a fit leaves behind (format: shared/design/interface.md):
+// What a fit leaves behind (format: docs/formats.md):
 //   DIR/report.json  the coefficients, their RMS errors (Eq. 27), the
 //                    probable error (Eq. 26), the sum of residuals (Eq. 32),
 //                    correlations and warnings;

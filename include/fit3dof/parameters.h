@@ -3,7 +3,7 @@
 // The parameter lists of the two programs of AEDC-TR-78-10: Table 4b (the
 // symmetric program, 30 parameters, aeroballistic axes) and Table 4c (the
 // asymmetric program, 72 parameters, body axes). Configs, reports and tests
-// name parameters by these names (see shared/design/parameters.md); the
+// name parameters by these names (see docs/parameters.md); the
 // 1-based report index is what a legacy NAMELIST deck (AACON, NCON) uses.
 //
 // After the report's lists come four fit3dof extensions (symmetric 31-34,
