@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "config_node.h"
+#include "csv_field.h"
 #include "fit3dof/atomic_file.h"
 #include "fit3dof/config.h"
 #include "fit3dof/diagnose.h"
@@ -126,7 +127,8 @@ RunResult Execute(const RunSpec& spec,
       throw InputError("start_from: run '" + predecessor->name + "' failed (" +
                        predecessor->reason + ")");
     }
-    Case c = ParseConfigNode(spec.config, spec.source, spec.base_dir);
+    Case c = ParseConfigNode(
+        spec.config, spec.source, spec.base_dir, spec.node_lines);
     c.name = spec.name;
     if (predecessor != nullptr) ApplyStartValues(*predecessor, &c);
     FitResult fit;
@@ -183,16 +185,6 @@ std::string Clock(double seconds) {
   std::snprintf(
       out, sizeof(out), "%02d:%02d:%02d", s / 3600, (s / 60) % 60, s % 60);
   return out;
-}
-
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c == '\n' ? ' ' : c;
-  }
-  return out + "\"";
 }
 
 std::string CsvNumber(double x) {

@@ -13,7 +13,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <map>
 #include <set>
+#include <vector>
 #include <sstream>
 
 #include "config_node.h"
@@ -26,8 +29,10 @@ namespace fs = std::filesystem;
 
 class ConfigReader {
  public:
-  ConfigReader(std::string source, std::string base_dir)
-      : source_(std::move(source)), base_dir_(std::move(base_dir)) {}
+  ConfigReader(std::string source, std::string base_dir, bool node_lines)
+      : source_(std::move(source)),
+        base_dir_(std::move(base_dir)),
+        node_lines_(node_lines) {}
 
   Case Read(const YAML::Node& root);
 
@@ -37,7 +42,7 @@ class ConfigReader {
                          const std::string& message) const {
     std::ostringstream out;
     out << source_;
-    if (node.IsDefined() && node.Mark().line >= 0) {
+    if (node_lines_ && node.IsDefined() && node.Mark().line >= 0) {
       out << ":" << node.Mark().line + 1;
     }
     out << ": " << key << ": " << message;
@@ -93,13 +98,17 @@ class ConfigReader {
     return value;
   }
 
-  long Integer(const YAML::Node& node, const std::string& key, long min) const {
+  // An integer in [min, max]; the default max fits an int.
+  long Integer(const YAML::Node& node,
+               const std::string& key,
+               long min,
+               long max = std::numeric_limits<int>::max()) const {
     const double value = Number(node, key);
-    if (value != std::floor(value) || value < min) {
+    if (value != std::floor(value) || value < min || value > max) {
       Fail(node,
            key,
-           "expected an integer >= " + std::to_string(min) + ", got " +
-               node.Scalar());
+           "expected an integer from " + std::to_string(min) + " to " +
+               std::to_string(max) + ", got " + node.Scalar());
     }
     return static_cast<long>(value);
   }
@@ -152,6 +161,7 @@ class ConfigReader {
 
   std::string source_;
   std::string base_dir_;
+  bool node_lines_;  // false for merged trees, whose nodes lost their lines
 };
 
 Case ConfigReader::Read(const YAML::Node& root) {
@@ -512,8 +522,9 @@ void ConfigReader::ReadNoise(const YAML::Node& node, Case* c) const {
     c->noise.bias = ReadChannels(node["bias"], "noise.bias", false, 0.0);
   }
   if (node["seed"]) {
-    c->noise.seed =
-        static_cast<std::uint64_t>(Integer(node["seed"], "noise.seed", 0));
+    // Seeds up to 2^53: every one is exact in the YAML number.
+    c->noise.seed = static_cast<std::uint64_t>(
+        Integer(node["seed"], "noise.seed", 0, 1L << 53));
   }
 }
 
@@ -547,14 +558,14 @@ void ConfigReader::ReadSolver(const YAML::Node& node, Case* c) const {
   }
   if (node["starts"]) {
     c->solver.starts =
-        static_cast<int>(Integer(node["starts"], "solver.starts", 0));
+        static_cast<int>(Integer(node["starts"], "solver.starts", 0, 1000));
   }
   if (node["continuation"]) {
     c->solver.continuation = Bool(node["continuation"], "solver.continuation");
   }
   if (node["max_iterations"]) {
     c->solver.max_iterations = static_cast<int>(
-        Integer(node["max_iterations"], "solver.max_iterations", 1));
+        Integer(node["max_iterations"], "solver.max_iterations", 1, 1000000));
   }
   if (node["tolerance"]) {
     c->solver.tolerance = Positive(node["tolerance"], "solver.tolerance");
@@ -576,7 +587,7 @@ void ConfigReader::ReadSimulate(const YAML::Node& node, Case* c) const {
     c->simulate.duration = Positive(node["duration"], "simulate.duration");
   } else {
     c->simulate.samples =
-        static_cast<int>(Integer(node["samples"], "simulate.samples", 2));
+        static_cast<int>(Integer(node["samples"], "simulate.samples", 2, 100000000));
   }
 }
 
@@ -636,11 +647,105 @@ std::string ShortestNumber(double x) {
 
 Case ParseConfigNode(const YAML::Node& root,
                      const std::string& source,
-                     const std::string& base_dir) {
+                     const std::string& base_dir,
+                     bool node_lines) {
   if (!root.IsDefined() || root.IsNull()) {
     throw InputError(source + ": the config is empty");
   }
-  return ConfigReader(source, base_dir).Read(root);
+  return ConfigReader(source, base_dir, node_lines).Read(root);
+}
+
+namespace {
+
+// Length of the valid UTF-8 sequence at `s` (0 if invalid): no overlong
+// forms, no surrogates, nothing above U+10FFFF.
+int Utf8Length(const unsigned char* s, size_t left) {
+  const unsigned char c = s[0];
+  if (c < 0x80) return 1;
+  int n = 0;
+  unsigned min = 0;
+  unsigned code = 0;
+  if ((c & 0xE0) == 0xC0) {
+    n = 2, min = 0x80, code = c & 0x1F;
+  } else if ((c & 0xF0) == 0xE0) {
+    n = 3, min = 0x800, code = c & 0x0F;
+  } else if ((c & 0xF8) == 0xF0) {
+    n = 4, min = 0x10000, code = c & 0x07;
+  } else {
+    return 0;
+  }
+  if (left < static_cast<size_t>(n)) return 0;
+  for (int i = 1; i < n; ++i) {
+    if ((s[i] & 0xC0) != 0x80) return 0;
+    code = (code << 6) | (s[i] & 0x3F);
+  }
+  if (code < min || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) {
+    return 0;
+  }
+  return n;
+}
+
+// Checks what yaml-cpp lets through: a key given twice in one mapping (the
+// first would silently win), a key that is not a plain scalar, and text
+// that is not UTF-8 (it would reach report.json).
+void CheckStrict(const YAML::Node& node, const std::string& source) {
+  auto fail = [&](const YAML::Node& at, const std::string& message) {
+    throw InputError(source + ":" + std::to_string(at.Mark().line + 1) + ": " +
+                     message);
+  };
+  if (node.IsScalar()) {
+    if (!IsValidUtf8(node.Scalar())) {
+      fail(node, "the text is not valid UTF-8");
+    }
+  } else if (node.IsSequence()) {
+    for (const YAML::Node& item : node) CheckStrict(item, source);
+  } else if (node.IsMap()) {
+    std::map<std::string, int> seen;
+    for (const auto& item : node) {
+      if (!item.first.IsScalar()) {
+        fail(item.first, "a key must be a plain name (complex keys are not "
+                         "allowed)");
+      }
+      CheckStrict(item.first, source);
+      const std::string key = item.first.Scalar();
+      const auto [at, fresh] = seen.emplace(key, item.first.Mark().line + 1);
+      if (!fresh) {
+        fail(item.first, key + ": given twice in one mapping (first at line " +
+                             std::to_string(at->second) + ")");
+      }
+      CheckStrict(item.second, source);
+    }
+  }
+}
+
+}  // namespace
+
+bool IsValidUtf8(const std::string& text) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  for (size_t i = 0; i < text.size();) {
+    const int n = Utf8Length(s + i, text.size() - i);
+    if (n == 0) return false;
+    i += n;
+  }
+  return true;
+}
+
+YAML::Node ParseYamlText(const std::string& text, const std::string& source) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(source + ":" + std::to_string(e.mark.line + 1) +
+                     ": not valid YAML: " + e.msg);
+  }
+  if (documents.size() > 1) {
+    throw InputError(source + ":" + std::to_string(documents[1].Mark().line) +
+                     ": a second YAML document ('---'); a config or manifest "
+                     "is one document");
+  }
+  if (documents.empty()) return YAML::Node();
+  CheckStrict(documents[0], source);
+  return documents[0];
 }
 
 YAML::Node LoadYamlFile(const std::string& path) {
@@ -648,12 +753,7 @@ YAML::Node LoadYamlFile(const std::string& path) {
   if (!in) throw InputError(path + ": cannot open the file");
   std::stringstream text;
   text << in.rdbuf();
-  try {
-    return YAML::Load(text.str());
-  } catch (const YAML::ParserException& e) {
-    throw InputError(path + ":" + std::to_string(e.mark.line + 1) +
-                     ": not valid YAML: " + e.msg);
-  }
+  return ParseYamlText(text.str(), path);
 }
 
 void ResolveDataPaths(const std::string& base_dir, YAML::Node* node) {
@@ -698,14 +798,7 @@ YAML::Node MergeYaml(const YAML::Node& base, const YAML::Node& overrides) {
 Case ParseConfig(const std::string& text,
                  const std::string& source,
                  const std::string& base_dir) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(source + ":" + std::to_string(e.mark.line + 1) +
-                     ": not valid YAML: " + e.msg);
-  }
-  return ParseConfigNode(root, source, base_dir);
+  return ParseConfigNode(ParseYamlText(text, source), source, base_dir);
 }
 
 Case LoadConfig(const std::string& path) {

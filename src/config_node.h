@@ -16,12 +16,23 @@
 namespace fit3dof {
 
 // A config from an already parsed YAML node (e.g. a merged manifest run).
+// Messages name `source` and the node's line; with `node_lines` false (a
+// merged tree, whose copied nodes lost their lines) `source` alone, which
+// then names the line itself ("manifest.yaml:14: run 'x'").
 Case ParseConfigNode(const YAML::Node& root,
                      const std::string& source,
-                     const std::string& base_dir);
+                     const std::string& base_dir,
+                     bool node_lines = true);
 
-// Parses a YAML file; InputError names the file and line.
+// Parses YAML text strictly: one document, keys plain and unique in each
+// mapping, every string valid UTF-8. InputError names `source` and the line.
+YAML::Node ParseYamlText(const std::string& text, const std::string& source);
+
+// ParseYamlText of a file's contents.
 YAML::Node LoadYamlFile(const std::string& path);
+
+// True if `text` is well-formed UTF-8.
+bool IsValidUtf8(const std::string& text);
 
 // Makes data.file and segments[].data.file absolute against base_dir: a
 // relative path means relative to the file that wrote it.

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "csv_field.h"
 #include "fit3dof/atomic_file.h"
 #include "json_values.h"
 
@@ -88,7 +89,7 @@ std::string FitComparisonCsv(const FitResult& r) {
                     s.data.psi[i],
                     s.computed[3 * i + 2]);
       out += line;
-      out += s.name + "\n";
+      out += CsvField(s.name) + "\n";
     }
   }
   return out;
@@ -152,8 +153,11 @@ std::string FormatFitTable(const FitResult& r) {
 }
 
 void WriteFitOutputs(const std::string& dir, const FitResult& result) {
-  WriteFileAtomically(dir + "/fit.csv", FitComparisonCsv(result));
-  WriteFileAtomically(dir + "/report.json", ReportJson(result));
+  // Both texts first: a report that cannot be made leaves no fit.csv.
+  const std::string csv = FitComparisonCsv(result);
+  const std::string report = ReportJson(result);
+  WriteFileAtomically(dir + "/fit.csv", csv);
+  WriteFileAtomically(dir + "/report.json", report);
 }
 
 }  // namespace fit3dof

@@ -84,6 +84,9 @@ std::vector<RunSpec> FromManifest(const std::string& path,
     YAML::Node overrides = YAML::Clone(entry);
     overrides.remove("config");
     if (overrides["start_from"]) {
+      if (!overrides["start_from"].IsScalar()) {
+        throw InputError(where + ": start_from: expected the name of a run");
+      }
       spec.start_from = overrides["start_from"].Scalar();
       overrides.remove("start_from");
     }
@@ -103,7 +106,8 @@ std::vector<RunSpec> FromManifest(const std::string& path,
     }
     merged["name"] = spec.name;
     spec.config = merged;
-    spec.source = path + " run '" + spec.name + "'";
+    spec.node_lines = false;
+    spec.source = Where(path, entry) + ": run '" + spec.name + "'";
     specs.push_back(spec);
   }
   return specs;
@@ -153,6 +157,12 @@ void Link(const std::string& path, std::vector<RunSpec>* specs) {
       throw InputError(path + ": run name '" + s.name +
                        "' must use only letters, digits and . _ + - (it "
                        "names the run's output directory)");
+    }
+    if (s.name == "summary.csv" || s.name == "summary.json" ||
+        s.name == kBatchLockName) {
+      throw InputError(path + ": run name '" + s.name +
+                       "' is the name of a file the batch writes into its "
+                       "output directory; rename the run");
     }
     if (!by_name.emplace(s.name, &s).second) {
       throw InputError(path + ": run name '" + s.name + "' is used twice");
@@ -220,6 +230,7 @@ std::vector<RunSpec> LoadManifest(const std::string& path,
       ResolveDataPaths(spec.base_dir, &spec.config);
       spec.start_from = run.start_from;
       spec.source = path + " group " + std::to_string(run.group);
+      spec.node_lines = false;  // lines of the generated YAML, not the deck
       specs.push_back(spec);
     }
   } else {
@@ -236,7 +247,7 @@ std::vector<RunSpec> LoadManifest(const std::string& path,
       const fs::path file(path);
       spec.base_dir =
           file.parent_path().empty() ? "." : file.parent_path().string();
-      spec.config = YAML::Clone(root);
+      spec.config = root;  // not a clone: its nodes keep their lines
       ResolveDataPaths(spec.base_dir, &spec.config);
       spec.name = root["name"] ? root["name"].Scalar() : file.stem().string();
       spec.config["name"] = spec.name;

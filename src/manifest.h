@@ -19,6 +19,9 @@
 
 namespace fit3dof {
 
+// The batch's lock file in its output directory (batch.cc).
+inline constexpr char kBatchLockName[] = ".fit3dof.lock";
+
 struct RunSpec {
   std::string name;
   YAML::Node config;       // merged config, data paths absolute
@@ -28,6 +31,7 @@ struct RunSpec {
   bool diagnose = false;   // run the discrepancy workflow (issue 6)
   std::string chain_root;  // first run of its start_from chain
   std::string hash;        // of the merged config and its predecessors
+  bool node_lines = true;  // false: config's nodes lost their lines (merged)
   std::string load_error;  // a config file that could not be read fails
                            // its run with this message
 };

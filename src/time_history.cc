@@ -12,8 +12,11 @@
 #include <libfccp/csv.h>
 #pragma GCC diagnostic pop
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <string>
 
 #include "fit3dof/atomic_file.h"
@@ -21,41 +24,126 @@
 
 namespace fit3dof {
 
-TimeHistory ReadTimeHistory(const std::string& path) {
+namespace {
+
+using CsvReader = io::CSVReader<4,
+                                io::trim_chars<' ', '\t'>,
+                                io::double_quote_escape<',', '"'>,
+                                io::throw_on_overflow,
+                                io::single_line_comment<'#'>>;
+
+// A whole decimal number: [+-] digits [. digits] [e [+-] digits], with at
+// least one digit before the exponent. strtod alone would read "1.5e" as
+// 1.5, "-" as 0 and accept "nan", "inf" and hexadecimal.
+bool ParseDecimal(const char* token, double* value) {
+  const char* c = token;
+  if (*c == '+' || *c == '-') ++c;
+  int digits = 0;
+  while (*c >= '0' && *c <= '9') ++c, ++digits;
+  if (*c == '.') {
+    ++c;
+    while (*c >= '0' && *c <= '9') ++c, ++digits;
+  }
+  if (digits == 0) return false;
+  if (*c == 'e' || *c == 'E') {
+    ++c;
+    if (*c == '+' || *c == '-') ++c;
+    if (!(*c >= '0' && *c <= '9')) return false;
+    while (*c >= '0' && *c <= '9') ++c;
+  }
+  if (*c != '\0') return false;
+  *value = std::strtod(token, nullptr);
+  return std::isfinite(*value);
+}
+
+TimeHistory ReadRows(CsvReader* reader, const std::string& source) {
+  static const char* const kColumns[4] = {"t", "phi", "theta", "psi"};
   TimeHistory history;
-  try {
-    io::CSVReader<4,
-                  io::trim_chars<' ', '\t'>,
-                  io::no_quote_escape<','>,
-                  io::throw_on_overflow,
-                  io::single_line_comment<'#'>>
-        reader(path);
-    reader.read_header(io::ignore_extra_column, "t", "phi", "theta", "psi");
-    double t, phi, theta, psi;
-    while (reader.read_row(t, phi, theta, psi)) {
-      const int line = static_cast<int>(reader.get_file_line());
-      if (!std::isfinite(t) || !std::isfinite(phi) || !std::isfinite(theta) ||
-          !std::isfinite(psi)) {
-        throw InputError(path + ":" + std::to_string(line) +
-                         ": every value must be a finite number");
+  reader->read_header(io::ignore_extra_column, "t", "phi", "theta", "psi");
+  char* fields[4];
+  while (reader->read_row(fields[0], fields[1], fields[2], fields[3])) {
+    const std::string where =
+        source + ":" + std::to_string(reader->get_file_line());
+    double row[4];
+    for (int j = 0; j < 4; ++j) {
+      if (!ParseDecimal(fields[j], &row[j])) {
+        std::string token(fields[j]);
+        if (token.size() > 40) token = token.substr(0, 40) + "...";
+        throw InputError(where + ": column '" + kColumns[j] +
+                         "': expected a finite decimal number, got '" + token +
+                         "'");
       }
-      if (!history.t.empty() && !(t > history.t.back())) {
-        throw InputError(
-            path + ":" + std::to_string(line) +
-            ": times must increase strictly (t = " + std::to_string(t) +
-            " after " + std::to_string(history.t.back()) + ")");
-      }
-      history.Append(t, phi, theta, psi);
     }
-  } catch (const io::error::base& e) {
-    throw InputError(std::string(e.what()) +
-                     " (expected a CSV file with header columns t, phi, "
-                     "theta, psi)");
+    if (!history.t.empty() && !(row[0] > history.t.back())) {
+      throw InputError(where + ": times must increase strictly (t = " +
+                       fields[0] + " after " +
+                       std::to_string(history.t.back()) + ")");
+    }
+    history.Append(row[0], row[1], row[2], row[3]);
   }
   if (history.size() < 2) {
-    throw InputError(path + ": needs at least two rows of data");
+    throw InputError(source + ": needs at least two rows of data");
   }
   return history;
+}
+
+// The parser's own errors in the project's form: file:line: what, what was
+// expected.
+std::string CsvProblem(const io::error::base& e, const std::string& source) {
+  std::string where = source;
+  if (const auto* l = dynamic_cast<const io::error::with_file_line*>(&e)) {
+    if (l->file_line >= 0) where += ":" + std::to_string(l->file_line);
+  }
+  std::string column;
+  if (const auto* c = dynamic_cast<const io::error::with_column_name*>(&e)) {
+    column = c->column_name;
+  }
+  std::string what;
+  if (dynamic_cast<const io::error::too_many_columns*>(&e)) {
+    what = "more fields than the header has columns";
+  } else if (dynamic_cast<const io::error::too_few_columns*>(&e)) {
+    what = "fewer fields than the header has columns";
+  } else if (dynamic_cast<const io::error::missing_column_in_header*>(&e)) {
+    what = "the header has no column '" + column + "'";
+  } else if (dynamic_cast<const io::error::duplicated_column_in_header*>(&e)) {
+    what = "the header names column '" + column + "' twice";
+  } else if (dynamic_cast<const io::error::header_missing*>(&e)) {
+    what = "the file is empty (no header line)";
+  } else if (dynamic_cast<const io::error::escaped_string_not_closed*>(&e)) {
+    what = "a quoted field is not closed";
+  } else if (dynamic_cast<const io::error::line_length_limit_exceeded*>(&e)) {
+    what = "the line is longer than 16 MB";
+  } else {
+    what = e.what();
+  }
+  return where + ": " + what +
+         " (expected CSV with a header naming the columns t, phi, theta, psi)";
+}
+
+}  // namespace
+
+TimeHistory ReadTimeHistory(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) {
+    throw InputError(path + ": cannot open the data file (" +
+                     std::strerror(errno) + ")");
+  }
+  try {
+    CsvReader reader(path, file);  // the reader closes the file
+    return ReadRows(&reader, path);
+  } catch (const io::error::base& e) {
+    throw InputError(CsvProblem(e, path));
+  }
+}
+
+TimeHistory ParseTimeHistory(const std::string& text,
+                             const std::string& source) {
+  try {
+    CsvReader reader(source, text.data(), text.data() + text.size());
+    return ReadRows(&reader, source);
+  } catch (const io::error::base& e) {
+    throw InputError(CsvProblem(e, source));
+  }
 }
 
 std::string FormatTimeHistory(const TimeHistory& history) {

@@ -58,7 +58,10 @@ TEST(TimeHistory, BadFilesNameTheFileAndLine) {
       << ReadError(dir + "/column.csv");
   testing::WriteText(dir + "/nan.csv",
                      "t,phi,theta,psi\n0,0,0,0\n0.1,0,nan,0\n");
-  EXPECT_NE(ReadError(dir + "/nan.csv").find("line \"3\""), std::string::npos)
+  EXPECT_NE(ReadError(dir + "/nan.csv")
+                .find("nan.csv:3: column 'theta': expected a finite decimal "
+                      "number, got 'nan'"),
+            std::string::npos)
       << ReadError(dir + "/nan.csv");
   testing::WriteText(dir + "/text.csv",
                      "t,phi,theta,psi\n0,0,0,0\n0.1,0,abc,0\n");
@@ -70,6 +73,41 @@ TEST(TimeHistory, BadFilesNameTheFileAndLine) {
   EXPECT_NE(ReadError(dir + "/missing.csv").find("missing.csv"),
             std::string::npos)
       << ReadError(dir + "/missing.csv");
+}
+
+// Issue 9: tokens that are not whole numbers were read as 0 (or as their
+// numeric prefix) and ended in a misleading "local minimum".
+TEST(TimeHistory, EveryTokenIsAWholeFiniteNumber) {
+  for (const char* token :
+       {"", "-", ".", "1.5e", "+", "e5", "1e+", "0x10", "inf", "1.2.3", "1,5",
+        "\"\"", "1 2", "--1", "1e5x"}) {
+    const std::string text =
+        std::string("t,phi,theta,psi\n0,0,0,0\n0.1,0,") + token + ",0\n";
+    try {
+      ParseTimeHistory(text, "run.csv");
+      ADD_FAILURE() << "accepted '" << token << "'";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.find("run.csv:3"), 0u) << message;
+      EXPECT_EQ(message.find("integer"), std::string::npos) << message;
+      if (std::string(token) != "1,5") {
+        EXPECT_NE(message.find("column 'theta'"), std::string::npos) << message;
+      }
+    }
+  }
+}
+
+TEST(TimeHistory, AcceptsQuotedNumbersAndExponents) {
+  const TimeHistory r = ParseTimeHistory(
+      "\"t\",\"phi\",\"theta\",\"psi\"\n\"0\",\"1.25\",\"-2e-1\",\"+3.\"\n"
+      "1E1,.5,-0.0,7\n",
+      "quoted.csv");
+  ASSERT_EQ(r.size(), 2);
+  EXPECT_DOUBLE_EQ(r.phi[0], 1.25);
+  EXPECT_DOUBLE_EQ(r.theta[0], -0.2);
+  EXPECT_DOUBLE_EQ(r.psi[0], 3.0);
+  EXPECT_DOUBLE_EQ(r.t[1], 10.0);
+  EXPECT_DOUBLE_EQ(r.phi[1], 0.5);
 }
 
 }  // namespace

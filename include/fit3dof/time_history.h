@@ -28,9 +28,15 @@ struct TimeHistory {
 };
 
 // Reads a CSV record. Throws InputError naming the file and line for a
-// missing column, a non-number, a NaN, non-increasing times or fewer than
-// two rows.
+// missing column, a token that is not a whole finite decimal number (an
+// empty field, "-", ".", "1.5e", "nan"; the message names the column and
+// the token), non-increasing times or fewer than two rows. Fields may be
+// double-quoted ("1.25", as pandas' QUOTE_ALL writes them).
 TimeHistory ReadTimeHistory(const std::string& path);
+
+// The same from CSV text in memory; `source` names it in messages.
+TimeHistory ParseTimeHistory(const std::string& text,
+                             const std::string& source);
 
 // The CSV text of a record (columns t, phi, theta, psi).
 std::string FormatTimeHistory(const TimeHistory& history);
