@@ -2,11 +2,15 @@
 
 #include "fit3dof/batch.h"
 
+#include <fcntl.h>
 #include <glog/logging.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
@@ -29,6 +33,8 @@
 #include "fit3dof/fit.h"
 #include "fit3dof/fit_report.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/interrupt.h"
+#include "fit3dof/version.h"
 #include "json_values.h"
 #include "manifest.h"
 
@@ -101,18 +107,32 @@ void ApplyStartValues(const RunResult& previous, Case* c) {
   }
 }
 
+// What a finished run's report must match to be kept by --resume: the
+// merged config and its start_from chain (spec.hash), the bytes of every
+// data file, the predecessor's own key and the fit3dof version.
+std::string ResumeKey(const RunSpec& spec, const RunResult* predecessor) {
+  std::string text = spec.hash + "\nfit3dof " FIT3DOF_VERSION "\n";
+  for (const std::string& file : DataFiles(spec.config)) {
+    text += file + " " + FileHash(file) + "\n";
+  }
+  if (predecessor != nullptr) text += "after " + predecessor->resume_key;
+  return StableHash(text);
+}
+
 RunResult Execute(const RunSpec& spec,
                   const RunResult* predecessor,
                   const BatchOptions& options) {
   const std::string dir = options.out_dir + "/" + spec.name;
   const std::string report_path = dir + "/report.json";
+  const std::string key = ResumeKey(spec, predecessor);
   if (options.resume && fs::exists(report_path)) {
     try {
       const json report = json::parse(ReadFile(report_path));
-      if (report.value("config_hash", "") == spec.hash) {
+      if (report.value("resume_key", "") == key) {
         RunResult r = FromReport(report);
         r.name = spec.name;
         r.resumed = true;
+        r.resume_key = key;
         return r;
       }
     } catch (const json::exception&) {
@@ -121,6 +141,7 @@ RunResult Execute(const RunSpec& spec,
   }
   RunResult r;
   r.name = spec.name;
+  r.resume_key = key;
   try {
     if (!spec.load_error.empty()) throw InputError(spec.load_error);
     if (predecessor != nullptr && predecessor->status == "failed") {
@@ -152,6 +173,7 @@ RunResult Execute(const RunSpec& spec,
     }
     json report = json::parse(ReportJson(fit));
     report["config_hash"] = spec.hash;
+    report["resume_key"] = key;
     if (!spec.start_from.empty()) report["start_from"] = spec.start_from;
     if (spec.diagnose) report["diagnosis"] = diagnosis_note;
     YAML::Emitter config;
@@ -163,7 +185,11 @@ RunResult Execute(const RunSpec& spec,
     fs::remove(dir + "/error.txt");
     r = FromReport(report);
     r.name = spec.name;
+    r.resume_key = key;
     if (spec.diagnose) r.reason = diagnosis_note;
+  } catch (const Interrupted&) {
+    // Abandoned: nothing of this run is written; --resume redoes it.
+    r.status = "interrupted";
   } catch (const std::exception& e) {
     r.status = "failed";
     r.reason = e.what();
@@ -192,6 +218,64 @@ std::string CsvNumber(double x) {
   char out[32];
   std::snprintf(out, sizeof(out), "%.12g", x);
   return out;
+}
+
+// The output directory's lock (DIR/.fit3dof.lock, holding the pid): a
+// second batch into the same directory would mix two campaigns. A lock
+// whose process is gone is taken over.
+class DirectoryLock {
+ public:
+  explicit DirectoryLock(const std::string& dir)
+      : path_(dir + "/" + kBatchLockName) {
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const int fd =
+          ::open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+      if (fd >= 0) {
+        const std::string pid = std::to_string(::getpid()) + "\n";
+        const bool written =
+            ::write(fd, pid.data(), pid.size()) ==
+            static_cast<ssize_t>(pid.size());
+        ::close(fd);
+        if (!written) break;
+        return;
+      }
+      if (errno != EEXIST) break;
+      const long holder = std::atol(ReadFile(path_).c_str());
+      if (holder > 0 && (::kill(static_cast<pid_t>(holder), 0) == 0 ||
+                         errno == EPERM)) {
+        throw InputError(dir + ": another fit3dof batch (pid " +
+                         std::to_string(holder) +
+                         ") is writing into this directory (lock " + path_ +
+                         "); wait for it or choose another --out_dir");
+      }
+      LOG(WARNING) << path_ << ": taking over the lock of pid " << holder
+                   << ", which is gone";
+      ::unlink(path_.c_str());
+    }
+    throw InputError(path_ + ": cannot create the lock file: " +
+                     std::strerror(errno));
+  }
+  ~DirectoryLock() { ::unlink(path_.c_str()); }
+  DirectoryLock(const DirectoryLock&) = delete;
+  DirectoryLock& operator=(const DirectoryLock&) = delete;
+
+ private:
+  std::string path_;
+};
+
+// Temporaries left by a run that was killed mid-write.
+void RemoveTemporaries(const std::string& dir) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec);
+       !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_regular_file(ec) &&
+        IsTemporaryFileName(it->path().filename().string())) {
+      LOG(INFO) << "removing " << it->path().string()
+                << " (left by an interrupted run)";
+      fs::remove(it->path(), ec);
+    }
+  }
 }
 
 }  // namespace
@@ -228,7 +312,14 @@ BatchSummary RunBatch(const std::string& manifest,
   for (size_t i = 0; i < specs.size(); ++i)
     index[specs[i].name] = static_cast<int>(i);
   const int n = static_cast<int>(specs.size());
-  fs::create_directories(options.out_dir);
+  std::error_code ec;
+  fs::create_directories(options.out_dir, ec);
+  if (ec) {
+    throw InputError(options.out_dir +
+                     ": cannot create the output directory: " + ec.message());
+  }
+  const DirectoryLock lock(options.out_dir);
+  if (options.resume) RemoveTemporaries(options.out_dir);
 
   enum State { kPending, kRunning, kDone };
   std::vector<State> state(n, kPending);
@@ -271,9 +362,10 @@ BatchSummary RunBatch(const std::string& manifest,
     while (true) {
       int pick = -1;
       {
-        std::unique_lock<std::mutex> lock(mutex);
-        changed.wait(lock, [&] {
+        std::unique_lock<std::mutex> guard(mutex);
+        changed.wait(guard, [&] {
           pick = -1;
+          if (StopRequested()) return true;
           bool pending = false;
           for (int i = 0; i < n && pick < 0; ++i) {
             pending |= state[i] == kPending;
@@ -330,7 +422,14 @@ BatchSummary RunBatch(const std::string& manifest,
   if (tty) std::fprintf(stderr, "\n");
 
   BatchSummary summary;
-  summary.runs = results;
+  summary.planned = n;
+  summary.interrupted = StopRequested();
+  for (int i = 0; i < n; ++i) {
+    // What finished; runs not started or abandoned are left for --resume.
+    if (state[i] == kDone && results[i].status != "interrupted") {
+      summary.runs.push_back(results[i]);
+    }
+  }
   std::sort(
       summary.runs.begin(),
       summary.runs.end(),
@@ -338,6 +437,7 @@ BatchSummary RunBatch(const std::string& manifest,
   LOG(INFO) << "batch: " << n << " runs, " << n - failed << " converged, "
             << failed << " failed or not converged, " << Clock(elapsed())
             << " (" << jobs << " jobs)";
+  WriteSummary(options.out_dir, summary);
   return summary;
 }
 

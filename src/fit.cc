@@ -19,6 +19,7 @@
 #include "fit3dof/data_selection.h"
 #include "fit3dof/initial_conditions.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/interrupt.h"
 #include "fit3dof/noise.h"
 #include "fit3dof/segment_cost_function.h"
 #include "fit3dof/start_values.h"
@@ -259,6 +260,7 @@ class ReportIterationCallback : public ceres::IterationCallback {
 
   ceres::CallbackReturnType operator()(
       const ceres::IterationSummary& summary) override {
+    if (StopRequested()) return ceres::SOLVER_ABORT;  // Ctrl-C in a batch
     const double ressum = 2.0 * summary.cost;
     const double e = std::sqrt(ressum / dof_);
     std::vector<double> values = FreeValues(*assembly_, *free_, *scale_);
@@ -561,7 +563,7 @@ StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
   std::vector<double> scale(k, 1.0);
   double old_e = -1.0;
   std::vector<double> last_good = *values;
-  for (int iteration = 0;; ++iteration) {
+  for (int iteration = 0; !StopRequested(); ++iteration) {
     Assembly a = Assemble(segments, free, model, sigma, *values, scale);
     Eigen::MatrixXd jtj;
     Eigen::VectorXd jtr;
@@ -615,6 +617,7 @@ StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
     for (int g = 0; g < k; ++g) (*values)[g] = scale[g] * (u[g] + du(g));
     outcome.iterations = iteration + 1;
   }
+  return outcome;  // stopped on request; Fit throws Interrupted
 }
 
 struct PipelineOutcome {
@@ -879,6 +882,7 @@ FitResult Fit(const Case& c) {
   const bool robust = !plain && c.solver.multi_start && c.solver.starts > 0;
   PipelineOutcome outcome =
       RunPipeline(c, segments, free, model, names, &values);
+  if (StopRequested()) throw Interrupted();
   if (!outcome.integrable) {
     const std::string message =
         "the motion cannot be integrated from the "
@@ -982,6 +986,7 @@ FitResult Fit(const Case& c) {
         " after " + std::to_string(result.starts_tried) + " starts, " +
         std::to_string(reached) + " reached the best minimum");
   }
+  if (StopRequested()) throw Interrupted();
   result.iterations += outcome.iterations;
   result.failed_evaluations += outcome.failed_evaluations;
   result.stages = outcome.stages;

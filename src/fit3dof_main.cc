@@ -21,6 +21,7 @@
 #include "fit3dof/fit.h"
 #include "fit3dof/fit_report.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/interrupt.h"
 #include "fit3dof/namelist.h"
 #include "fit3dof/simulator.h"
 #include "fit3dof/time_history.h"
@@ -102,8 +103,13 @@ int BatchCommand(const std::vector<std::string>& args) {
   options.progress = FLAGS_progress;
   options.deck_data = DataFlag();
   ParseShard(FLAGS_shard, &options.shard, &options.shards);
+  InstallStopHandlers();
   const BatchSummary summary = RunBatch(args[0], options);
-  WriteSummary(FLAGS_out_dir, summary);
+  if (summary.interrupted) {
+    std::cout << "interrupted: " << summary.runs.size() << " of "
+              << summary.planned << " runs done; rerun with --resume\n";
+    return 130;
+  }
   int resumed = 0;
   for (const RunResult& r : summary.runs) resumed += r.resumed;
   std::cout << summary.runs.size() << " runs (" << resumed << " resumed), "

@@ -10,6 +10,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "config_node.h"
 #include "fit3dof/input_error.h"
@@ -210,6 +211,46 @@ std::string StableHash(const std::string& text) {
   std::snprintf(
       out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
   return out;
+}
+
+std::string FileHash(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return "unreadable";
+  std::uint64_t h = 1469598103934665603ull;
+  std::vector<unsigned char> buffer(1 << 20);
+  size_t n;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), file)) > 0) {
+    for (size_t i = 0; i < n; ++i) {
+      h ^= buffer[i];
+      h *= 1099511628211ull;
+    }
+  }
+  std::fclose(file);
+  char out[17];
+  std::snprintf(
+      out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
+
+std::vector<std::string> DataFiles(const YAML::Node& config) {
+  std::vector<std::string> files;
+  // operator[] of a const node gives an invalid node for a missing key, on
+  // which IsMap() throws: ask IsDefined() first.
+  auto add = [&](const YAML::Node& data) {
+    if (data.IsDefined() && data.IsMap() && data["file"].IsDefined() &&
+        data["file"].IsScalar()) {
+      files.push_back(data["file"].Scalar());
+    }
+  };
+  if (!config.IsMap()) return files;
+  add(config["data"]);
+  const YAML::Node segments = config["segments"];
+  if (segments.IsDefined() && segments.IsSequence()) {
+    for (const YAML::Node& s : segments) {
+      if (s.IsDefined() && s.IsMap()) add(s["data"]);
+    }
+  }
+  return files;
 }
 
 std::vector<RunSpec> LoadManifest(const std::string& path,

@@ -46,6 +46,13 @@ std::vector<RunSpec> LoadManifest(const std::string& path,
 // 64-bit FNV-1a as 16 hex digits: stable across platforms and runs.
 std::string StableHash(const std::string& text);
 
+// StableHash of a file's bytes, read in chunks ("unreadable" if it cannot
+// be opened: the run then fails and is redone next time).
+std::string FileHash(const std::string& path);
+
+// The data files a (merged, resolved) run config names.
+std::vector<std::string> DataFiles(const YAML::Node& config);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_SRC_MANIFEST_H_

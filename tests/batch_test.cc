@@ -4,6 +4,9 @@
 
 #include "fit3dof/batch.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -261,6 +264,109 @@ TEST(Batch, DirectoryOfConfigsIsAManifest) {
   EXPECT_NE(RunIn(summary, "broken")["reason"].get<std::string>().find(
                 "not valid YAML"),
             std::string::npos);
+}
+
+// Issue 9: --resume kept the old "converged" report of a data file that was
+// regenerated under the same name; temporaries of a killed run stayed.
+TEST(Batch, ResumeRedoesARunWhoseDataChanged) {
+  const std::string dir = testing::ScratchDirectory("batch_resume_data");
+  const std::string clean = testing::ReadText(
+      testing::SourcePath("configs/report/data/table6_clean.csv"));
+  std::map<int, std::string> extra;
+  for (int i = 0; i < 3; ++i) {
+    const std::string csv = dir + "/run" + std::to_string(i) + ".csv";
+    testing::WriteText(csv, clean);
+    extra[i] = "    data: {file: " + csv + ", t_end: 9.6}\n";
+  }
+  const std::string manifest = Manifest(dir, 3, extra);
+  const std::string out = dir + "/out";
+  const std::string command = "batch " + manifest +
+                              " --jobs=2 --resume --progress=false --out_dir=" +
+                              out;
+  ASSERT_EQ(testing::RunFit3dof(command).exit_status, 0);
+  // Regenerated data under the same name (one sample moved).
+  std::string changed = clean;
+  changed.replace(changed.find("38.4717138686"), 13, "38.4727138686");
+  testing::WriteText(dir + "/run1.csv", changed);
+  testing::WriteText(out + "/r000/report.json.tmp.AbC123", "half");
+  const auto again = testing::RunFit3dof(command);
+  EXPECT_EQ(again.exit_status, 0) << again.output;
+  EXPECT_NE(again.output.find("3 runs (2 resumed)"), std::string::npos)
+      << again.output;
+  EXPECT_FALSE(fs::exists(out + "/r000/report.json.tmp.AbC123"));
+  const json report =
+      json::parse(testing::ReadText(out + "/r001/report.json"));
+  EXPECT_EQ(report["resume_key"].get<std::string>().size(), 16u);
+}
+
+// Issue 9: two batches into one --out_dir mixed two campaigns silently.
+TEST(Batch, OneBatchPerOutputDirectory) {
+  const std::string dir = testing::ScratchDirectory("batch_lock");
+  const std::string manifest = Manifest(dir, 2);
+  const std::string out = dir + "/out";
+  fs::create_directories(out);
+  // A live holder: this test process.
+  testing::WriteText(out + "/.fit3dof.lock", std::to_string(::getpid()) + "\n");
+  auto r = testing::RunFit3dof("batch " + manifest +
+                               " --progress=false --out_dir=" + out);
+  EXPECT_EQ(r.exit_status, 2) << r.output;
+  EXPECT_NE(r.output.find("another fit3dof batch (pid " +
+                          std::to_string(::getpid()) + ")"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out + "/summary.json"));
+  // A stale lock (its process is gone) is taken over, and released after.
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  testing::WriteText(out + "/.fit3dof.lock", std::to_string(child) + "\n");
+  r = testing::RunFit3dof("batch " + manifest +
+                          " --progress=false --out_dir=" + out);
+  EXPECT_EQ(r.exit_status, 0) << r.output;
+  EXPECT_FALSE(fs::exists(out + "/.fit3dof.lock"));
+  // Run names may not be the batch's own files.
+  testing::WriteText(dir + "/reserved.yaml",
+                     "runs:\n  - {name: summary.csv}\n");
+  r = testing::RunFit3dof("batch " + dir + "/reserved.yaml --out_dir=" + out);
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_NE(r.output.find("'summary.csv' is the name of a file the batch "
+                          "writes"),
+            std::string::npos)
+      << r.output;
+}
+
+// Issue 9: Ctrl-C or SIGTERM left a half-drawn progress line and no summary.
+TEST(Batch, InterruptWritesTheSummaryOfWhatFinished) {
+  const std::string dir = testing::ScratchDirectory("batch_interrupt");
+  const std::string manifest = Manifest(dir, 30);
+  const std::string out = dir + "/out";
+  for (const char* signal : {"INT", "TERM"}) {
+    fs::remove_all(out);
+    const std::string script =
+        "( " + std::string(FIT3DOF_BINARY) + " batch " + manifest +
+        " --jobs=1 --out_dir=" + out + " --progress=false >" + dir +
+        "/stdout 2>/dev/null & pid=$!; "
+        "while [ $(ls " + out +
+        "/*/report.json 2>/dev/null | wc -l) -lt 3 ]; do sleep 0.02; done; "
+        "kill -" + signal + " $pid; wait $pid; echo $? > " + dir + "/status )";
+    ASSERT_EQ(std::system(script.c_str()), 0);
+    EXPECT_EQ(testing::ReadText(dir + "/status"), "130\n") << signal;
+    const json summary = Summary(out);
+    const int done = summary["counts"]["total"];
+    EXPECT_GE(done, 3);
+    EXPECT_LT(done, 30);
+    EXPECT_NE(testing::ReadText(dir + "/stdout")
+                  .find("interrupted: " + std::to_string(done) +
+                        " of 30 runs done; rerun with --resume"),
+              std::string::npos)
+        << testing::ReadText(dir + "/stdout");
+    EXPECT_FALSE(fs::exists(out + "/.fit3dof.lock"));
+  }
+  const auto resumed = testing::RunFit3dof(
+      "batch " + manifest + " --jobs=2 --resume --progress=false --out_dir=" +
+      out);
+  EXPECT_EQ(resumed.exit_status, 0) << resumed.output;
+  EXPECT_EQ(Summary(out)["counts"]["total"], 30);
 }
 
 TEST(Batch, BadManifestsExitTwo) {

@@ -54,15 +54,26 @@ struct RunResult {
   std::vector<RunParameter> values;  // every parameter (for start_from)
   std::string model;
   bool resumed = false;  // taken from an earlier batch
+  std::string resume_key;  // what --resume compares (data, config, version)
 };
 
 struct BatchSummary {
-  std::vector<RunResult> runs;  // sorted by name
+  std::vector<RunResult> runs;  // the finished runs, sorted by name
+  int planned = 0;              // runs of this shard
+  bool interrupted = false;     // stopped by Ctrl-C or SIGTERM
   int NumFailed() const;        // failed or not converged
 };
 
 // Runs the manifest (a YAML manifest, a directory of configs, a config or a
-// NAMELIST deck). Throws InputError when the manifest itself is unusable.
+// NAMELIST deck) and writes summary.csv and summary.json of the runs that
+// finished. Holds DIR/.fit3dof.lock meanwhile (a second batch into the same
+// directory is an InputError; a lock left by a dead process is taken over).
+// With `resume`, temporaries left by a killed run are removed and a run is
+// kept only if its report was made from the same data bytes, merged config,
+// start_from chain and fit3dof version. After a stop request
+// (interrupt.h) no run is started, running ones are abandoned, and the
+// summary holds what finished (`interrupted` set). Throws InputError when
+// the manifest itself is unusable.
 BatchSummary RunBatch(const std::string& manifest, const BatchOptions& options);
 
 // summary.csv and summary.json in `dir`, written atomically.
