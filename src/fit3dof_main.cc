@@ -3,9 +3,9 @@
 // The command line. Thin: parses flags, calls the library, maps errors to
 // exit codes (0 success, 1 the job ran but failed, 2 bad input).
 
-#include <gflags/gflags.h>
 #include <glog/logging.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -25,84 +25,71 @@
 #include "fit3dof/namelist.h"
 #include "fit3dof/simulator.h"
 #include "fit3dof/time_history.h"
-
-// clang-format off
-DEFINE_string(out, "", "Output file (simulate: CSV of t, phi, theta, psi).");
-DEFINE_string(out_dir, "", "Output directory (fit: report.json, fit.csv; batch: one per run).");
-DEFINE_int32(jobs, 0, "batch: runs in parallel (0: one per core).");
-DEFINE_string(shard, "1/1", "batch: run only the K-th of N slices, K/N.");
-DEFINE_bool(resume, false, "batch: skip runs whose report exists for the same config.");
-DEFINE_bool(merge, false, "batch: merge the summaries of shard output directories.");
-DEFINE_bool(progress, true, "batch: live progress line on a terminal.");
-DEFINE_string(data, "", "NAMELIST decks: the data file (CSV) the fitting groups use.");
-DEFINE_int32(starts, 200, "basin: starting guesses drawn from the box.");
-DEFINE_uint64(seed, 1, "basin: seed of the draws.");
-DEFINE_string(methods, "gauss_newton,levenberg_marquardt,robust",
-              "basin: methods to compare, comma-separated.");
-// clang-format on
+#include "fit3dof/version.h"
 
 namespace fit3dof {
 namespace {
 
-constexpr char kUsage[] =
-    "fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion\n"
-    "\n"
-    "  fit3dof simulate CONFIG --out=FILE.csv   motion from the config\n"
-    "  fit3dof fit CONFIG --out_dir=DIR          fit the config's data\n"
-    "  fit3dof batch MANIFEST --out_dir=DIR [--jobs=N] [--shard=K/N] "
-    "[--resume]\n"
-    "  fit3dof batch --merge DIR... --out_dir=DIR\n"
-    "  fit3dof namelist DECK [--data=FILE.csv] [--out=FILE.yaml]\n"
-    "  fit3dof basin CONFIG [--starts=200] [--methods=...] [--out=FILE.json]\n"
-    "  fit3dof diagnose CONFIG --out_dir=DIR      find, name and add missing "
-    "effects\n"
-    "\n"
-    "fit and batch also take a NAMELIST deck (with --data=FILE.csv).\n"
-    "\n"
-    "Exit status: 0 success, 1 the job ran but failed, 2 bad input.";
+// Every flag of every command; each command accepts only its own (CLI11
+// rejects the others with exit status 2).
+struct Flags {
+  std::vector<std::string> args;  // positional arguments
+  std::string out;
+  std::string out_dir;
+  int jobs = 0;  // 0: not given (one per core)
+  std::string shard = "1/1";
+  bool resume = false;
+  bool merge = false;
+  bool progress = true;
+  std::string data;
+  int starts = 200;
+  std::uint64_t seed = 1;
+  std::string methods = "gauss_newton,levenberg_marquardt,robust";
+};
+Flags FLAGS;
 
 int Simulate(const std::vector<std::string>& args) {
   if (args.size() != 1) {
     throw InputError("simulate: expected one CONFIG argument");
   }
-  if (FLAGS_out.empty())
+  if (FLAGS.out.empty())
     throw InputError("simulate: --out=FILE.csv is required");
   const Case c = LoadConfig(args[0]);
   const TimeHistory history = Simulate(c);
-  WriteTimeHistory(FLAGS_out, history);
-  LOG(INFO) << "wrote " << history.size() << " samples to " << FLAGS_out;
+  WriteTimeHistory(FLAGS.out, history);
+  LOG(INFO) << "wrote " << history.size() << " samples to " << FLAGS.out;
   return 0;
 }
 
 // --data as an absolute path (decks name it relative to where you are).
 std::string DataFlag() {
-  if (FLAGS_data.empty()) return "";
-  return std::filesystem::absolute(FLAGS_data).lexically_normal().string();
+  if (FLAGS.data.empty()) return "";
+  return std::filesystem::absolute(FLAGS.data).lexically_normal().string();
 }
 
 int BatchCommand(const std::vector<std::string>& args) {
-  if (FLAGS_out_dir.empty())
+  if (FLAGS.out_dir.empty())
     throw InputError("batch: --out_dir=DIR is required");
-  if (FLAGS_merge) {
+  if (FLAGS.merge) {
     if (args.empty())
       throw InputError("batch --merge: expected shard output directories");
     std::vector<BatchSummary> parts;
     for (const std::string& dir : args) parts.push_back(ReadSummary(dir));
     const BatchSummary merged = MergeSummaries(parts);
-    WriteSummary(FLAGS_out_dir, merged);
+    WriteSummary(FLAGS.out_dir, merged);
     std::cout << "merged " << merged.runs.size() << " runs from " << args.size()
-              << " directories into " << FLAGS_out_dir << "\n";
+              << " directories into " << FLAGS.out_dir << "\n";
     return merged.NumFailed() > 0 ? 1 : 0;
   }
   if (args.size() != 1)
     throw InputError("batch: expected one MANIFEST argument");
   BatchOptions options;
-  options.out_dir = FLAGS_out_dir;
-  options.jobs = FLAGS_jobs;
-  options.resume = FLAGS_resume;
-  options.progress = FLAGS_progress;
+  options.out_dir = FLAGS.out_dir;
+  options.jobs = FLAGS.jobs;
+  options.resume = FLAGS.resume;
+  options.progress = FLAGS.progress;
   options.deck_data = DataFlag();
-  ParseShard(FLAGS_shard, &options.shard, &options.shards);
+  ParseShard(FLAGS.shard, &options.shard, &options.shards);
   InstallStopHandlers();
   const BatchSummary summary = RunBatch(args[0], options);
   if (summary.interrupted) {
@@ -115,7 +102,7 @@ int BatchCommand(const std::vector<std::string>& args) {
   std::cout << summary.runs.size() << " runs (" << resumed << " resumed), "
             << summary.runs.size() - summary.NumFailed() << " converged, "
             << summary.NumFailed() << " failed or not converged; summary in "
-            << FLAGS_out_dir << "/summary.csv\n";
+            << FLAGS.out_dir << "/summary.csv\n";
   for (const RunResult& r : summary.runs) {
     if (r.status != "converged") {
       std::cout << "  " << r.name << ": " << r.status << ": " << r.reason
@@ -136,10 +123,10 @@ int NamelistCommand(const std::vector<std::string>& args) {
                 << " accepted and ignored\n";
     }
   }
-  if (FLAGS_out.empty()) {
+  if (FLAGS.out.empty()) {
     std::cout << yaml;
   } else {
-    WriteFileAtomically(FLAGS_out, yaml);
+    WriteFileAtomically(FLAGS.out, yaml);
   }
   return 0;
 }
@@ -149,11 +136,11 @@ int BasinCommand(const std::vector<std::string>& args) {
   const Case c = IsDeckFile(args[0]) ? LoadDeckCase(args[0], DataFlag())
                                      : LoadConfig(args[0]);
   BasinOptions options;
-  options.starts = FLAGS_starts;
-  options.seed = FLAGS_seed;
-  options.jobs = FLAGS_jobs;
+  options.starts = FLAGS.starts;
+  options.seed = FLAGS.seed;
+  options.jobs = FLAGS.jobs;
   options.methods.clear();
-  std::string methods = FLAGS_methods;
+  std::string methods = FLAGS.methods;
   for (size_t at = 0; at <= methods.size();) {
     const size_t comma = std::min(methods.find(',', at), methods.size());
     if (comma > at) options.methods.push_back(methods.substr(at, comma - at));
@@ -163,104 +150,208 @@ int BasinCommand(const std::vector<std::string>& args) {
   FLAGS_minloglevel = std::max(FLAGS_minloglevel, 3);
   const BasinResult result = RunBasinStudy(c, options);
   std::cout << FormatBasin(result);
-  if (!FLAGS_out.empty()) WriteFileAtomically(FLAGS_out, BasinJson(result));
+  if (!FLAGS.out.empty()) WriteFileAtomically(FLAGS.out, BasinJson(result));
   return 0;
 }
 
 int DiagnoseCommand(const std::vector<std::string>& args) {
   if (args.size() != 1)
     throw InputError("diagnose: expected one CONFIG argument");
-  if (FLAGS_out_dir.empty())
+  if (FLAGS.out_dir.empty())
     throw InputError("diagnose: --out_dir=DIR is required");
   const Case c = IsDeckFile(args[0]) ? LoadDeckCase(args[0], DataFlag())
                                      : LoadConfig(args[0]);
   const Diagnosis d = Diagnose(c, DiagnoseOptions());
   for (size_t i = 0; i < d.fits.size(); ++i) {
-    WriteFitOutputs(FLAGS_out_dir + "/step" + std::to_string(i), d.fits[i]);
+    WriteFitOutputs(FLAGS.out_dir + "/step" + std::to_string(i), d.fits[i]);
   }
-  WriteFileAtomically(FLAGS_out_dir + "/final.yaml", CaseToYaml(d.final_case));
-  WriteFileAtomically(FLAGS_out_dir + "/diagnosis.json", DiagnosisJson(d, c));
+  WriteFileAtomically(FLAGS.out_dir + "/final.yaml", CaseToYaml(d.final_case));
+  WriteFileAtomically(FLAGS.out_dir + "/diagnosis.json", DiagnosisJson(d, c));
   std::cout << FormatDiagnosis(d, c.sigma)
-            << "fits of each step: " << FLAGS_out_dir
-            << "/step*/ (tools/plot draws them); rerun: " << FLAGS_out_dir
+            << "fits of each step: " << FLAGS.out_dir
+            << "/step*/ (tools/plot draws them); rerun: " << FLAGS.out_dir
             << "/final.yaml\n";
   return d.final.at_noise_level ? 0 : 1;
 }
 
 int FitCommand(const std::vector<std::string>& args) {
   if (args.size() != 1) throw InputError("fit: expected one CONFIG argument");
-  if (FLAGS_out_dir.empty()) throw InputError("fit: --out_dir=DIR is required");
+  if (FLAGS.out_dir.empty()) throw InputError("fit: --out_dir=DIR is required");
   const Case c = IsDeckFile(args[0]) ? LoadDeckCase(args[0], DataFlag())
                                      : LoadConfig(args[0]);
   const FitResult result = Fit(c);
-  WriteFitOutputs(FLAGS_out_dir, result);
+  WriteFitOutputs(FLAGS.out_dir, result);
   std::cout << FormatFitTable(result) << std::flush;
   return result.converged ? 0 : 1;
 }
 
+using Handler = int (*)(const std::vector<std::string>&);
+
+// Adds a command with its positional arguments and the flags it accepts.
+// Nothing is marked required for CLI11: its required check runs before its
+// unknown-flag check, and the handlers say what is missing themselves.
+CLI::App* Command(CLI::App* app,
+                  const char* name,
+                  const char* description,
+                  const char* positional) {
+  CLI::App* sub = app->add_subcommand(name, description);
+  sub->add_option(positional, FLAGS.args, positional);
+  return sub;
+}
+
+void AddData(CLI::App* sub) {
+  sub->add_option("--data", FLAGS.data,
+                  "NAMELIST decks: the data file (CSV) the fitting groups use");
+}
+
+void AddJobs(CLI::App* sub, const char* what) {
+  sub->add_option("--jobs", FLAGS.jobs, what)->check(CLI::Range(1, 4096));
+}
+
 int Run(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << kUsage << "\n";
-    return 2;
+  CLI::App app(
+      "fit3dof " FIT3DOF_VERSION
+      ": aerodynamic coefficients from 3DOF gas-bearing motion\n"
+      "Exit status: 0 success, 1 the job ran but failed, 2 bad input, 130 "
+      "interrupted.",
+      "fit3dof");
+  app.set_version_flag("--version", "fit3dof " FIT3DOF_VERSION);
+  app.require_subcommand(1, 1);
+  int verbosity = 0;
+  app.add_option("-v,--v", verbosity,
+                 "log every iteration (1) like the report's listing")
+      ->check(CLI::Range(0, 9));
+  std::map<CLI::App*, Handler> handlers;
+
+  CLI::App* simulate = Command(&app, "simulate",
+                               "motion from the config's parameters "
+                               "(NSWTCH 1/2)", "CONFIG");
+  simulate->add_option("--out", FLAGS.out, "CSV of t, phi, theta, psi");
+  handlers[simulate] = &Simulate;
+
+  CLI::App* fit = Command(&app, "fit", "fit the config's data (NSWTCH 0)",
+                          "CONFIG");
+  fit->add_option("--out_dir", FLAGS.out_dir, "report.json and fit.csv");
+  AddData(fit);
+  handlers[fit] = &FitCommand;
+
+  CLI::App* batch = app.add_subcommand(
+      "batch", "reduce a campaign: a manifest, a directory of configs, a "
+               "config or a deck (or --merge shard directories)");
+  batch->add_option("MANIFEST", FLAGS.args, "MANIFEST, or DIR... with --merge");
+  batch->add_option("--out_dir", FLAGS.out_dir, "one directory per run");
+  AddJobs(batch, "runs in parallel (default: one per core)");
+  batch->add_option("--shard", FLAGS.shard, "run only the K-th of N slices");
+  batch->add_flag("--resume", FLAGS.resume,
+                  "skip runs whose report was made from the same data, "
+                  "config and version");
+  batch->add_flag("--merge", FLAGS.merge,
+                  "merge the summaries of shard output directories");
+  batch->add_flag("--progress,!--noprogress", FLAGS.progress,
+                  "live progress line on a terminal (default true)");
+  AddData(batch);
+  handlers[batch] = &BatchCommand;
+
+  CLI::App* namelist = Command(&app, "namelist",
+                               "convert a legacy NAMELIST deck to YAML",
+                               "DECK");
+  namelist->add_option("--out", FLAGS.out, "YAML file (default: stdout)");
+  AddData(namelist);
+  handlers[namelist] = &NamelistCommand;
+
+  CLI::App* basin = Command(&app, "basin", "convergence-basin study",
+                            "CONFIG");
+  basin->add_option("--starts", FLAGS.starts, "starting guesses drawn")
+      ->check(CLI::Range(1, 1000000));
+  basin->add_option("--seed", FLAGS.seed, "seed of the draws");
+  basin->add_option("--methods", FLAGS.methods,
+                    "comma-separated: gauss_newton, levenberg_marquardt, "
+                    "robust");
+  basin->add_option("--out", FLAGS.out, "JSON of the study");
+  AddJobs(basin, "fits in parallel (default: one per core)");
+  AddData(basin);
+  handlers[basin] = &BasinCommand;
+
+  CLI::App* diagnose = Command(&app, "diagnose",
+                               "find, name and add missing effects",
+                               "CONFIG");
+  diagnose->add_option("--out_dir", FLAGS.out_dir,
+                       "each step's fit, diagnosis.json, final.yaml");
+  AddData(diagnose);
+  handlers[diagnose] = &DiagnoseCommand;
+
+  CLI::App* help = app.add_subcommand("help", "help on a command");
+  std::string topic;
+  help->add_option("COMMAND", topic, "a command");
+
+  bool known = argc < 2 || argv[1][0] == '-' || topic == argv[1] ||
+               std::string(argv[1]) == "help";
+  for (const auto& [sub, handler] : handlers) {
+    known |= argc >= 2 && sub->get_name() == argv[1];
   }
-  const std::string command = argv[1];
-  std::vector<std::string> args(argv + 2, argv + argc);
-  using Handler = int (*)(const std::vector<std::string>&);
-  const std::map<std::string, Handler> commands = {
-      {"simulate", &Simulate},
-      {"fit", &FitCommand},
-      {"batch", &BatchCommand},
-      {"namelist", &NamelistCommand},
-      {"basin", &BasinCommand},
-      {"diagnose", &DiagnoseCommand},
-  };
-  const auto it = commands.find(command);
-  if (it == commands.end()) {
-    std::cerr << "fit3dof: unknown command '" << command << "'\n\n"
-              << kUsage << "\n";
+  if (!known) {
+    std::cerr << "fit3dof: unknown command '" << argv[1]
+              << "' (fit3dof --help lists the commands)\n";
     return 2;
   }
   try {
-    return it->second(args);
-  } catch (const InputError& e) {
-    std::cerr << "fit3dof: " << e.what() << "\n";
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);  // prints the help of the command asked; 0
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ExtrasError& e) {
+    // "The following argument(s) were not expected: --x --y"
+    const std::string what = e.what();
+    const size_t colon = what.find(": ");
+    std::cerr << "fit3dof: unknown flag '"
+              << (colon == std::string::npos ? what : what.substr(colon + 2))
+              << "' for this command (fit3dof COMMAND --help lists its "
+                 "flags)\n";
     return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "fit3dof: " << e.what() << "\n";
-    return 1;
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "fit3dof: " << e.what()
+              << " (fit3dof --help lists the commands, fit3dof COMMAND "
+                 "--help their flags)\n";
+    return 2;
   }
+  FLAGS_v = verbosity;
+  if (help->parsed()) {
+    if (topic.empty()) {
+      std::cout << app.help();
+      return 0;
+    }
+    for (const auto& [sub, handler] : handlers) {
+      if (sub->get_name() == topic) {
+        std::cout << sub->help();
+        return 0;
+      }
+    }
+    std::cerr << "fit3dof: help: no command '" << topic << "'\n";
+    return 2;
+  }
+  for (const auto& [sub, handler] : handlers) {
+    if (!sub->parsed()) continue;
+    try {
+      return handler(FLAGS.args);
+    } catch (const InputError& e) {
+      std::cerr << "fit3dof: " << e.what() << "\n";
+      return 2;
+    } catch (const std::exception& e) {
+      std::cerr << "fit3dof: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  return 2;  // unreachable: require_subcommand(1)
 }
 
 }  // namespace
 }  // namespace fit3dof
 
-// gflags exits with status 1 on an unknown flag; bad input is status 2.
-bool KnownFlags(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    std::string arg = argv[i];
-    if (arg == "--") break;
-    if (arg.size() < 2 || arg[0] != '-') continue;
-    arg = arg.substr(arg[1] == '-' ? 2 : 1);
-    const std::string name = arg.substr(0, arg.find('='));
-    gflags::CommandLineFlagInfo info;
-    if (gflags::GetCommandLineFlagInfo(name.c_str(), &info)) continue;
-    if (name.rfind("no", 0) == 0 &&
-        gflags::GetCommandLineFlagInfo(name.substr(2).c_str(), &info) &&
-        info.type == "bool") {
-      continue;
-    }
-    std::cerr << "fit3dof: unknown flag '" << argv[i]
-              << "' (fit3dof --help lists the flags)\n";
-    return false;
-  }
-  return true;
-}
-
 int main(int argc, char** argv) {
   FLAGS_logtostderr = true;
-  if (!KnownFlags(argc, argv)) return 2;
-  gflags::SetUsageMessage(fit3dof::kUsage);
-  gflags::ParseCommandLineFlags(&argc, &argv, true);
   google::InitGoogleLogging(argv[0]);
   return fit3dof::Run(argc, argv);
 }

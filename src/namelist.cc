@@ -235,6 +235,15 @@ class DeckParser {
       if (count.empty() || *end != '\0' || r < 1) {
         Fail(variable + ": bad repeat count in '" + token + "'");
       }
+      // No array of the deck is longer than the asymmetric program's
+      // parameter list: a larger count is a typing error (and 10^9 copies
+      // would take gigabytes).
+      const int longest = NumParameters(ModelKind::kAsymmetric);
+      if (r > longest) {
+        Fail(variable + ": repeat count " + count + " in '" + token +
+             "' exceeds the longest array (" + std::to_string(longest) +
+             " elements)");
+      }
       repeat = static_cast<int>(r);
       token = token.substr(star + 1);
       if (token.empty()) {  // r* : r null values

@@ -96,7 +96,7 @@ TEST(SimulateCli, UsageErrorsExitTwo) {
   EXPECT_NE(flag.output.find("unknown flag '--outt=y.csv'"), std::string::npos)
       << flag.output;
   EXPECT_NE(testing::RunFit3dof(
-                "simulate /nonexistent.yaml --nologtostderr --out=/tmp/x.csv")
+                "simulate /nonexistent.yaml --out=/tmp/x.csv")
                 .output.find("/nonexistent.yaml"),
             std::string::npos);
   const auto missing =
