@@ -284,7 +284,7 @@ int Run(int argc, char** argv) {
   std::string topic;
   help->add_option("COMMAND", topic, "a command");
 
-  bool known = argc < 2 || argv[1][0] == '-' || topic == argv[1] ||
+  bool known = argc < 2 || argv[1][0] == '-' ||
                std::string(argv[1]) == "help";
   for (const auto& [sub, handler] : handlers) {
     known |= argc >= 2 && sub->get_name() == argv[1];

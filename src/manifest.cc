@@ -201,35 +201,44 @@ void Link(const std::string& path, std::vector<RunSpec>* specs) {
 
 }  // namespace
 
-std::string StableHash(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) {
-    h ^= c;
+namespace {
+
+// 64-bit FNV-1a, continued from `h` over `size` bytes.
+constexpr std::uint64_t kFnvOffset = 1469598103934665603ull;
+std::uint64_t Fnv1a(const unsigned char* bytes, size_t size, std::uint64_t h) {
+  for (size_t i = 0; i < size; ++i) {
+    h ^= bytes[i];
     h *= 1099511628211ull;
   }
+  return h;
+}
+
+std::string Hex(std::uint64_t h) {
   char out[17];
   std::snprintf(
       out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
   return out;
 }
 
+}  // namespace
+
+std::string StableHash(const std::string& text) {
+  return Hex(Fnv1a(reinterpret_cast<const unsigned char*>(text.data()),
+                   text.size(),
+                   kFnvOffset));
+}
+
 std::string FileHash(const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) return "unreadable";
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = kFnvOffset;
   std::vector<unsigned char> buffer(1 << 20);
   size_t n;
   while ((n = std::fread(buffer.data(), 1, buffer.size(), file)) > 0) {
-    for (size_t i = 0; i < n; ++i) {
-      h ^= buffer[i];
-      h *= 1099511628211ull;
-    }
+    h = Fnv1a(buffer.data(), n, h);
   }
   std::fclose(file);
-  char out[17];
-  std::snprintf(
-      out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
-  return out;
+  return Hex(h);
 }
 
 std::vector<std::string> DataFiles(const YAML::Node& config) {
