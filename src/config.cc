@@ -387,7 +387,9 @@ void ConfigReader::ReadData(const YAML::Node& node,
                             const std::string& path,
                             Segment* s) const {
   CheckKeys(
-      node, path, {"file", "start", "fraction", "every", "t_start", "t_end"});
+      node,
+      path,
+      {"file", "start", "fraction", "every", "t_start", "t_end", "outliers"});
   const std::string file =
       String(Required(node, path, "file"), Join(path, "file"));
   const fs::path p(file);
@@ -417,6 +419,16 @@ void ConfigReader::ReadData(const YAML::Node& node,
   }
   if (s->selection.t_end <= s->selection.t_start) {
     Fail(node, path, "t_end must be later than t_start");
+  }
+  if (node["outliers"]) {
+    const std::string policy =
+        String(node["outliers"], Join(path, "outliers"));
+    if (!ParseOutlierPolicy(policy, &s->outliers)) {
+      Fail(node["outliers"],
+           Join(path, "outliers"),
+           "expected 'warn' (name wild points, keep them) or 'reject' (name "
+           "them and fit without them), got '" + policy + "'");
+    }
   }
 }
 
@@ -855,6 +867,8 @@ std::string CaseToYaml(const Case& c) {
       y << ", t_start: " << ShortestNumber(s.selection.t_start);
     if (s.selection.t_end < 1e299)
       y << ", t_end: " << ShortestNumber(s.selection.t_end);
+    if (s.outliers != OutlierPolicy::kWarn)
+      y << ", outliers: " << OutlierPolicyName(s.outliers);
     y << "}\n    initial_conditions: "
       << (s.initial_conditions == InitialConditionMode::kFromData ? "from_data"
                                                                   : "given")

@@ -23,6 +23,7 @@
 #include "fit3dof/noise.h"
 #include "fit3dof/segment_cost_function.h"
 #include "fit3dof/start_values.h"
+#include "fit3dof/wild_points.h"
 
 namespace fit3dof {
 namespace {
@@ -62,9 +63,8 @@ std::string Fmt(const char* format, double value) {
   return buffer;
 }
 
-PreparedSegment PrepareSegment(const Case& c, const Segment& s, int index) {
-  PreparedSegment p;
-  p.name = s.name;
+// The segment's samples as fitted: read, selected, noise added.
+TimeHistory LoadSegment(const Case& c, const Segment& s, int index) {
   TimeHistory record;
   try {
     record = ReadTimeHistory(s.data_file);
@@ -72,18 +72,25 @@ PreparedSegment PrepareSegment(const Case& c, const Segment& s, int index) {
     throw InputError(c.source + ": segment '" + s.name +
                      "' data.file: " + e.what());
   }
-  p.data = SelectSamples(record, s.selection);
-  if (p.data.size() < 2) {
+  TimeHistory data = SelectSamples(record, s.selection);
+  if (data.size() < 2) {
     throw InputError(c.source + ": segment '" + s.name +
                      "': the data selection (start, fraction, every, "
                      "t_start, t_end) leaves " +
-                     std::to_string(p.data.size()) + " samples of " +
+                     std::to_string(data.size()) + " samples of " +
                      std::to_string(record.size()) + "; need at least 2");
   }
   NoiseOptions noise = c.noise;
   noise.seed += static_cast<std::uint64_t>(index);
-  AddNoise(noise, &p.data);
+  AddNoise(noise, &data);
+  return data;
+}
 
+PreparedSegment PrepareSegment(const Case& c, const Segment& s,
+                               TimeHistory data) {
+  PreparedSegment p;
+  p.name = s.name;
+  p.data = std::move(data);
   p.base = c.Values();
   const ParameterLayout& layout = Layout(c.model);
   p.from_data = s.initial_conditions == InitialConditionMode::kFromData;
@@ -747,10 +754,11 @@ struct Problem {
   std::shared_ptr<const MotionModel> model;
 };
 
-Problem Prepare(const Case& c) {
+Problem Prepare(const Case& c, const std::vector<TimeHistory>& data) {
+  CHECK_EQ(data.size(), c.segments.size());
   Problem p;
   for (size_t s = 0; s < c.segments.size(); ++s) {
-    p.segments.push_back(PrepareSegment(c, c.segments[s], static_cast<int>(s)));
+    p.segments.push_back(PrepareSegment(c, c.segments[s], data[s]));
   }
   for (int i = 0; i < NumParameters(c.model); ++i) {
     if (c.parameters[i].free && !IsInitialCondition(c.model, i)) {
@@ -778,6 +786,26 @@ Problem Prepare(const Case& c) {
   return p;
 }
 
+// Each segment's samples, screened for wild points (wild_points.h): those
+// found are added to `outliers`; a segment whose policy is reject loses
+// their samples.
+std::vector<TimeHistory> ScreenedData(const Case& c,
+                                      std::vector<Outlier>* outliers) {
+  std::vector<TimeHistory> data;
+  for (size_t s = 0; s < c.segments.size(); ++s) {
+    const Segment& segment = c.segments[s];
+    data.push_back(LoadSegment(c, segment, static_cast<int>(s)));
+    std::vector<int> drop;
+    for (const WildPoint& w : ScreenData(data.back())) {
+      const bool reject = segment.outliers == OutlierPolicy::kReject;
+      outliers->push_back({segment.name, w, reject, false});
+      if (reject) drop.push_back(w.sample);
+    }
+    if (!drop.empty()) data.back() = DropSamples(data.back(), drop);
+  }
+  return data;
+}
+
 }  // namespace
 
 Case CaseAtSolution(const Case& c, const FitResult& r) {
@@ -799,7 +827,8 @@ Case CaseAtSolution(const Case& c, const FitResult& r) {
 }
 
 bool Linearize(const Case& c, Linearization* out) {
-  const Problem p = Prepare(c);
+  std::vector<Outlier> outliers;
+  const Problem p = Prepare(c, ScreenedData(c, &outliers));
   Assembly a = Assemble(p.segments,
                         p.free,
                         p.model,
@@ -813,13 +842,13 @@ bool Linearize(const Case& c, Linearization* out) {
   return Information(a, &out->jtj, &out->ressum, &out->jtr);
 }
 
-FitResult Fit(const Case& c) {
+namespace {
+
+// The fit of the given samples of each segment (the whole of Fit but the
+// wild-point screen).
+FitResult FitData(const Case& c, const std::vector<TimeHistory>& data) {
   const auto start_time = std::chrono::steady_clock::now();
-  if (c.segments.empty()) {
-    throw InputError(c.source +
-                     ": data: missing (a fit needs data: or segments:)");
-  }
-  const Problem prepared = Prepare(c);
+  const Problem prepared = Prepare(c, data);
   const std::vector<PreparedSegment>& segments = prepared.segments;
   const FreeLayout& free = prepared.free;
   const int points = prepared.points;
@@ -1293,6 +1322,103 @@ FitResult Fit(const Case& c) {
   result.seconds = std::chrono::duration<double>(
                        std::chrono::steady_clock::now() - start_time)
                        .count();
+  return result;
+}
+
+// Rounds of post-fit screening and refitting for rejecting segments.
+constexpr int kWildPointRounds = 3;
+// Wild points named one by one in the warnings; the rest only in the
+// report's outliers.
+constexpr int kWildPointWarnings = 10;
+
+// "the data hold 2 wild points (first: ...); data: {outliers: reject}
+// drops them", for a fit that failed with wild points in its data.
+std::string WildPointSummary(const std::vector<Outlier>& outliers) {
+  return "the data hold " + std::to_string(outliers.size()) +
+         " wild point" + (outliers.size() == 1 ? "" : "s") + " (first: " +
+         outliers[0].point.Describe() +
+         "); data: {outliers: reject} drops them";
+}
+
+void ReportWildPoints(const Case& c, const std::vector<Outlier>& outliers,
+                      FitResult* result) {
+  result->outliers = outliers;
+  int dropped = 0;
+  for (size_t j = 0; j < outliers.size(); ++j) {
+    const Outlier& o = outliers[j];
+    dropped += o.dropped;
+    if (static_cast<int>(j) >= kWildPointWarnings) continue;
+    result->warnings.push_back(
+        "wild point" +
+        (c.segments.size() > 1 ? " in segment '" + o.segment + "'" : "") +
+        ": " + o.point.Describe() +
+        (o.dropped ? "; dropped"
+                   : "; kept (data: {outliers: reject} drops it)"));
+  }
+  if (static_cast<int>(outliers.size()) > kWildPointWarnings) {
+    result->warnings.push_back(
+        std::to_string(outliers.size() - kWildPointWarnings) +
+        " more wild points (all in report.json's outliers)");
+  }
+  if (dropped > 0) {
+    result->pipeline.push_back("wild points: " + std::to_string(dropped) +
+                               " dropped (their samples left out of the "
+                               "fit)");
+  }
+}
+
+}  // namespace
+
+FitResult Fit(const Case& c) {
+  if (c.segments.empty()) {
+    throw InputError(c.source +
+                     ": data: missing (a fit needs data: or segments:)");
+  }
+  std::vector<Outlier> outliers;
+  std::vector<TimeHistory> data = ScreenedData(c, &outliers);
+  FitResult result;
+  try {
+    result = FitData(c, data);
+  } catch (const InputError& e) {
+    if (outliers.empty()) throw;
+    throw InputError(std::string(e.what()) + "; " +
+                     WildPointSummary(outliers));
+  }
+  // After the fit: residuals the fit cannot reach. A rejecting segment
+  // drops them and the fit runs again from where it stopped (a wild point
+  // that hid others can only show once it is gone; three rounds at most).
+  // The residuals of a fit that did not reach the noise level are no
+  // reference: the misfit, not the data, would be named.
+  for (int round = 0; round < kWildPointRounds && result.converged; ++round) {
+    bool refit = false;
+    for (size_t s = 0; s < c.segments.size(); ++s) {
+      const bool reject = c.segments[s].outliers == OutlierPolicy::kReject;
+      std::vector<int> known;
+      for (const Outlier& o : outliers) {
+        if (o.segment == c.segments[s].name && !o.dropped) {
+          known.push_back(o.point.sample);
+        }
+      }
+      const SegmentFit& fit = result.segments[s];
+      std::vector<int> drop;
+      for (const WildPoint& w :
+           ScreenResiduals(fit.data, fit.computed, known)) {
+        outliers.push_back({c.segments[s].name, w, reject, true});
+        if (reject) drop.push_back(w.sample);
+      }
+      if (!drop.empty()) {
+        data[s] = DropSamples(fit.data, drop);
+        refit = true;
+      }
+    }
+    if (!refit) break;
+    const double seconds = result.seconds;
+    const int iterations = result.iterations;
+    result = FitData(CaseAtSolution(c, result), data);
+    result.seconds += seconds;
+    result.iterations += iterations;
+  }
+  ReportWildPoints(c, outliers, &result);
   return result;
 }
 

@@ -17,6 +17,7 @@
 #include "fit3dof/body.h"
 #include "fit3dof/motion_model.h"
 #include "fit3dof/parameters.h"
+#include "fit3dof/wild_points.h"
 
 namespace fit3dof {
 
@@ -56,6 +57,7 @@ struct Segment {
   std::string data_file;  // resolved against the config's directory
   DataSelection selection;
   InitialConditionMode initial_conditions = InitialConditionMode::kFromData;
+  OutlierPolicy outliers = OutlierPolicy::kWarn;  // data: {outliers: ...}
   // The segment's initial-condition parameters, in the model's order
   // (Layout(model).first_initial + j).
   std::array<ParameterSetting, 6> initial;

@@ -33,6 +33,7 @@
 
 #include "fit3dof/case.h"
 #include "fit3dof/time_history.h"
+#include "fit3dof/wild_points.h"
 
 namespace fit3dof {
 
@@ -54,6 +55,14 @@ struct SegmentFit {
   ChannelValues rms_residual_deg;
   std::array<double, 6> initial;  // the fitted initial conditions
   bool initial_from_data = false;
+};
+
+// A wild point found in a segment's data (wild_points.h).
+struct Outlier {
+  std::string segment;
+  WildPoint point;
+  bool dropped = false;   // the segment's policy is reject
+  bool after_fit = false; // found among the residuals, not in the raw data
 };
 
 struct FitResult {
@@ -82,11 +91,16 @@ struct FitResult {
   std::vector<std::string> correlation_names;  // free coordinates
   Eigen::MatrixXd correlation;                 // empty if not computable
   std::vector<std::string> warnings;
+  // Every wild point found, in the order found; each is also a warning
+  // (the first few) and a line of report.json's "outliers".
+  std::vector<Outlier> outliers;
   std::vector<SegmentFit> segments;
   double seconds = 0.0;
 };
 
-// Fits the case's data. Throws InputError for bad input (missing data, too
+// Fits the case's data. Wild points are screened for before the fit (in the
+// raw samples) and after it (in the residuals); a segment whose policy is
+// reject drops them and is fitted again. Throws InputError for bad input (missing data, too
 // few points for the free parameters, nothing free, a motion that cannot be
 // integrated from the starting values). A fit that does not converge
 // returns normally with converged = false.
