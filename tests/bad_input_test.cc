@@ -159,6 +159,10 @@ std::vector<BadInput> Catalog() {
          "file: data.csv}",
          "file: data.csv, fraction: 2}",
          "data.fraction");
+  config("unknown outlier policy",
+         "file: data.csv}",
+         "file: data.csv, outliers: drop}",
+         "data.outliers");
   config("start beyond the record",
          "file: data.csv}",
          "file: data.csv, start: 40}",
