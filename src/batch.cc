@@ -148,8 +148,12 @@ RunResult Execute(const RunSpec& spec,
       throw InputError("start_from: run '" + predecessor->name + "' failed (" +
                        predecessor->reason + ")");
     }
-    Case c = ParseConfigNode(
-        spec.config, spec.source, spec.base_dir, spec.node_lines);
+    Case c = ParseConfigNode(spec.config,
+                             spec.source,
+                             spec.base_dir,
+                             spec.node_lines,
+                             &spec.key_lines,
+                             spec.label);
     c.name = spec.name;
     if (predecessor != nullptr) ApplyStartValues(*predecessor, &c);
     FitResult fit;

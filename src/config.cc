@@ -29,10 +29,13 @@ namespace fs = std::filesystem;
 
 class ConfigReader {
  public:
-  ConfigReader(std::string source, std::string base_dir, bool node_lines)
+  ConfigReader(std::string source, std::string base_dir, bool node_lines,
+               const KeyLines* key_lines = nullptr, std::string label = "")
       : source_(std::move(source)),
         base_dir_(std::move(base_dir)),
-        node_lines_(node_lines) {}
+        node_lines_(node_lines),
+        key_lines_(key_lines),
+        label_(std::move(label)) {}
 
   Case Read(const YAML::Node& root);
 
@@ -41,12 +44,31 @@ class ConfigReader {
                          const std::string& key,
                          const std::string& message) const {
     std::ostringstream out;
-    out << source_;
-    if (node_lines_ && node.IsDefined() && node.Mark().line >= 0) {
-      out << ":" << node.Mark().line + 1;
+    const std::string line = KeyLine(key);
+    if (!line.empty()) {
+      out << line;
+      if (!label_.empty()) out << ": " << label_;
+    } else {
+      out << source_;
+      if (node_lines_ && node.IsDefined() && node.Mark().line >= 0) {
+        out << ":" << node.Mark().line + 1;
+      }
     }
     out << ": " << key << ": " << message;
     throw InputError(out.str());
+  }
+
+  // "file:line" of `key` or of its nearest parent in key_lines_; empty
+  // when there are no key lines or none matches.
+  std::string KeyLine(std::string key) const {
+    if (key_lines_ == nullptr) return "";
+    while (!key.empty()) {
+      const auto found = key_lines_->find(key);
+      if (found != key_lines_->end()) return found->second;
+      const size_t cut = key.find_last_of(".[");
+      key = cut == std::string::npos ? "" : key.substr(0, cut);
+    }
+    return "";
   }
 
   void CheckKeys(const YAML::Node& node,
@@ -162,6 +184,8 @@ class ConfigReader {
   std::string source_;
   std::string base_dir_;
   bool node_lines_;  // false for merged trees, whose nodes lost their lines
+  const KeyLines* key_lines_;  // for merged trees: where each key came from
+  std::string label_;          // "run 'x'", after a key's line
 };
 
 Case ConfigReader::Read(const YAML::Node& root) {
@@ -660,11 +684,37 @@ std::string ShortestNumber(double x) {
 Case ParseConfigNode(const YAML::Node& root,
                      const std::string& source,
                      const std::string& base_dir,
-                     bool node_lines) {
+                     bool node_lines,
+                     const KeyLines* key_lines,
+                     const std::string& label) {
   if (!root.IsDefined() || root.IsNull()) {
     throw InputError(source + ": the config is empty");
   }
-  return ConfigReader(source, base_dir, node_lines).Read(root);
+  return ConfigReader(source, base_dir, node_lines, key_lines, label)
+      .Read(root);
+}
+
+void RecordKeyLines(const YAML::Node& node, const std::string& file,
+                    const std::string& prefix, KeyLines* lines) {
+  auto at = [&](const YAML::Node& n) {
+    return file + ":" + std::to_string(n.Mark().line + 1);
+  };
+  if (node.IsMap()) {
+    for (const auto& item : node) {
+      if (!item.first.IsScalar()) continue;
+      const std::string path = prefix.empty()
+                                   ? item.first.Scalar()
+                                   : prefix + "." + item.first.Scalar();
+      if (item.first.Mark().line >= 0) (*lines)[path] = at(item.first);
+      RecordKeyLines(item.second, file, path, lines);
+    }
+  } else if (node.IsSequence()) {
+    for (size_t i = 0; i < node.size(); ++i) {
+      const std::string path = prefix + "[" + std::to_string(i) + "]";
+      if (node[i].Mark().line >= 0) (*lines)[path] = at(node[i]);
+      RecordKeyLines(node[i], file, path, lines);
+    }
+  }
 }
 
 namespace {

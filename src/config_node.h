@@ -9,20 +9,34 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <map>
 #include <string>
 
 #include "fit3dof/case.h"
 
 namespace fit3dof {
 
+// Where each key of a merged config was written: key path as the config
+// reader names it ("data.fraction", "segments[0].data", "parameters.Cm_q")
+// to "file:line" of the file that set it last.
+using KeyLines = std::map<std::string, std::string>;
+
+// Records the line of every key under `node` (read from `file`) in `lines`,
+// with `prefix` the path of `node` itself ("" for a config's root).
+void RecordKeyLines(const YAML::Node& node, const std::string& file,
+                    const std::string& prefix, KeyLines* lines);
+
 // A config from an already parsed YAML node (e.g. a merged manifest run).
 // Messages name `source` and the node's line; with `node_lines` false (a
-// merged tree, whose copied nodes lost their lines) `source` alone, which
-// then names the line itself ("manifest.yaml:14: run 'x'").
+// merged tree, whose copied nodes lost their lines) the line of the key in
+// `key_lines` (or of its nearest parent key) followed by `label`, or
+// `source` alone when the key is not there ("manifest.yaml:14: run 'x'").
 Case ParseConfigNode(const YAML::Node& root,
                      const std::string& source,
                      const std::string& base_dir,
-                     bool node_lines = true);
+                     bool node_lines = true,
+                     const KeyLines* key_lines = nullptr,
+                     const std::string& label = "");
 
 // Parses YAML text strictly: one document, keys plain and unique in each
 // mapping, every string valid UTF-8. InputError names `source` and the line.

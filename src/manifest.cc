@@ -71,6 +71,7 @@ std::vector<RunSpec> FromManifest(const std::string& path,
     // Note: assigning one YAML::Node to another writes through to the node
     // the left side refers to; reset() rebinds the handle instead.
     YAML::Node merged = YAML::Clone(defaults);
+    RecordKeyLines(defaults, path, "", &spec.key_lines);
     if (entry["config"]) {
       const fs::path file = fs::path(base) / entry["config"].Scalar();
       YAML::Node config = LoadYamlFile(file.string());
@@ -78,10 +79,12 @@ std::vector<RunSpec> FromManifest(const std::string& path,
         throw InputError(file.string() + ": expected a config (a mapping)");
       }
       ResolveDataPaths(file.parent_path().string(), &config);
+      RecordKeyLines(config, file.string(), "", &spec.key_lines);
       merged.reset(MergeYaml(merged, config));
       spec.name =
           config["name"] ? config["name"].Scalar() : file.stem().string();
     }
+    RecordKeyLines(entry, path, "", &spec.key_lines);
     YAML::Node overrides = YAML::Clone(entry);
     overrides.remove("config");
     if (overrides["start_from"]) {
@@ -108,7 +111,8 @@ std::vector<RunSpec> FromManifest(const std::string& path,
     merged["name"] = spec.name;
     spec.config = merged;
     spec.node_lines = false;
-    spec.source = Where(path, entry) + ": run '" + spec.name + "'";
+    spec.label = "run '" + spec.name + "'";
+    spec.source = Where(path, entry) + ": " + spec.label;
     specs.push_back(spec);
   }
   return specs;

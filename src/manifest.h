@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "config_node.h"
+
 namespace fit3dof {
 
 // The batch's lock file in its output directory (batch.cc).
@@ -32,6 +34,8 @@ struct RunSpec {
   std::string chain_root;  // first run of its start_from chain
   std::string hash;        // of the merged config and its predecessors
   bool node_lines = true;  // false: config's nodes lost their lines (merged)
+  KeyLines key_lines;      // merged: where each key was written
+  std::string label;       // merged: "run 'x'", after a key's line
   std::string load_error;  // a config file that could not be read fails
                            // its run with this message
 };

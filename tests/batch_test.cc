@@ -99,6 +99,17 @@ TEST(Batch, HundredRunsThreeBrokenTheRestFinish) {
   EXPECT_EQ(RunIn(summary, "r042")["status"], "failed");
   EXPECT_NE(RunIn(summary, "r042")["reason"].get<std::string>().find("Cm_alfa"),
             std::string::npos);
+  // A run's error names the manifest's line of the offending key.
+  {
+    const std::string text = testing::ReadText(manifest);
+    const size_t at = text.find("Cm_alfa");
+    const long line = 1 + std::count(text.begin(), text.begin() + at, '\n');
+    const std::string expected =
+        "manifest.yaml:" + std::to_string(line) + ": run 'r042': parameters";
+    EXPECT_NE(RunIn(summary, "r042")["reason"].get<std::string>().find(expected),
+              std::string::npos)
+        << RunIn(summary, "r042")["reason"] << " lacks " << expected;
+  }
   EXPECT_EQ(RunIn(summary, "r077")["status"], "not converged");
   // The terminal report names the three and why.
   EXPECT_NE(result.output.find("r042: failed:"), std::string::npos)
