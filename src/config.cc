@@ -621,6 +621,13 @@ void ConfigReader::ReadSimulate(const YAML::Node& node, Case* c) const {
   }
   if (has_duration) {
     c->simulate.duration = Positive(node["duration"], "simulate.duration");
+    const double samples = c->simulate.duration / c->simulate.dt + 1.0;
+    if (!(samples <= 1e8)) {
+      Fail(node["duration"],
+           "simulate.duration",
+           "duration / dt gives " + ShortestNumber(std::floor(samples)) +
+               " samples; at most 1e8 (is dt in seconds?)");
+    }
   } else {
     c->simulate.samples =
         static_cast<int>(Integer(node["samples"], "simulate.samples", 2, 100000000));

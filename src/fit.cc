@@ -756,6 +756,12 @@ struct Problem {
 
 Problem Prepare(const Case& c, const std::vector<TimeHistory>& data) {
   CHECK_EQ(data.size(), c.segments.size());
+  double steps = 0.0, span = 0.0;
+  for (const TimeHistory& d : data) {
+    steps += TotalSubsteps(d.t.data(), d.size(), c.solver.step);
+    span += d.t.back() - d.t.front();
+  }
+  CheckIntegrationSteps(steps, span, c.solver.step, c.source);
   Problem p;
   for (size_t s = 0; s < c.segments.size(); ++s) {
     p.segments.push_back(PrepareSegment(c, c.segments[s], data[s]));

@@ -2,7 +2,24 @@
 
 #include "fit3dof/motion_model.h"
 
+#include <cstdio>
+
+#include "fit3dof/input_error.h"
+
 namespace fit3dof {
+
+void CheckIntegrationSteps(double steps, double span, double max_step,
+                           const std::string& source) {
+  if (steps <= kMaxIntegrationSteps) return;
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                ": integrating the motion would take %.3g RK4 steps per "
+                "evaluation (%.6g s of record at solver.step = %.3g s); at "
+                "most %.0e: check that the time column is in seconds and "
+                "solver.step",
+                steps, span, max_step, kMaxIntegrationSteps);
+  throw InputError(source + text);
+}
 
 MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
     : spec_(spec),

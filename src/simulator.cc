@@ -13,8 +13,13 @@ namespace fit3dof {
 TimeHistory SimulateAt(const Case& c,
                        const std::vector<double>& values,
                        const std::vector<double>& times) {
-  const MotionModel model(c.Spec(), ActiveParameters(values, c.FreeFlags()));
   const int n = static_cast<int>(times.size());
+  if (n > 1) {
+    CheckIntegrationSteps(TotalSubsteps(times.data(), n, c.solver.step),
+                          times.back() - times.front(), c.solver.step,
+                          c.source);
+  }
+  const MotionModel model(c.Spec(), ActiveParameters(values, c.FreeFlags()));
   std::vector<double> angles(3 * n);
   IntegrationFailure failure;
   if (!model.Evaluate(

@@ -106,6 +106,17 @@ std::vector<BadInput> Catalog() {
          "step: 0.01",
          "step: -0.01",
          "solver.step: must be positive");
+  config("a step of a nanosecond",
+         "step: 0.01",
+         "step: 1.0e-9",
+         "RK4 steps per evaluation (0.18 s of record at solver.step = 1e-09 s)");
+  data("time column in microseconds",
+       "t,phi,theta,psi\n0,0,5,0\n6000000,1,5,0\n12000000,2,5,0\n",
+       "would take 1.2e+09 RK4 steps");
+  config("simulate a year at 1 ms",
+         "solver:",
+         "simulate: {dt: 0.001, duration: 3.2e7}\nsolver:",
+         "simulate.duration: duration / dt gives");
   config("text for a number",
          "area: 0.390",
          "area: big",

@@ -34,6 +34,17 @@ struct ModelSpec {
   double max_step = 0.001;  // s, the report's DTMIN
 };
 
+// The most RK4 steps one evaluation of the motion may take: a fit evaluates
+// it hundreds of times, with Jets; beyond this it would run for days, and a
+// time column in milliseconds or a step of 1e-9 s is the likely cause.
+inline constexpr double kMaxIntegrationSteps = 1e8;
+
+// Throws InputError naming `source` when `steps` (TotalSubsteps summed over
+// the records of one evaluation, spanning `span` seconds) exceeds
+// kMaxIntegrationSteps, with the count, solver.step and the span.
+void CheckIntegrationSteps(double steps, double span, double max_step,
+                           const std::string& source);
+
 class MotionModel {
  public:
   // `active` marks the parameters whose terms are evaluated; see

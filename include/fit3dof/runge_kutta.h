@@ -19,6 +19,7 @@
 #ifndef FIT3DOF_RUNGE_KUTTA_H_
 #define FIT3DOF_RUNGE_KUTTA_H_
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -42,7 +43,20 @@ void RungeKutta4Step(const Rhs& f, double h, T* x) {
   }
 }
 
+// RK4 steps to integrate through n sample times with substeps of at most
+// max_step: the work of one evaluation of the motion. A double, so that a
+// time column in the wrong units gives a large number, not an overflow.
+inline double TotalSubsteps(const double* times, int n, double max_step) {
+  double total = 0.0;
+  for (int i = 1; i < n; ++i) {
+    total += std::max(1.0, std::ceil((times[i] - times[i - 1]) / max_step -
+                                     1e-9));
+  }
+  return total;
+}
+
 // Number of equal substeps for an interval so that none exceeds max_step.
+// Callers keep interval / max_step within an int (CheckIntegrationSteps).
 inline int NumSubsteps(double interval, double max_step) {
   const int n = static_cast<int>(std::ceil(interval / max_step - 1e-9));
   return n < 1 ? 1 : n;
