@@ -21,6 +21,7 @@
 #include "fit3dof/input_error.h"
 #include "fit3dof/interrupt.h"
 #include "fit3dof/noise.h"
+#include "fit3dof/progress.h"
 #include "fit3dof/segment_cost_function.h"
 #include "fit3dof/start_values.h"
 #include "fit3dof/wild_points.h"
@@ -278,6 +279,7 @@ class ReportIterationCallback : public ceres::IterationCallback {
               << "  probable error " << e;
       return ceres::SOLVER_CONTINUE;
     }
+    CountIteration(e);
     if (!summary.step_is_successful) return ceres::SOLVER_CONTINUE;
     std::ostringstream log;
     log << "ITERATION NO " << summary.iteration << "\n"

@@ -23,6 +23,7 @@
 #include "fit3dof/input_error.h"
 #include "fit3dof/interrupt.h"
 #include "fit3dof/namelist.h"
+#include "fit3dof/progress.h"
 #include "fit3dof/simulator.h"
 #include "fit3dof/time_history.h"
 #include "fit3dof/version.h"
@@ -148,7 +149,11 @@ int BasinCommand(const std::vector<std::string>& args) {
   }
   // Hundreds of deliberately poor fits: keep their warnings out of the way.
   FLAGS_minloglevel = std::max(FLAGS_minloglevel, 3);
-  const BasinResult result = RunBasinStudy(c, options);
+  BasinResult result;
+  {
+    ProgressLine progress("basin " + c.name);
+    result = RunBasinStudy(c, options);
+  }
   std::cout << FormatBasin(result);
   if (!FLAGS.out.empty()) WriteFileAtomically(FLAGS.out, BasinJson(result));
   return 0;
@@ -161,7 +166,11 @@ int DiagnoseCommand(const std::vector<std::string>& args) {
     throw InputError("diagnose: --out_dir=DIR is required");
   const Case c = IsDeckFile(args[0]) ? LoadDeckCase(args[0], DataFlag())
                                      : LoadConfig(args[0]);
-  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  Diagnosis d;
+  {
+    ProgressLine progress("diagnose " + c.name);
+    d = Diagnose(c, DiagnoseOptions());
+  }
   for (size_t i = 0; i < d.fits.size(); ++i) {
     WriteFitOutputs(FLAGS.out_dir + "/step" + std::to_string(i), d.fits[i]);
   }
@@ -179,7 +188,11 @@ int FitCommand(const std::vector<std::string>& args) {
   if (FLAGS.out_dir.empty()) throw InputError("fit: --out_dir=DIR is required");
   const Case c = IsDeckFile(args[0]) ? LoadDeckCase(args[0], DataFlag())
                                      : LoadConfig(args[0]);
-  const FitResult result = Fit(c);
+  FitResult result;
+  {
+    ProgressLine progress("fit " + c.name);
+    result = Fit(c);
+  }
   WriteFitOutputs(FLAGS.out_dir, result);
   std::cout << FormatFitTable(result) << std::flush;
   return result.converged ? 0 : 1;
