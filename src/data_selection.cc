@@ -3,27 +3,40 @@
 #include "fit3dof/data_selection.h"
 
 #include <cmath>
+#include <utility>
 
 namespace fit3dof {
 
+void SampleSelector::Add(double t, double phi, double theta, double psi) {
+  if (!(t >= selection_.t_start && t <= selection_.t_end)) return;
+  const long index = in_window_++ - (selection_.start - 1);
+  t_last_ = t;
+  if (index < 0) return;
+  if (index == 0) t_first_ = t;
+  if (index % selection_.every == 0) kept_.Append(t, phi, theta, psi);
+}
+
+TimeHistory SampleSelector::Finish() {
+  const double limit = selection_.fraction * (t_last_ - t_first_);
+  int n = 0;
+  while (n < kept_.size() && kept_.t[n] - t_first_ <= limit * (1.0 + 1e-12)) {
+    ++n;
+  }
+  for (std::vector<double>* v :
+       {&kept_.t, &kept_.phi, &kept_.theta, &kept_.psi}) {
+    v->resize(n);
+    v->shrink_to_fit();
+  }
+  return std::move(kept_);
+}
+
 TimeHistory SelectSamples(const TimeHistory& record,
                           const DataSelection& selection) {
-  TimeHistory window;
+  SampleSelector selector(selection);
   for (int i = 0; i < record.size(); ++i) {
-    if (record.t[i] >= selection.t_start && record.t[i] <= selection.t_end) {
-      window.Append(record.t[i], record.phi[i], record.theta[i], record.psi[i]);
-    }
+    selector.Add(record.t[i], record.phi[i], record.theta[i], record.psi[i]);
   }
-  TimeHistory selected;
-  const int first = selection.start - 1;
-  if (first >= window.size()) return selected;
-  const double t0 = window.t[first];
-  const double limit = selection.fraction * (window.t.back() - t0);
-  for (int i = first; i < window.size(); i += selection.every) {
-    if (window.t[i] - t0 > limit * (1.0 + 1e-12)) break;
-    selected.Append(window.t[i], window.phi[i], window.theta[i], window.psi[i]);
-  }
-  return selected;
+  return selector.Finish();
 }
 
 std::vector<double> UnwrapDegrees(const std::vector<double>& angles) {

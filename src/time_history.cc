@@ -56,35 +56,44 @@ bool ParseDecimal(const char* token, double* value) {
   return std::isfinite(*value);
 }
 
-TimeHistory ReadRows(CsvReader* reader, const std::string& source) {
+// Passes every row to `sink` after checking it; returns the row count.
+int ReadRows(CsvReader* reader, const std::string& source,
+             const SampleSink& sink) {
   static const char* const kColumns[4] = {"t", "phi", "theta", "psi"};
-  TimeHistory history;
   reader->read_header(io::ignore_extra_column, "t", "phi", "theta", "psi");
   char* fields[4];
+  int rows = 0;
+  double last_t = 0.0;
   while (reader->read_row(fields[0], fields[1], fields[2], fields[3])) {
-    const std::string where =
-        source + ":" + std::to_string(reader->get_file_line());
+    auto where = [&] {
+      return source + ":" + std::to_string(reader->get_file_line());
+    };
     double row[4];
     for (int j = 0; j < 4; ++j) {
       if (!ParseDecimal(fields[j], &row[j])) {
         std::string token(fields[j]);
         if (token.size() > 40) token = token.substr(0, 40) + "...";
-        throw InputError(where + ": column '" + kColumns[j] +
+        throw InputError(where() + ": column '" + kColumns[j] +
                          "': expected a finite decimal number, got '" + token +
                          "'");
       }
     }
-    if (!history.t.empty() && !(row[0] > history.t.back())) {
-      throw InputError(where + ": times must increase strictly (t = " +
-                       fields[0] + " after " +
-                       std::to_string(history.t.back()) + ")");
+    if (rows > 0 && !(row[0] > last_t)) {
+      throw InputError(where() + ": times must increase strictly (t = " +
+                       fields[0] + " after " + std::to_string(last_t) + ")");
     }
-    history.Append(row[0], row[1], row[2], row[3]);
+    if (rows == std::numeric_limits<int>::max()) {
+      throw InputError(where() + ": more rows than a record may hold (" +
+                       std::to_string(rows) + ")");
+    }
+    last_t = row[0];
+    ++rows;
+    sink(row[0], row[1], row[2], row[3]);
   }
-  if (history.size() < 2) {
+  if (rows < 2) {
     throw InputError(source + ": needs at least two rows of data");
   }
-  return history;
+  return rows;
 }
 
 // The parser's own errors in the project's form: file:line: what, what was
@@ -122,7 +131,7 @@ std::string CsvProblem(const io::error::base& e, const std::string& source) {
 
 }  // namespace
 
-TimeHistory ReadTimeHistory(const std::string& path) {
+int ForEachSample(const std::string& path, const SampleSink& sink) {
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) {
     throw InputError(path + ": cannot open the data file (" +
@@ -130,20 +139,33 @@ TimeHistory ReadTimeHistory(const std::string& path) {
   }
   try {
     CsvReader reader(path, file);  // the reader closes the file
-    return ReadRows(&reader, path);
+    return ReadRows(&reader, path, sink);
   } catch (const io::error::base& e) {
     throw InputError(CsvProblem(e, path));
   }
 }
 
+TimeHistory ReadTimeHistory(const std::string& path) {
+  TimeHistory history;
+  ForEachSample(path, [&](double t, double phi, double theta, double psi) {
+    history.Append(t, phi, theta, psi);
+  });
+  return history;
+}
+
 TimeHistory ParseTimeHistory(const std::string& text,
                              const std::string& source) {
+  TimeHistory history;
   try {
     CsvReader reader(source, text.data(), text.data() + text.size());
-    return ReadRows(&reader, source);
+    ReadRows(&reader, source,
+             [&](double t, double phi, double theta, double psi) {
+               history.Append(t, phi, theta, psi);
+             });
   } catch (const io::error::base& e) {
     throw InputError(CsvProblem(e, source));
   }
+  return history;
 }
 
 std::string FormatTimeHistory(const TimeHistory& history) {

@@ -17,6 +17,25 @@ namespace fit3dof {
 TimeHistory SelectSamples(const TimeHistory& record,
                           const DataSelection& selection);
 
+// The same selection applied to samples one at a time (in time order), so
+// that reading a long record holds only the samples used: the fraction
+// cut-off depends on the record's last time, so Finish() applies it.
+class SampleSelector {
+ public:
+  explicit SampleSelector(const DataSelection& selection)
+      : selection_(selection) {}
+
+  void Add(double t, double phi, double theta, double psi);
+  TimeHistory Finish();
+
+ private:
+  DataSelection selection_;
+  TimeHistory kept_;        // every `every`-th from `start`, no cut-off yet
+  long in_window_ = 0;      // samples seen inside [t_start, t_end]
+  double t_first_ = 0.0;    // time of sample `start` of the window
+  double t_last_ = 0.0;     // latest time inside the window
+};
+
 // Roll angles made continuous (no jumps of more than 180 deg between
 // samples), for records that wrap phi into [0, 360).
 std::vector<double> UnwrapDegrees(const std::vector<double>& angles);

@@ -7,6 +7,7 @@
 #ifndef FIT3DOF_TIME_HISTORY_H_
 #define FIT3DOF_TIME_HISTORY_H_
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,13 @@ struct TimeHistory {
 // the token), non-increasing times or fewer than two rows. Fields may be
 // double-quoted ("1.25", as pandas' QUOTE_ALL writes them).
 TimeHistory ReadTimeHistory(const std::string& path);
+
+// Reads the file row by row with the same checks and messages, passing each
+// sample to `sink` instead of keeping it (a long record costs only what the
+// sink keeps). Returns the number of rows.
+using SampleSink =
+    std::function<void(double t, double phi, double theta, double psi)>;
+int ForEachSample(const std::string& path, const SampleSink& sink);
 
 // The same from CSV text in memory; `source` names it in messages.
 TimeHistory ParseTimeHistory(const std::string& text,
