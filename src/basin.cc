@@ -2,16 +2,19 @@
 
 #include "fit3dof/basin.h"
 
+#include <glog/logging.h>
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <random>
-#include <thread>
+#include <mutex>
 
 #include "fit3dof/fit.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/thread_budget.h"
 
 namespace fit3dof {
 namespace {
@@ -82,37 +85,35 @@ BasinResult RunBasinStudy(const Case& c, const BasinOptions& options) {
   result.name = c.name;
   result.reference_probable_error = reference.probable_error;
   const Case ref = CaseAtSolution(c, reference);
-  std::mt19937_64 rng(options.seed);
-  std::vector<Case> starts;
-  for (int i = 0; i < options.starts; ++i)
-    starts.push_back(DrawStart(ref, &rng));
   const double target = reference.probable_error * 1.01 + 1e-12;
-  const int jobs = options.jobs > 0
-                       ? options.jobs
-                       : static_cast<int>(std::thread::hardware_concurrency());
   for (const std::string& method : options.methods) {
     BasinMethod m;
     m.method = method;
     m.tried = options.starts;
     Case probe = c;
     ApplyMethod(method, &probe);  // validates the name up front
-    std::atomic<int> next{0}, reached{0};
+    // Every method sees the same starts: the same seeded sequence, drawn
+    // as the fits need them (start i is the i-th draw), never all held.
+    std::mt19937_64 rng(options.seed);
+    std::mutex draw;
+    int drawn = 0;
+    std::atomic<int> reached{0};
     const auto began = std::chrono::steady_clock::now();
-    auto work = [&] {
-      for (int i = next++; i < options.starts; i = next++) {
-        Case start = starts[i];
-        ApplyMethod(method, &start);
-        try {
-          const FitResult r = Fit(start);
-          if (r.converged && r.probable_error <= target) ++reached;
-        } catch (const std::exception&) {
-          // A start the motion cannot be integrated from: not reached.
-        }
+    ParallelFor(options.starts, [&](int) {
+      Case start;
+      {
+        std::lock_guard<std::mutex> lock(draw);
+        CHECK_LT(drawn++, options.starts);
+        start = DrawStart(ref, &rng);
       }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 0; t < std::max(1, jobs); ++t) pool.emplace_back(work);
-    for (std::thread& t : pool) t.join();
+      ApplyMethod(method, &start);
+      try {
+        const FitResult r = Fit(start);
+        if (r.converged && r.probable_error <= target) ++reached;
+      } catch (const std::exception&) {
+        // A start the motion cannot be integrated from: not reached.
+      }
+    });
     m.reached = reached;
     m.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - began)

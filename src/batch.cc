@@ -34,6 +34,7 @@
 #include "fit3dof/fit_report.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/interrupt.h"
+#include "fit3dof/thread_budget.h"
 #include "fit3dof/version.h"
 #include "json_values.h"
 #include "manifest.h"
@@ -406,9 +407,9 @@ BatchSummary RunBatch(const std::string& manifest,
     }
   };
 
-  int jobs = options.jobs > 0
-                 ? options.jobs
-                 : static_cast<int>(std::thread::hardware_concurrency());
+  // At most the budget's threads compute at once, whatever jobs says.
+  int jobs = options.jobs > 0 ? std::min(options.jobs, ThreadBudget())
+                              : ThreadBudget();
   jobs = std::max(1, std::min(jobs, std::max(n, 1)));
   std::atomic<bool> ticking{tty};
   std::thread ticker([&] {
@@ -418,9 +419,9 @@ BatchSummary RunBatch(const std::string& manifest,
       if (ticking) show();
     }
   });
-  std::vector<std::thread> threads;
-  for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
-  for (std::thread& t : threads) t.join();
+  // Workers borrow their threads from the process's budget
+  // (thread_budget.h), which the fits' multi-starts share.
+  ParallelFor(jobs, [&](int) { worker(); });
   ticking = false;
   ticker.join();
   if (tty) std::fprintf(stderr, "\n");

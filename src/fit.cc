@@ -5,14 +5,12 @@
 #include <glog/logging.h>
 
 #include <Eigen/Dense>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
 #include <sstream>
-#include <thread>
 
 #include "ceres/ceres.h"
 #include "fit3dof/data_selection.h"
@@ -23,6 +21,7 @@
 #include "fit3dof/progress.h"
 #include "fit3dof/segment_cost_function.h"
 #include "fit3dof/start_values.h"
+#include "fit3dof/thread_budget.h"
 #include "fit3dof/wild_points.h"
 
 namespace fit3dof {
@@ -980,25 +979,16 @@ FitResult FitData(const Case& c, const std::vector<TimeHistory>& data) {
     }
     std::vector<PipelineOutcome> outcomes(starts.size());
     std::vector<std::vector<double>> finals = starts;
-    std::atomic<size_t> next{0};
-    auto work = [&] {
-      for (size_t j = next++; j < starts.size(); j = next++) {
-        try {
-          outcomes[j] =
-              RunPipeline(c, segments, free, model, names, &finals[j]);
-        } catch (const std::exception& e) {
-          outcomes[j].integrable = false;
-          outcomes[j].failure = e.what();
-        }
+    // Threads from the process's budget (thread_budget.h): inside a busy
+    // batch the starts run one after the other.
+    ParallelFor(static_cast<int>(starts.size()), [&](int j) {
+      try {
+        outcomes[j] = RunPipeline(c, segments, free, model, names, &finals[j]);
+      } catch (const std::exception& e) {
+        outcomes[j].integrable = false;
+        outcomes[j].failure = e.what();
       }
-    };
-    const int threads = std::max(
-        1,
-        std::min<int>(static_cast<int>(std::thread::hardware_concurrency()),
-                      static_cast<int>(starts.size())));
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(work);
-    for (std::thread& t : pool) t.join();
+    });
     double best = outcome.probable_error;
     int best_index = -1;
     for (size_t j = 0; j < starts.size(); ++j) {

@@ -24,6 +24,7 @@
 #include "fit3dof/interrupt.h"
 #include "fit3dof/namelist.h"
 #include "fit3dof/progress.h"
+#include "fit3dof/thread_budget.h"
 #include "fit3dof/simulator.h"
 #include "fit3dof/time_history.h"
 #include "fit3dof/version.h"
@@ -87,6 +88,9 @@ int BatchCommand(const std::vector<std::string>& args) {
   BatchOptions options;
   options.out_dir = FLAGS.out_dir;
   options.jobs = FLAGS.jobs;
+  // Every thread of the batch (its runs and their multi-starts) comes from
+  // one budget of --jobs threads.
+  if (FLAGS.jobs > 0) SetThreadBudget(FLAGS.jobs);
   options.resume = FLAGS.resume;
   options.progress = FLAGS.progress;
   options.deck_data = DataFlag();
@@ -139,7 +143,7 @@ int BasinCommand(const std::vector<std::string>& args) {
   BasinOptions options;
   options.starts = FLAGS.starts;
   options.seed = FLAGS.seed;
-  options.jobs = FLAGS.jobs;
+  if (FLAGS.jobs > 0) SetThreadBudget(FLAGS.jobs);
   options.methods.clear();
   std::string methods = FLAGS.methods;
   for (size_t at = 0; at <= methods.size();) {

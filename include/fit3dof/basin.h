@@ -34,7 +34,8 @@ namespace fit3dof {
 struct BasinOptions {
   int starts = 200;
   std::uint64_t seed = 1;
-  int jobs = 0;  // 0: one per core
+  // Starts run in parallel on the process's thread budget
+  // (thread_budget.h; --jobs sets it).
   std::vector<std::string> methods = {
       "gauss_newton", "levenberg_marquardt", "robust"};
 };

@@ -30,7 +30,8 @@ namespace fit3dof {
 
 struct BatchOptions {
   std::string out_dir;
-  int jobs = 0;    // 0: one per core
+  int jobs = 0;    // 0: the thread budget (thread_budget.h; one per core
+                   // unless --jobs set it); never more than the budget
   int shard = 1;   // K of --shard=K/N
   int shards = 1;  // N
   bool resume = false;
