@@ -799,7 +799,39 @@ bool IsValidUtf8(const std::string& text) {
   return true;
 }
 
+// YAML text is Unicode without control characters other than tab, line
+// feed and carriage return. Checked before yaml-cpp sees the text: a NUL
+// byte in a comment sends its parser into a loop that never ends (found by
+// tests/fuzz/config_fuzzer.cc).
+void CheckYamlCharacters(const std::string& text, const std::string& source) {
+  int line = 1;
+  for (const char ch : text) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if (byte == '\n') ++line;
+    if ((byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') ||
+        byte == 0x7f) {
+      char code[8];
+      std::snprintf(code, sizeof(code), "0x%02x", byte);
+      throw InputError(source + ":" + std::to_string(line) +
+                       ": a control character (" + code +
+                       ") where YAML allows only text");
+    }
+  }
+  const auto* bytes = reinterpret_cast<const unsigned char*>(text.data());
+  line = 1;
+  for (size_t i = 0; i < text.size();) {
+    const int n = Utf8Length(bytes + i, text.size() - i);
+    if (n == 0) {
+      throw InputError(source + ":" + std::to_string(line) +
+                       ": the text is not valid UTF-8");
+    }
+    if (bytes[i] == '\n') ++line;
+    i += n;
+  }
+}
+
 YAML::Node ParseYamlText(const std::string& text, const std::string& source) {
+  CheckYamlCharacters(text, source);
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(text);

@@ -143,6 +143,10 @@ std::vector<BadInput> Catalog() {
          "phi: 0.01, theta: 0.01, psi: 0.01}",
          "phi: 0.0, theta: 0.01, psi: 0.01}",
          "sigma: every sigma must be positive");
+  config("NUL byte in a comment (fuzzer finding: yaml-cpp never returned)",
+         "name: catalog",
+         std::string("name: catalog\n# a comment\0\0 with NUL", 36),
+         "config.yaml:2: a control character (0x00)");
   config("non-UTF-8 name",
          "name: catalog",
          "name: cat\xC3\x28log",
