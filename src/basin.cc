@@ -8,9 +8,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <random>
-#include <mutex>
 
 #include "fit3dof/fit.h"
 #include "fit3dof/input_error.h"

@@ -23,8 +23,10 @@ using KeyLines = std::map<std::string, std::string>;
 
 // Records the line of every key under `node` (read from `file`) in `lines`,
 // with `prefix` the path of `node` itself ("" for a config's root).
-void RecordKeyLines(const YAML::Node& node, const std::string& file,
-                    const std::string& prefix, KeyLines* lines);
+void RecordKeyLines(const YAML::Node& node,
+                    const std::string& file,
+                    const std::string& prefix,
+                    KeyLines* lines);
 
 // A config from an already parsed YAML node (e.g. a merged manifest run).
 // Messages name `source` and the node's line; with `node_lines` false (a

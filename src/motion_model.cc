@@ -8,16 +8,22 @@
 
 namespace fit3dof {
 
-void CheckIntegrationSteps(double steps, double span, double max_step,
+void CheckIntegrationSteps(double steps,
+                           double span,
+                           double max_step,
                            const std::string& source) {
   if (steps <= kMaxIntegrationSteps) return;
   char text[256];
-  std::snprintf(text, sizeof(text),
+  std::snprintf(text,
+                sizeof(text),
                 ": integrating the motion would take %.3g RK4 steps per "
                 "evaluation (%.6g s of record at solver.step = %.3g s); at "
                 "most %.0e: check that the time column is in seconds and "
                 "solver.step",
-                steps, span, max_step, kMaxIntegrationSteps);
+                steps,
+                span,
+                max_step,
+                kMaxIntegrationSteps);
   throw InputError(source + text);
 }
 

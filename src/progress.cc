@@ -35,10 +35,14 @@ ProgressSnapshot CurrentProgress() {
 }
 
 ProgressLine::ProgressLine(std::string name, double delay)
-    : ProgressLine(std::move(name), ::isatty(STDERR_FILENO) ? STDERR_FILENO : -1,
-                   delay, 1.0) {}
+    : ProgressLine(std::move(name),
+                   ::isatty(STDERR_FILENO) ? STDERR_FILENO : -1,
+                   delay,
+                   1.0) {}
 
-ProgressLine::ProgressLine(std::string name, int fd, double delay,
+ProgressLine::ProgressLine(std::string name,
+                           int fd,
+                           double delay,
                            double interval)
     : name_(std::move(name)),
       fd_(fd),
@@ -64,9 +68,9 @@ void ProgressLine::Run() {
   std::unique_lock<std::mutex> lock(mutex_);
   auto next = start + std::chrono::duration<double>(delay_);
   while (!wake_.wait_until(lock, next, [this] { return done_; })) {
-    const double elapsed = std::chrono::duration<double>(
-                               std::chrono::steady_clock::now() - start)
-                               .count();
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+            .count();
     Draw(elapsed);
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(interval_));
@@ -76,9 +80,12 @@ void ProgressLine::Run() {
 void ProgressLine::Draw(double elapsed) {
   const ProgressSnapshot now = CurrentProgress();
   char line[256];
-  std::snprintf(line, sizeof(line),
+  std::snprintf(line,
+                sizeof(line),
                 "\r\033[K%s: %.0f s, %ld iterations, probable error %.4g",
-                name_.c_str(), elapsed, now.iterations - first_iterations_,
+                name_.c_str(),
+                elapsed,
+                now.iterations - first_iterations_,
                 now.probable_error);
   WriteAll(fd_, line);
   drawn_ = true;

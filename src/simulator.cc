@@ -16,7 +16,8 @@ TimeHistory SimulateAt(const Case& c,
   const int n = static_cast<int>(times.size());
   if (n > 1) {
     CheckIntegrationSteps(TotalSubsteps(times.data(), n, c.solver.step),
-                          times.back() - times.front(), c.solver.step,
+                          times.back() - times.front(),
+                          c.solver.step,
                           c.source);
   }
   const MotionModel model(c.Spec(), ActiveParameters(values, c.FreeFlags()));

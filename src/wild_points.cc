@@ -43,7 +43,8 @@ using Real = long double;
 
 // The four nearest unflagged neighbours of sample i: two on each side, or
 // more on one side at an edge. False when there are fewer than four.
-bool Neighbours(const std::vector<char>& flagged, int i,
+bool Neighbours(const std::vector<char>& flagged,
+                int i,
                 std::array<int, 4>* nodes) {
   const int n = static_cast<int>(flagged.size());
   std::array<int, 4> left, right;
@@ -73,8 +74,10 @@ struct Prediction {
   Real gain = 1;
 };
 
-Prediction Predict(const std::vector<double>& t, const std::vector<double>& x,
-                   int i, const std::array<int, 4>& nodes) {
+Prediction Predict(const std::vector<double>& t,
+                   const std::vector<double>& x,
+                   int i,
+                   const std::array<int, 4>& nodes) {
   Real predicted = 0, sum_w2 = 0;
   for (int a = 0; a < 4; ++a) {
     Real w = 1;
@@ -131,14 +134,14 @@ std::vector<Jump> FindJumps(const std::vector<double>& t,
   for (int i = 0; i < n; ++i) {
     if (valid[i]) all.push_back(z[i]);
   }
-  const Real floor =
-      std::max<Real>(kGlobalFloor * RobustSigma(all), kFloorDeg);
+  const Real floor = std::max<Real>(kGlobalFloor * RobustSigma(all), kFloorDeg);
   const int blocks = (n + kBlock - 1) / kBlock;
   std::vector<Real> scale(blocks);
   for (int b = 0; b < blocks; ++b) {
     std::vector<Real> local;
     for (int i = std::max(0, (b - 1) * kBlock);
-         i < std::min(n, (b + 2) * kBlock); ++i) {
+         i < std::min(n, (b + 2) * kBlock);
+         ++i) {
       if (valid[i]) local.push_back(z[i]);
     }
     scale[b] = std::max(RobustSigma(local), floor);
@@ -224,7 +227,8 @@ std::vector<double> Unwrapped(const std::vector<double>& x,
 }
 
 // The robust sigma of the prediction errors of a whole series.
-Real Roughness(const std::vector<double>& t, const std::vector<double>& x,
+Real Roughness(const std::vector<double>& t,
+               const std::vector<double>& x,
                const std::vector<char>& skip) {
   std::vector<Real> z;
   std::array<int, 4> nodes;
@@ -239,7 +243,8 @@ Real Roughness(const std::vector<double>& t, const std::vector<double>& x,
 // The jump test on a channel; for roll, on the smoother of the series as
 // given and unwrapped.
 std::vector<Jump> FindChannelJumps(const std::vector<double>& t,
-                                   const std::vector<double>& x, int channel,
+                                   const std::vector<double>& x,
+                                   int channel,
                                    const std::vector<char>& flagged) {
   if (channel == 0) {
     const std::vector<double> u = Unwrapped(x, flagged);
@@ -255,7 +260,8 @@ const std::vector<double>& Channel(const TimeHistory& data, int channel) {
 }
 
 void SortPoints(std::vector<WildPoint>* points) {
-  std::sort(points->begin(), points->end(),
+  std::sort(points->begin(),
+            points->end(),
             [](const WildPoint& a, const WildPoint& b) {
               return a.sample != b.sample ? a.sample < b.sample
                                           : a.channel < b.channel;
@@ -293,20 +299,20 @@ const char* ChannelName(int channel) {
 
 std::string WildPoint::Describe() const {
   std::string line = std::string(ChannelName(channel)) + " = " +
-                     Format("%.6g", value) + " deg at t = " +
-                     Format("%.6g", t) + " s: ";
+                     Format("%.6g", value) +
+                     " deg at t = " + Format("%.6g", t) + " s: ";
   switch (test) {
     case WildPointTest::kReach:
-      return line + (channel == 1 ? "at or beyond +-90 deg" : "beyond 1e9 deg") +
+      return line +
+             (channel == 1 ? "at or beyond +-90 deg" : "beyond 1e9 deg") +
              ", where no motion of the model goes";
     case WildPointTest::kJump:
       return line + Format("%.3g", deviation) +
              " deg off the cubic through its neighbours (" +
              Format("%.3g", sigmas) + " robust sigmas)";
     case WildPointTest::kResidual:
-      return line + Format("%.3g", deviation) +
-             " deg off the fitted motion (" + Format("%.3g", sigmas) +
-             " robust sigmas)";
+      return line + Format("%.3g", deviation) + " deg off the fitted motion (" +
+             Format("%.3g", sigmas) + " robust sigmas)";
   }
   return line;
 }
@@ -322,14 +328,23 @@ std::vector<WildPoint> ScreenData(const TimeHistory& data) {
     for (int i = 0; i < n; ++i) {
       if (!(std::abs(x[i]) < reach)) {
         flagged[i] = 1;
-        points.push_back({i, data.t[i], channel, x[i], std::abs(x[i]) - reach,
+        points.push_back({i,
+                          data.t[i],
+                          channel,
+                          x[i],
+                          std::abs(x[i]) - reach,
                           std::numeric_limits<double>::infinity(),
                           WildPointTest::kReach});
       }
     }
     for (const Jump& j : FindChannelJumps(data.t, x, channel, flagged)) {
-      points.push_back({j.sample, data.t[j.sample], channel, x[j.sample],
-                        j.deviation, j.sigmas, WildPointTest::kJump});
+      points.push_back({j.sample,
+                        data.t[j.sample],
+                        channel,
+                        x[j.sample],
+                        j.deviation,
+                        j.sigmas,
+                        WildPointTest::kJump});
     }
   }
   SortPoints(&points);
@@ -369,14 +384,20 @@ std::vector<WildPoint> ScreenResiduals(const TimeHistory& data,
       for (int i = 0; i < n; ++i) {
         const Real out = std::abs(r[i] - center) / sigma;
         if (!flagged[i] && out > kThreshold) {
-          jumps.push_back({i, static_cast<double>(r[i] - center),
+          jumps.push_back({i,
+                           static_cast<double>(r[i] - center),
                            static_cast<double>(out)});
         }
       }
     }
     for (const Jump& j : jumps) {
-      points.push_back({j.sample, data.t[j.sample], channel, x[j.sample],
-                        j.deviation, j.sigmas, WildPointTest::kResidual});
+      points.push_back({j.sample,
+                        data.t[j.sample],
+                        channel,
+                        x[j.sample],
+                        j.deviation,
+                        j.sigmas,
+                        WildPointTest::kResidual});
     }
   }
   SortPoints(&points);
@@ -388,8 +409,8 @@ TimeHistory DropSamples(const TimeHistory& data, const std::vector<int>& drop) {
   for (int i : drop) gone.at(i) = 1;
   TimeHistory kept;
   for (int i = 0; i < data.size(); ++i) {
-    if (!gone[i]) kept.Append(data.t[i], data.phi[i], data.theta[i],
-                              data.psi[i]);
+    if (!gone[i])
+      kept.Append(data.t[i], data.phi[i], data.theta[i], data.psi[i]);
   }
   return kept;
 }

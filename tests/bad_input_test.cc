@@ -106,10 +106,11 @@ std::vector<BadInput> Catalog() {
          "step: 0.01",
          "step: -0.01",
          "solver.step: must be positive");
-  config("a step of a nanosecond",
-         "step: 0.01",
-         "step: 1.0e-9",
-         "RK4 steps per evaluation (0.18 s of record at solver.step = 1e-09 s)");
+  config(
+      "a step of a nanosecond",
+      "step: 0.01",
+      "step: 1.0e-9",
+      "RK4 steps per evaluation (0.18 s of record at solver.step = 1e-09 s)");
   data("time column in microseconds",
        "t,phi,theta,psi\n0,0,5,0\n6000000,1,5,0\n12000000,2,5,0\n",
        "would take 1.2e+09 RK4 steps");

@@ -29,8 +29,8 @@ std::string Drain(int fd) {
 
 TEST(Progress, FitsCountTheirIterations) {
   const long before = CurrentProgress().iterations;
-  const FitResult r =
-      Fit(LoadConfig(testing::SourcePath("configs/report/table6_sigma0.01.yaml")));
+  const FitResult r = Fit(
+      LoadConfig(testing::SourcePath("configs/report/table6_sigma0.01.yaml")));
   const ProgressSnapshot after = CurrentProgress();
   EXPECT_GE(after.iterations - before, r.iterations);
   EXPECT_GT(after.probable_error, 0.0);
@@ -42,7 +42,8 @@ TEST(Progress, DrawsWhileTheWorkRunsAndErasesAtTheEnd) {
   ::fcntl(pipe_fds[0], F_SETFL, O_NONBLOCK);
   {
     ProgressLine line("fit table6", pipe_fds[1], 0.0, 0.05);
-    Fit(LoadConfig(testing::SourcePath("configs/report/table6_sigma0.01.yaml")));
+    Fit(LoadConfig(
+        testing::SourcePath("configs/report/table6_sigma0.01.yaml")));
     ::usleep(120000);
   }
   const std::string text = Drain(pipe_fds[0]);

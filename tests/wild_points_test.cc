@@ -35,9 +35,8 @@ TimeHistory Noisy(TimeHistory data, double sigma, std::uint64_t seed) {
   return data;
 }
 
-const char* kRecords[] = {"table6_clean.csv",
-                          "section5_1_clean.csv",
-                          "asymmetric_magnus_clean.csv"};
+const char* kRecords[] = {
+    "table6_clean.csv", "section5_1_clean.csv", "asymmetric_magnus_clean.csv"};
 
 // The report's motions, noise-free and with 0.001 to 0.1 deg of noise over
 // 20 seeds each: not one sample is called wild. The table 6 record has
@@ -50,9 +49,8 @@ TEST(WildPoints, CleanRecordsHaveNone) {
       for (std::uint64_t seed = 1; seed <= 20; ++seed) {
         const std::vector<WildPoint> found =
             ScreenData(Noisy(clean, sigma, seed));
-        EXPECT_TRUE(found.empty())
-            << name << " sigma " << sigma << " seed " << seed << ": "
-            << found[0].Describe();
+        EXPECT_TRUE(found.empty()) << name << " sigma " << sigma << " seed "
+                                   << seed << ": " << found[0].Describe();
       }
     }
   }
@@ -72,15 +70,15 @@ TEST(WildPoints, ColoredErrorsAreNotWild) {
         for (std::vector<double>* x : channels) {
           double colored = 0.0, drift = 0.0;
           for (double& v : *x) {
-            colored = rho * colored +
-                      std::sqrt(1 - rho * rho) * 0.02 * gauss.Next();
+            colored =
+                rho * colored + std::sqrt(1 - rho * rho) * 0.02 * gauss.Next();
             drift += 0.002 * gauss.Next();
             v += colored + drift + 0.005 * gauss.Next();
           }
         }
         const std::vector<WildPoint> found = ScreenData(data);
-        EXPECT_TRUE(found.empty()) << name << " rho " << rho << " seed "
-                                   << seed << ": " << found[0].Describe();
+        EXPECT_TRUE(found.empty()) << name << " rho " << rho << " seed " << seed
+                                   << ": " << found[0].Describe();
       }
     }
   }
@@ -189,7 +187,8 @@ class WildPointFit : public ::testing::Test {
   }
 
   FitResult FitFile(const std::string& file, const std::string& policy) {
-    Case c = LoadConfig(testing::SourcePath("configs/report/table6_sigma0.01.yaml"));
+    Case c =
+        LoadConfig(testing::SourcePath("configs/report/table6_sigma0.01.yaml"));
     c.noise.enabled = false;
     c.segments[0].data_file = file;
     ParseOutlierPolicy(policy, &c.segments[0].outliers);
@@ -232,8 +231,8 @@ TEST_F(WildPointFit, RejectDropsAndMatchesTheCleanFit) {
   for (size_t j = 0; j < r.parameters.size(); ++j) {
     const ParameterEstimate& e = r.parameters[j];
     if (!e.free) continue;
-    EXPECT_NEAR(e.value, clean.parameters[j].value,
-                0.2 * clean.parameters[j].rms_error)
+    EXPECT_NEAR(
+        e.value, clean.parameters[j].value, 0.2 * clean.parameters[j].rms_error)
         << e.name;
   }
 }

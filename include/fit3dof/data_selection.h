@@ -30,10 +30,10 @@ class SampleSelector {
 
  private:
   DataSelection selection_;
-  TimeHistory kept_;        // every `every`-th from `start`, no cut-off yet
-  long in_window_ = 0;      // samples seen inside [t_start, t_end]
-  double t_first_ = 0.0;    // time of sample `start` of the window
-  double t_last_ = 0.0;     // latest time inside the window
+  TimeHistory kept_;      // every `every`-th from `start`, no cut-off yet
+  long in_window_ = 0;    // samples seen inside [t_start, t_end]
+  double t_first_ = 0.0;  // time of sample `start` of the window
+  double t_last_ = 0.0;   // latest time inside the window
 };
 
 // Roll angles made continuous (no jumps of more than 180 deg between

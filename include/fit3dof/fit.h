@@ -61,8 +61,8 @@ struct SegmentFit {
 struct Outlier {
   std::string segment;
   WildPoint point;
-  bool dropped = false;   // the segment's policy is reject
-  bool after_fit = false; // found among the residuals, not in the raw data
+  bool dropped = false;    // the segment's policy is reject
+  bool after_fit = false;  // found among the residuals, not in the raw data
 };
 
 struct FitResult {
@@ -100,10 +100,10 @@ struct FitResult {
 
 // Fits the case's data. Wild points are screened for before the fit (in the
 // raw samples) and after it (in the residuals); a segment whose policy is
-// reject drops them and is fitted again. Throws InputError for bad input (missing data, too
-// few points for the free parameters, nothing free, a motion that cannot be
-// integrated from the starting values). A fit that does not converge
-// returns normally with converged = false.
+// reject drops them and is fitted again. Throws InputError for bad input
+// (missing data, too few points for the free parameters, nothing free, a motion
+// that cannot be integrated from the starting values). A fit that does not
+// converge returns normally with converged = false.
 FitResult Fit(const Case& c);
 
 // The case with every free value at the fit's result and each segment's

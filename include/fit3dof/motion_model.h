@@ -42,7 +42,9 @@ inline constexpr double kMaxIntegrationSteps = 1e8;
 // Throws InputError naming `source` when `steps` (TotalSubsteps summed over
 // the records of one evaluation, spanning `span` seconds) exceeds
 // kMaxIntegrationSteps, with the count, solver.step and the span.
-void CheckIntegrationSteps(double steps, double span, double max_step,
+void CheckIntegrationSteps(double steps,
+                           double span,
+                           double max_step,
                            const std::string& source);
 
 class MotionModel {

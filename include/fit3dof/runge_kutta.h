@@ -49,8 +49,8 @@ void RungeKutta4Step(const Rhs& f, double h, T* x) {
 inline double TotalSubsteps(const double* times, int n, double max_step) {
   double total = 0.0;
   for (int i = 1; i < n; ++i) {
-    total += std::max(1.0, std::ceil((times[i] - times[i - 1]) / max_step -
-                                     1e-9));
+    total +=
+        std::max(1.0, std::ceil((times[i] - times[i - 1]) / max_step - 1e-9));
   }
   return total;
 }
