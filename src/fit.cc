@@ -1368,6 +1368,14 @@ void ReportWildPoints(const Case& c, const std::vector<Outlier>& outliers,
         std::to_string(outliers.size() - kWildPointWarnings) +
         " more wild points (all in report.json's outliers)");
   }
+  const int kept = static_cast<int>(outliers.size()) - dropped;
+  if (kept > 0 && !result->converged) {
+    // Point at the data as well as at the model.
+    result->termination += "; the data hold " + std::to_string(kept) +
+                           " wild point" + (kept == 1 ? "" : "s") +
+                           ", kept (see the warnings; data: {outliers: "
+                           "reject} drops them)";
+  }
   if (dropped > 0) {
     result->pipeline.push_back("wild points: " + std::to_string(dropped) +
                                " dropped (their samples left out of the "

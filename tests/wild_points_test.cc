@@ -212,6 +212,8 @@ TEST_F(WildPointFit, DefaultNamesAndKeeps) {
   }
   EXPECT_TRUE(named);
   EXPECT_GT(r.probable_error, 3.0);
+  EXPECT_NE(r.termination.find("1 wild point, kept"), std::string::npos)
+      << r.termination;
   const nlohmann::json report = nlohmann::json::parse(ReportJson(r));
   ASSERT_GE(report["outliers"].size(), 1u);
   EXPECT_EQ(report["outliers"][0]["channel"], "theta");
