@@ -6,6 +6,7 @@
 
 #include "fit3dof/config.h"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -830,23 +831,61 @@ void CheckYamlCharacters(const std::string& text, const std::string& source) {
   }
 }
 
+namespace {
+
+// Sees whether a document has any content, and where it starts.
+class DocumentProbe : public YAML::EventHandler {
+ public:
+  void OnDocumentStart(const YAML::Mark& mark) override { start = mark; }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override { content = true; }
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    content = true;
+  }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    content = true;
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    content = true;
+  }
+  void OnMapEnd() override {}
+
+  YAML::Mark start;
+  bool content = false;
+};
+
+}  // namespace
+
 YAML::Node ParseYamlText(const std::string& text, const std::string& source) {
   CheckYamlCharacters(text, source);
-  std::vector<YAML::Node> documents;
+  // Not YAML::LoadAll: in yaml-cpp 0.7 it loops for ever, allocating, on
+  // some malformed text (a lone ',' is one; yaml-cpp issue 1040, fixed
+  // upstream in 0.8). One document is loaded; a second one with content is
+  // looked for by parsing at most one more.
+  YAML::Node root;
   try {
-    documents = YAML::LoadAll(text);
+    root = YAML::Load(text);
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentProbe first, second;
+    if (parser.HandleNextDocument(first) &&
+        parser.HandleNextDocument(second) && second.content) {
+      throw InputError(source + ":" + std::to_string(second.start.line + 1) +
+                       ": a second YAML document ('---'); a config or "
+                       "manifest is one document");
+    }
   } catch (const YAML::Exception& e) {
     throw InputError(source + ":" + std::to_string(e.mark.line + 1) +
                      ": not valid YAML: " + e.msg);
   }
-  if (documents.size() > 1) {
-    throw InputError(source + ":" + std::to_string(documents[1].Mark().line) +
-                     ": a second YAML document ('---'); a config or manifest "
-                     "is one document");
-  }
-  if (documents.empty()) return YAML::Node();
-  CheckStrict(documents[0], source);
-  return documents[0];
+  if (!root.IsDefined() || root.IsNull()) return root;
+  CheckStrict(root, source);
+  return root;
 }
 
 YAML::Node LoadYamlFile(const std::string& path) {

@@ -148,6 +148,10 @@ std::vector<BadInput> Catalog() {
          "name: catalog",
          std::string("name: catalog\n# a comment\0\0 with NUL", 36),
          "config.yaml:2: a control character (0x00)");
+  config("a lone comma (fuzzer finding: yaml-cpp's LoadAll never returned)",
+         "name: catalog",
+         ",",
+         "config.yaml");
   config("non-UTF-8 name",
          "name: catalog",
          "name: cat\xC3\x28log",
@@ -315,6 +319,11 @@ std::vector<BadInput> Catalog() {
        "extra:1: AACON: repeat count 1000000000");
   deck("deck unclosed group", " &NAM NITER=5,\n", "extra:");
   deck("deck unknown variable", " &NAM XYZZY=1 &END\n", "XYZZY");
+  deck("deck NSWTCH beyond an integer (fuzzer finding: undefined cast)",
+       " &NAM\n NSWTCH=7.77778E9 &END\n",
+       "extra:2: NSWTCH: expected an integer");
+  deck("deck fractional NITER", " &NAM NITER=2.5 &END\n",
+       "extra:1: NITER: expected an integer");
   deck("deck no group", "just a title\n", "no NAMELIST group");
   // Flags.
   auto flag = [&](const std::string& name,
