@@ -201,7 +201,7 @@ TEST(Diagnose, FindsTwoHiddenEffects) {
 TEST(Diagnose, AddsNothingToCleanData) {
   const std::string dir = testing::ScratchDirectory("diagnose_clean");
   int added = 0;
-  const int kSeeds = 20;
+  const int kSeeds = testing::Repetitions(20);
   for (int seed = 1; seed <= kSeeds; ++seed) {
     Simulate(Truth(), dir + "/data.csv", 100 + seed);
     const Diagnosis d =

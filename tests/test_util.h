@@ -11,6 +11,21 @@
 
 namespace fit3dof::testing {
 
+// True in the ASan/UBSan build (tools/test --sanitize), which runs 10-100x
+// slower: loops over noise seeds run a tenth of their repetitions there
+// (every code path still runs under the sanitizers; the statistics are
+// checked by the plain build).
+#ifdef FIT3DOF_SANITIZED
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
+
+// `full`, or a tenth of it (at least 2) in the sanitized build.
+inline int Repetitions(int full) {
+  return kSanitized ? (full / 10 > 2 ? full / 10 : 2) : full;
+}
+
 // The report's published numbers, tests/data/report_numbers.json.
 const nlohmann::json& PaperResults();
 

@@ -46,7 +46,7 @@ TEST(WildPoints, CleanRecordsHaveNone) {
     const TimeHistory clean = Record(name);
     EXPECT_TRUE(ScreenData(clean).empty()) << name;
     for (double sigma : {0.001, 0.01, 0.1}) {
-      for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+      for (int seed = 1; seed <= testing::Repetitions(20); ++seed) {
         const std::vector<WildPoint> found =
             ScreenData(Noisy(clean, sigma, seed));
         EXPECT_TRUE(found.empty()) << name << " sigma " << sigma << " seed "
@@ -63,7 +63,7 @@ TEST(WildPoints, ColoredErrorsAreNotWild) {
   for (const char* name : kRecords) {
     const TimeHistory clean = Record(name);
     for (double rho : {0.9, 0.99}) {
-      for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+      for (int seed = 1; seed <= testing::Repetitions(10); ++seed) {
         GaussianSource gauss(seed);
         TimeHistory data = clean;
         std::vector<double>* channels[] = {&data.phi, &data.theta, &data.psi};
@@ -91,7 +91,7 @@ TEST(WildPoints, CoarseSamplingHasNone) {
   for (int i = 0; i < clean.size(); i += 2) {
     coarse.Append(clean.t[i], clean.phi[i], clean.theta[i], clean.psi[i]);
   }
-  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+  for (int seed = 1; seed <= testing::Repetitions(20); ++seed) {
     EXPECT_TRUE(ScreenData(Noisy(coarse, 0.01, seed)).empty()) << seed;
   }
 }
