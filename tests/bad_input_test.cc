@@ -6,6 +6,7 @@
 // and leave nothing in the output directory.
 
 #include <filesystem>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -371,6 +372,7 @@ std::string Substitute(std::string text, const std::string& dir) {
 TEST(BadInput, CatalogExitsTwoNamingTheProblemAndWritesNothing) {
   const std::vector<BadInput> catalog = Catalog();
   EXPECT_GE(catalog.size(), 60u);
+  std::printf("%zu malformed inputs\n", catalog.size());
   int index = 0;
   for (const BadInput& bad : catalog) {
     const std::string dir =
