@@ -2,6 +2,8 @@
 
 #include "fit3dof/data_selection.h"
 
+#include <glog/logging.h>
+
 #include <cmath>
 #include <utility>
 
@@ -39,13 +41,20 @@ TimeHistory SelectSamples(const TimeHistory& record,
   return selector.Finish();
 }
 
-std::vector<double> UnwrapDegrees(const std::vector<double>& angles) {
+std::vector<double> UnwrapDegrees(const std::vector<double>& angles,
+                                  const std::vector<char>& skip) {
+  CHECK(skip.empty() || skip.size() == angles.size());
   std::vector<double> out = angles;
   double shift = 0.0;
-  for (size_t i = 1; i < angles.size(); ++i) {
-    const double step = angles[i] - angles[i - 1];
-    shift -= 360.0 * std::round(step / 360.0);
+  int last = -1;
+  for (size_t i = 0; i < angles.size(); ++i) {
+    if (!skip.empty() && skip[i]) continue;
+    if (last >= 0) {
+      const double step = angles[i] - angles[last];
+      shift -= 360.0 * std::round(step / 360.0);
+    }
     out[i] = angles[i] + shift;
+    last = static_cast<int>(i);
   }
   return out;
 }

@@ -10,6 +10,7 @@
 #include <queue>
 #include <utility>
 
+#include "fit3dof/data_selection.h"
 #include "glog/logging.h"
 
 namespace fit3dof {
@@ -205,27 +206,6 @@ std::vector<Jump> FindJumps(const std::vector<double>& t,
   return jumps;
 }
 
-// The roll angle as a continuous series. Roll is compared modulo 360 deg
-// (the listing's INTGRL), so a record may hold it wrapped into a turn;
-// unwrapped, the jump test sees the motion rather than the wraps. A record
-// whose roll already runs on (possibly faster than half a turn per sample)
-// is left as it is: the screen uses whichever series is smoother.
-std::vector<double> Unwrapped(const std::vector<double>& x,
-                              const std::vector<char>& skip) {
-  std::vector<double> u = x;
-  double offset = 0.0;
-  int last = -1;
-  for (size_t i = 0; i < x.size(); ++i) {
-    if (skip[i]) continue;
-    if (last >= 0) {
-      offset -= 360.0 * std::round((x[i] + offset - u[last]) / 360.0);
-    }
-    u[i] = x[i] + offset;
-    last = static_cast<int>(i);
-  }
-  return u;
-}
-
 // The robust sigma of the prediction errors of a whole series.
 Real Roughness(const std::vector<double>& t,
                const std::vector<double>& x,
@@ -241,13 +221,16 @@ Real Roughness(const std::vector<double>& t,
 }
 
 // The jump test on a channel; for roll, on the smoother of the series as
-// given and unwrapped.
+// given and unwrapped. Roll is compared modulo 360 deg (the listing's
+// INTGRL), so a record may hold it wrapped into a turn; unwrapped, the test
+// sees the motion rather than the wraps. A record whose roll already runs
+// on (possibly faster than half a turn per sample) is left as it is.
 std::vector<Jump> FindChannelJumps(const std::vector<double>& t,
                                    const std::vector<double>& x,
                                    int channel,
                                    const std::vector<char>& flagged) {
   if (channel == 0) {
-    const std::vector<double> u = Unwrapped(x, flagged);
+    const std::vector<double> u = UnwrapDegrees(x, flagged);
     if (Roughness(t, u, flagged) < Roughness(t, x, flagged)) {
       return FindJumps(t, u, flagged);
     }
@@ -257,6 +240,20 @@ std::vector<Jump> FindChannelJumps(const std::vector<double>& t,
 
 const std::vector<double>& Channel(const TimeHistory& data, int channel) {
   return channel == 0 ? data.phi : channel == 1 ? data.theta : data.psi;
+}
+
+WildPoint FromJump(const Jump& j,
+                   const TimeHistory& data,
+                   int channel,
+                   WildPointTest test) {
+  const std::vector<double>& x = Channel(data, channel);
+  return {j.sample,
+          data.t[j.sample],
+          channel,
+          x[j.sample],
+          j.deviation,
+          j.sigmas,
+          test};
 }
 
 void SortPoints(std::vector<WildPoint>* points) {
@@ -338,13 +335,7 @@ std::vector<WildPoint> ScreenData(const TimeHistory& data) {
       }
     }
     for (const Jump& j : FindChannelJumps(data.t, x, channel, flagged)) {
-      points.push_back({j.sample,
-                        data.t[j.sample],
-                        channel,
-                        x[j.sample],
-                        j.deviation,
-                        j.sigmas,
-                        WildPointTest::kJump});
+      points.push_back(FromJump(j, data, channel, WildPointTest::kJump));
     }
   }
   SortPoints(&points);
@@ -391,13 +382,7 @@ std::vector<WildPoint> ScreenResiduals(const TimeHistory& data,
       }
     }
     for (const Jump& j : jumps) {
-      points.push_back({j.sample,
-                        data.t[j.sample],
-                        channel,
-                        x[j.sample],
-                        j.deviation,
-                        j.sigmas,
-                        WildPointTest::kResidual});
+      points.push_back(FromJump(j, data, channel, WildPointTest::kResidual));
     }
   }
   SortPoints(&points);

@@ -37,8 +37,11 @@ class SampleSelector {
 };
 
 // Roll angles made continuous (no jumps of more than 180 deg between
-// samples), for records that wrap phi into [0, 360).
-std::vector<double> UnwrapDegrees(const std::vector<double>& angles);
+// samples), for records that wrap phi into [0, 360). Samples marked in
+// `skip` (if given; one entry per angle) keep their value and are not
+// anyone's predecessor: a wild sample does not shift the rest.
+std::vector<double> UnwrapDegrees(const std::vector<double>& angles,
+                                  const std::vector<char>& skip = {});
 
 }  // namespace fit3dof
 
