@@ -10,11 +10,11 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <cstring>
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -237,17 +237,16 @@ class DirectoryLock {
           ::open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
       if (fd >= 0) {
         const std::string pid = std::to_string(::getpid()) + "\n";
-        const bool written =
-            ::write(fd, pid.data(), pid.size()) ==
-            static_cast<ssize_t>(pid.size());
+        const bool written = ::write(fd, pid.data(), pid.size()) ==
+                             static_cast<ssize_t>(pid.size());
         ::close(fd);
         if (!written) break;
         return;
       }
       if (errno != EEXIST) break;
       const long holder = std::atol(ReadFile(path_).c_str());
-      if (holder > 0 && (::kill(static_cast<pid_t>(holder), 0) == 0 ||
-                         errno == EPERM)) {
+      if (holder > 0 &&
+          (::kill(static_cast<pid_t>(holder), 0) == 0 || errno == EPERM)) {
         throw InputError(dir + ": another fit3dof batch (pid " +
                          std::to_string(holder) +
                          ") is writing into this directory (lock " + path_ +
@@ -257,8 +256,8 @@ class DirectoryLock {
                    << ", which is gone";
       ::unlink(path_.c_str());
     }
-    throw InputError(path_ + ": cannot create the lock file: " +
-                     std::strerror(errno));
+    throw InputError(path_ +
+                     ": cannot create the lock file: " + std::strerror(errno));
   }
   ~DirectoryLock() { ::unlink(path_.c_str()); }
   DirectoryLock(const DirectoryLock&) = delete;

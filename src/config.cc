@@ -17,8 +17,8 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <vector>
 #include <sstream>
+#include <vector>
 
 #include "config_node.h"
 #include "fit3dof/input_error.h"
@@ -30,8 +30,11 @@ namespace fs = std::filesystem;
 
 class ConfigReader {
  public:
-  ConfigReader(std::string source, std::string base_dir, bool node_lines,
-               const KeyLines* key_lines = nullptr, std::string label = "")
+  ConfigReader(std::string source,
+               std::string base_dir,
+               bool node_lines,
+               const KeyLines* key_lines = nullptr,
+               std::string label = "")
       : source_(std::move(source)),
         base_dir_(std::move(base_dir)),
         node_lines_(node_lines),
@@ -446,13 +449,13 @@ void ConfigReader::ReadData(const YAML::Node& node,
     Fail(node, path, "t_end must be later than t_start");
   }
   if (node["outliers"]) {
-    const std::string policy =
-        String(node["outliers"], Join(path, "outliers"));
+    const std::string policy = String(node["outliers"], Join(path, "outliers"));
     if (!ParseOutlierPolicy(policy, &s->outliers)) {
       Fail(node["outliers"],
            Join(path, "outliers"),
            "expected 'warn' (name wild points, keep them) or 'reject' (name "
-           "them and fit without them), got '" + policy + "'");
+           "them and fit without them), got '" +
+               policy + "'");
     }
   }
 }
@@ -630,8 +633,8 @@ void ConfigReader::ReadSimulate(const YAML::Node& node, Case* c) const {
                " samples; at most 1e8 (is dt in seconds?)");
     }
   } else {
-    c->simulate.samples =
-        static_cast<int>(Integer(node["samples"], "simulate.samples", 2, 100000000));
+    c->simulate.samples = static_cast<int>(
+        Integer(node["samples"], "simulate.samples", 2, 100000000));
   }
 }
 
@@ -702,8 +705,10 @@ Case ParseConfigNode(const YAML::Node& root,
       .Read(root);
 }
 
-void RecordKeyLines(const YAML::Node& node, const std::string& file,
-                    const std::string& prefix, KeyLines* lines) {
+void RecordKeyLines(const YAML::Node& node,
+                    const std::string& file,
+                    const std::string& prefix,
+                    KeyLines* lines) {
   auto at = [&](const YAML::Node& n) {
     return file + ":" + std::to_string(n.Mark().line + 1);
   };
@@ -773,15 +778,17 @@ void CheckStrict(const YAML::Node& node, const std::string& source) {
     std::map<std::string, int> seen;
     for (const auto& item : node) {
       if (!item.first.IsScalar()) {
-        fail(item.first, "a key must be a plain name (complex keys are not "
-                         "allowed)");
+        fail(item.first,
+             "a key must be a plain name (complex keys are not "
+             "allowed)");
       }
       CheckStrict(item.first, source);
       const std::string key = item.first.Scalar();
       const auto [at, fresh] = seen.emplace(key, item.first.Mark().line + 1);
       if (!fresh) {
-        fail(item.first, key + ": given twice in one mapping (first at line " +
-                             std::to_string(at->second) + ")");
+        fail(item.first,
+             key + ": given twice in one mapping (first at line " +
+                 std::to_string(at->second) + ")");
       }
       CheckStrict(item.second, source);
     }
@@ -840,16 +847,22 @@ class DocumentProbe : public YAML::EventHandler {
   void OnDocumentEnd() override {}
   void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
   void OnAlias(const YAML::Mark&, YAML::anchor_t) override { content = true; }
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+  void OnScalar(const YAML::Mark&,
+                const std::string&,
+                YAML::anchor_t,
                 const std::string&) override {
     content = true;
   }
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+  void OnSequenceStart(const YAML::Mark&,
+                       const std::string&,
+                       YAML::anchor_t,
                        YAML::EmitterStyle::value) override {
     content = true;
   }
   void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+  void OnMapStart(const YAML::Mark&,
+                  const std::string&,
+                  YAML::anchor_t,
                   YAML::EmitterStyle::value) override {
     content = true;
   }
@@ -873,8 +886,8 @@ YAML::Node ParseYamlText(const std::string& text, const std::string& source) {
     std::istringstream in(text);
     YAML::Parser parser(in);
     DocumentProbe first, second;
-    if (parser.HandleNextDocument(first) &&
-        parser.HandleNextDocument(second) && second.content) {
+    if (parser.HandleNextDocument(first) && parser.HandleNextDocument(second) &&
+        second.content) {
       throw InputError(source + ":" + std::to_string(second.start.line + 1) +
                        ": a second YAML document ('---'); a config or "
                        "manifest is one document");

@@ -91,7 +91,8 @@ TimeHistory LoadSegment(const Case& c, const Segment& s, int index) {
   return data;
 }
 
-PreparedSegment PrepareSegment(const Case& c, const Segment& s,
+PreparedSegment PrepareSegment(const Case& c,
+                               const Segment& s,
                                TimeHistory data) {
   PreparedSegment p;
   p.name = s.name;
@@ -218,7 +219,8 @@ bool Information(const Assembly& a,
   // Columns in global free order need every coordinate in the Jacobian: an
   // assembly with held coordinates (SubsetManifold) has fewer columns.
   int ambient = 0;
-  for (double* block : a.blocks) ambient += a.problem->ParameterBlockSize(block);
+  for (double* block : a.blocks)
+    ambient += a.problem->ParameterBlockSize(block);
   CHECK_EQ(crs.num_cols, ambient)
       << "Information() needs an assembly without held coordinates";
   // J^T J and J^T r row by row from the CRS form: no second copy of a
@@ -1342,13 +1344,14 @@ constexpr int kWildPointWarnings = 10;
 // "the data hold 2 wild points (first: ...); data: {outliers: reject}
 // drops them", for a fit that failed with wild points in its data.
 std::string WildPointSummary(const std::vector<Outlier>& outliers) {
-  return "the data hold " + std::to_string(outliers.size()) +
-         " wild point" + (outliers.size() == 1 ? "" : "s") + " (first: " +
-         outliers[0].point.Describe() +
+  return "the data hold " + std::to_string(outliers.size()) + " wild point" +
+         (outliers.size() == 1 ? "" : "s") +
+         " (first: " + outliers[0].point.Describe() +
          "); data: {outliers: reject} drops them";
 }
 
-void ReportWildPoints(const Case& c, const std::vector<Outlier>& outliers,
+void ReportWildPoints(const Case& c,
+                      const std::vector<Outlier>& outliers,
                       FitResult* result) {
   result->outliers = outliers;
   int dropped = 0;
@@ -1397,8 +1400,7 @@ FitResult Fit(const Case& c) {
     result = FitData(c, data);
   } catch (const InputError& e) {
     if (outliers.empty()) throw;
-    throw InputError(std::string(e.what()) + "; " +
-                     WildPointSummary(outliers));
+    throw InputError(std::string(e.what()) + "; " + WildPointSummary(outliers));
   }
   // After the fit: residuals the fit cannot reach. A rejecting segment
   // drops them and the fit runs again from where it stopped (a wild point

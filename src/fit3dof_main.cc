@@ -24,8 +24,8 @@
 #include "fit3dof/interrupt.h"
 #include "fit3dof/namelist.h"
 #include "fit3dof/progress.h"
-#include "fit3dof/thread_budget.h"
 #include "fit3dof/simulator.h"
+#include "fit3dof/thread_budget.h"
 #include "fit3dof/time_history.h"
 #include "fit3dof/version.h"
 
@@ -217,7 +217,8 @@ CLI::App* Command(CLI::App* app,
 }
 
 void AddData(CLI::App* sub) {
-  sub->add_option("--data", FLAGS.data,
+  sub->add_option("--data",
+                  FLAGS.data,
                   "NAMELIST decks: the data file (CSV) the fitting groups use");
 }
 
@@ -235,53 +236,59 @@ int Run(int argc, char** argv) {
   app.set_version_flag("--version", "fit3dof " FIT3DOF_VERSION);
   app.require_subcommand(1, 1);
   int verbosity = 0;
-  app.add_option("-v,--v", verbosity,
+  app.add_option("-v,--v",
+                 verbosity,
                  "log every iteration (1) like the report's listing")
       ->check(CLI::Range(0, 9));
   std::map<CLI::App*, Handler> handlers;
 
-  CLI::App* simulate = Command(&app, "simulate",
+  CLI::App* simulate = Command(&app,
+                               "simulate",
                                "motion from the config's parameters "
-                               "(NSWTCH 1/2)", "CONFIG");
+                               "(NSWTCH 1/2)",
+                               "CONFIG");
   simulate->add_option("--out", FLAGS.out, "CSV of t, phi, theta, psi");
   handlers[simulate] = &Simulate;
 
-  CLI::App* fit = Command(&app, "fit", "fit the config's data (NSWTCH 0)",
-                          "CONFIG");
+  CLI::App* fit =
+      Command(&app, "fit", "fit the config's data (NSWTCH 0)", "CONFIG");
   fit->add_option("--out_dir", FLAGS.out_dir, "report.json and fit.csv");
   AddData(fit);
   handlers[fit] = &FitCommand;
 
   CLI::App* batch = app.add_subcommand(
-      "batch", "reduce a campaign: a manifest, a directory of configs, a "
-               "config or a deck (or --merge shard directories)");
+      "batch",
+      "reduce a campaign: a manifest, a directory of configs, a "
+      "config or a deck (or --merge shard directories)");
   batch->add_option("MANIFEST", FLAGS.args, "MANIFEST, or DIR... with --merge");
   batch->add_option("--out_dir", FLAGS.out_dir, "one directory per run");
   AddJobs(batch, "runs in parallel (default: one per core)");
   batch->add_option("--shard", FLAGS.shard, "run only the K-th of N slices");
-  batch->add_flag("--resume", FLAGS.resume,
+  batch->add_flag("--resume",
+                  FLAGS.resume,
                   "skip runs whose report was made from the same data, "
                   "config and version");
-  batch->add_flag("--merge", FLAGS.merge,
+  batch->add_flag("--merge",
+                  FLAGS.merge,
                   "merge the summaries of shard output directories");
-  batch->add_flag("--progress,!--noprogress", FLAGS.progress,
+  batch->add_flag("--progress,!--noprogress",
+                  FLAGS.progress,
                   "live progress line on a terminal (default true)");
   AddData(batch);
   handlers[batch] = &BatchCommand;
 
-  CLI::App* namelist = Command(&app, "namelist",
-                               "convert a legacy NAMELIST deck to YAML",
-                               "DECK");
+  CLI::App* namelist = Command(
+      &app, "namelist", "convert a legacy NAMELIST deck to YAML", "DECK");
   namelist->add_option("--out", FLAGS.out, "YAML file (default: stdout)");
   AddData(namelist);
   handlers[namelist] = &NamelistCommand;
 
-  CLI::App* basin = Command(&app, "basin", "convergence-basin study",
-                            "CONFIG");
+  CLI::App* basin = Command(&app, "basin", "convergence-basin study", "CONFIG");
   basin->add_option("--starts", FLAGS.starts, "starting guesses drawn")
       ->check(CLI::Range(1, 1000000));
   basin->add_option("--seed", FLAGS.seed, "seed of the draws");
-  basin->add_option("--methods", FLAGS.methods,
+  basin->add_option("--methods",
+                    FLAGS.methods,
                     "comma-separated: gauss_newton, levenberg_marquardt, "
                     "robust");
   basin->add_option("--out", FLAGS.out, "JSON of the study");
@@ -289,10 +296,10 @@ int Run(int argc, char** argv) {
   AddData(basin);
   handlers[basin] = &BasinCommand;
 
-  CLI::App* diagnose = Command(&app, "diagnose",
-                               "find, name and add missing effects",
-                               "CONFIG");
-  diagnose->add_option("--out_dir", FLAGS.out_dir,
+  CLI::App* diagnose =
+      Command(&app, "diagnose", "find, name and add missing effects", "CONFIG");
+  diagnose->add_option("--out_dir",
+                       FLAGS.out_dir,
                        "each step's fit, diagnosis.json, final.yaml");
   AddData(diagnose);
   handlers[diagnose] = &DiagnoseCommand;
@@ -301,8 +308,7 @@ int Run(int argc, char** argv) {
   std::string topic;
   help->add_option("COMMAND", topic, "a command");
 
-  bool known = argc < 2 || argv[1][0] == '-' ||
-               std::string(argv[1]) == "help";
+  bool known = argc < 2 || argv[1][0] == '-' || std::string(argv[1]) == "help";
   for (const auto& [sub, handler] : handlers) {
     known |= argc >= 2 && sub->get_name() == argv[1];
   }

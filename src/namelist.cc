@@ -361,12 +361,24 @@ void Apply(const std::string& source,
   // The listing's integer variables (Fortran's I-N rule; IX, IY, IZ, IZX
   // are declared real) hold whole numbers an INTEGER can: anything else is
   // refused here, where the line is known, before it is cast.
-  static const std::set<std::string> kIntegers = {
-      "NSWTCH", "NTOT",  "NC",    "NITER", "NSESWH", "NDELTA", "NSTART",
-      "IUPDAT", "INLCON", "IANGLE", "IGPNO", "IBLKNO", "IRCGEN", "IRCSTR"};
+  static const std::set<std::string> kIntegers = {"NSWTCH",
+                                                  "NTOT",
+                                                  "NC",
+                                                  "NITER",
+                                                  "NSESWH",
+                                                  "NDELTA",
+                                                  "NSTART",
+                                                  "IUPDAT",
+                                                  "INLCON",
+                                                  "IANGLE",
+                                                  "IGPNO",
+                                                  "IBLKNO",
+                                                  "IRCGEN",
+                                                  "IRCSTR"};
   const DeckValue& v = a.values[0];
   if (kIntegers.count(a.variable) > 0 && v.kind == DeckValue::kNumber &&
-      !(v.number == std::floor(v.number) && std::abs(v.number) <= 2147483647.0)) {
+      !(v.number == std::floor(v.number) &&
+        std::abs(v.number) <= 2147483647.0)) {
     throw InputError(where + a.variable +
                      ": expected an integer from -2147483647 to 2147483647");
   }

@@ -57,7 +57,8 @@ bool ParseDecimal(const char* token, double* value) {
 }
 
 // Passes every row to `sink` after checking it; returns the row count.
-int ReadRows(CsvReader* reader, const std::string& source,
+int ReadRows(CsvReader* reader,
+             const std::string& source,
              const SampleSink& sink) {
   static const char* const kColumns[4] = {"t", "phi", "theta", "psi"};
   reader->read_header(io::ignore_extra_column, "t", "phi", "theta", "psi");
@@ -158,10 +159,10 @@ TimeHistory ParseTimeHistory(const std::string& text,
   TimeHistory history;
   try {
     CsvReader reader(source, text.data(), text.data() + text.size());
-    ReadRows(&reader, source,
-             [&](double t, double phi, double theta, double psi) {
-               history.Append(t, phi, theta, psi);
-             });
+    ReadRows(
+        &reader, source, [&](double t, double phi, double theta, double psi) {
+          history.Append(t, phi, theta, psi);
+        });
   } catch (const io::error::base& e) {
     throw InputError(CsvProblem(e, source));
   }

@@ -5,8 +5,8 @@
 // must exit with status 2, name the file and the line or key (or the flag),
 // and leave nothing in the output directory.
 
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -323,7 +323,8 @@ std::vector<BadInput> Catalog() {
   deck("deck NSWTCH beyond an integer (fuzzer finding: undefined cast)",
        " &NAM\n NSWTCH=7.77778E9 &END\n",
        "extra:2: NSWTCH: expected an integer");
-  deck("deck fractional NITER", " &NAM NITER=2.5 &END\n",
+  deck("deck fractional NITER",
+       " &NAM NITER=2.5 &END\n",
        "extra:1: NITER: expected an integer");
   deck("deck no group", "just a title\n", "no NAMELIST group");
   // Flags.
