@@ -24,6 +24,13 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// Run i of a manifest: r000, r001, ...
+std::string RunName(int i) {
+  char name[16];
+  std::snprintf(name, sizeof(name), "r%03d", i);
+  return name;
+}
+
 // A manifest of `runs` Table 6 fits (the first 161 samples, so they are quick),
 // one noise seed per run; `extra` maps run index to extra YAML flow keys.
 std::string Manifest(const std::string& dir,
@@ -51,9 +58,8 @@ std::string Manifest(const std::string& dir,
        "  solver: {step: 0.01}\n"
        "runs:\n";
   for (int i = 0; i < runs; ++i) {
-    char name[16];
-    std::snprintf(name, sizeof(name), "r%03d", i);
-    m << "  - name: " << name << "\n    noise: {seed: " << 100 + i << "}\n";
+    m << "  - name: " << RunName(i) << "\n    noise: {seed: " << 100 + i
+      << "}\n";
     const auto it = extra.find(i);
     if (it != extra.end()) m << it->second;
   }
@@ -77,27 +83,32 @@ const json& RunIn(const json& summary, const std::string& name) {
 
 TEST(Batch, HundredRunsThreeBrokenTheRestFinish) {
   const std::string dir = testing::ScratchDirectory("batch_hundred");
+  // The sanitized build runs a fifth of the campaign (the same paths).
+  const int kRuns = testing::kSanitized ? 20 : 100;
+  const int kMissing = 13, kTypo = kRuns * 42 / 100, kShort = kRuns * 77 / 100;
+  const std::string missing = RunName(kMissing), typo = RunName(kTypo),
+                    short_run = RunName(kShort);
   const std::string manifest =
       Manifest(dir,
-               100,
-               {{13, "    data: {file: missing.csv}\n"},
-                {42, "    parameters: {Cm_alfa: {value: 1.0, free: true}}\n"},
-                {77, "    solver: {max_iterations: 1}\n"}});
+               kRuns,
+               {{kMissing, "    data: {file: missing.csv}\n"},
+                {kTypo, "    parameters: {Cm_alfa: {value: 1.0, free: true}}\n"},
+                {kShort, "    solver: {max_iterations: 1}\n"}});
   const auto result =
       testing::RunFit3dof("batch " + manifest + " --jobs=2 --out_dir=" + dir +
                           "/out --progress=false");
   EXPECT_EQ(result.exit_status, 1) << result.output;
   const json summary = Summary(dir + "/out");
-  EXPECT_EQ(summary["counts"]["total"], 100);
-  EXPECT_EQ(summary["counts"]["converged"], 97);
+  EXPECT_EQ(summary["counts"]["total"], kRuns);
+  EXPECT_EQ(summary["counts"]["converged"], kRuns - 3);
   EXPECT_EQ(summary["counts"]["failed"], 2);
   EXPECT_EQ(summary["counts"]["not_converged"], 1);
-  EXPECT_EQ(RunIn(summary, "r013")["status"], "failed");
+  EXPECT_EQ(RunIn(summary, missing)["status"], "failed");
   EXPECT_NE(
-      RunIn(summary, "r013")["reason"].get<std::string>().find("missing.csv"),
+      RunIn(summary, missing)["reason"].get<std::string>().find("missing.csv"),
       std::string::npos);
-  EXPECT_EQ(RunIn(summary, "r042")["status"], "failed");
-  EXPECT_NE(RunIn(summary, "r042")["reason"].get<std::string>().find("Cm_alfa"),
+  EXPECT_EQ(RunIn(summary, typo)["status"], "failed");
+  EXPECT_NE(RunIn(summary, typo)["reason"].get<std::string>().find("Cm_alfa"),
             std::string::npos);
   // A run's error names the manifest's line of the offending key.
   {
@@ -105,23 +116,24 @@ TEST(Batch, HundredRunsThreeBrokenTheRestFinish) {
     const size_t at = text.find("Cm_alfa");
     const long line = 1 + std::count(text.begin(), text.begin() + at, '\n');
     const std::string expected =
-        "manifest.yaml:" + std::to_string(line) + ": run 'r042': parameters";
-    EXPECT_NE(RunIn(summary, "r042")["reason"].get<std::string>().find(expected),
+        "manifest.yaml:" + std::to_string(line) + ": run '" + typo +
+        "': parameters";
+    EXPECT_NE(RunIn(summary, typo)["reason"].get<std::string>().find(expected),
               std::string::npos)
-        << RunIn(summary, "r042")["reason"] << " lacks " << expected;
+        << RunIn(summary, typo)["reason"] << " lacks " << expected;
   }
-  EXPECT_EQ(RunIn(summary, "r077")["status"], "not converged");
+  EXPECT_EQ(RunIn(summary, short_run)["status"], "not converged");
   // The terminal report names the three and why.
-  EXPECT_NE(result.output.find("r042: failed:"), std::string::npos)
+  EXPECT_NE(result.output.find(typo + ": failed:"), std::string::npos)
       << result.output;
   // Every converged run has its report, fit and config; failed runs say why.
   EXPECT_TRUE(fs::exists(dir + "/out/r000/report.json"));
   EXPECT_TRUE(fs::exists(dir + "/out/r000/fit.csv"));
   EXPECT_TRUE(fs::exists(dir + "/out/r000/config.yaml"));
-  EXPECT_TRUE(fs::exists(dir + "/out/r013/error.txt"));
+  EXPECT_TRUE(fs::exists(dir + "/out/" + missing + "/error.txt"));
   // The summary CSV: a row per run, value and RMS columns per parameter.
   const std::string csv = testing::ReadText(dir + "/out/summary.csv");
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 101);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), kRuns + 1);
   EXPECT_NE(csv.find(",Cm_alpha,Cm_alpha_rms,"), std::string::npos);
   // The coefficients are right.
   EXPECT_NEAR(
@@ -132,7 +144,9 @@ TEST(Batch, HundredRunsThreeBrokenTheRestFinish) {
 
 TEST(Batch, ResumeAfterAKillRedoesOnlyTheUnfinishedRuns) {
   const std::string dir = testing::ScratchDirectory("batch_resume");
-  const std::string manifest = Manifest(dir, 30);
+  const int kRuns = testing::kSanitized ? 12 : 30;
+  const std::string runs = std::to_string(kRuns) + " runs (";
+  const std::string manifest = Manifest(dir, kRuns);
   // The uninterrupted reference.
   ASSERT_EQ(testing::RunFit3dof("batch " + manifest +
                                 " --jobs=2 --progress=false --out_dir=" + dir +
@@ -161,12 +175,12 @@ TEST(Batch, ResumeAfterAKillRedoesOnlyTheUnfinishedRuns) {
     }
   }
   ASSERT_GE(finished.size(), 5u);
-  ASSERT_LT(finished.size(), 30u);
+  ASSERT_LT(finished.size(), static_cast<size_t>(kRuns));
   const auto resumed = testing::RunFit3dof(
       "batch " + manifest +
       " --jobs=2 --resume --progress=false --out_dir=" + out);
   ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
-  EXPECT_NE(resumed.output.find("30 runs (" + std::to_string(finished.size()) +
+  EXPECT_NE(resumed.output.find(runs + std::to_string(finished.size()) +
                                 " resumed)"),
             std::string::npos)
       << resumed.output;
@@ -188,7 +202,7 @@ TEST(Batch, ResumeAfterAKillRedoesOnlyTheUnfinishedRuns) {
   const auto again = testing::RunFit3dof(
       "batch " + manifest +
       " --jobs=2 --resume --progress=false --out_dir=" + out);
-  EXPECT_NE(again.output.find("30 runs (29 resumed)"), std::string::npos)
+  EXPECT_NE(again.output.find(runs + std::to_string(kRuns - 1) + " resumed)"), std::string::npos)
       << again.output;
 }
 
