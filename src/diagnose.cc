@@ -87,11 +87,12 @@ bool CandidateCase(const Case& at,
 // parameters at the current solution.
 CandidateScore Score(const Case& candidate,
                      const std::vector<std::string>& added,
-                     const std::string& id) {
+                     const std::string& id,
+                     const std::vector<TimeHistory>& data) {
   CandidateScore score;
   score.effect = id;
   Linearization l;
-  if (!Linearize(candidate, &l)) return score;
+  if (!Linearize(candidate, data, &l)) return score;
   std::vector<int> c_index, f_index;
   const auto& table = ParameterTable(candidate.model);
   for (size_t g = 0; g < l.names.size(); ++g) {
@@ -285,6 +286,10 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
   for (int step = 0; step < options.max_steps && !check.at_noise_level;
        ++step) {
     const Case at = CaseAtSolution(current, fit);
+    // The samples the fit used (selected, noise added, wild points
+    // screened): read once, not once per candidate.
+    std::vector<TimeHistory> data;
+    for (const SegmentFit& segment : fit.segments) data.push_back(segment.data);
     struct Candidate {
       const Effect* effect;
       Case c;
@@ -300,7 +305,7 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
       }
       Candidate k{&e, Case(), {}, {}};
       if (!CandidateCase(at, e, &k.c, &k.added)) continue;
-      k.score = Score(k.c, k.added, e.id);
+      k.score = Score(k.c, k.added, e.id, data);
       if (k.score.dof > 0) candidates.push_back(std::move(k));
     }
     std::sort(candidates.begin(),

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "fit3dof/data_selection.h"
+#include "format.h"
 #include "glog/logging.h"
 
 namespace fit3dof {
@@ -265,12 +266,6 @@ void SortPoints(std::vector<WildPoint>* points) {
             });
 }
 
-std::string Format(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), format, value);
-  return buffer;
-}
-
 }  // namespace
 
 bool ParseOutlierPolicy(const std::string& text, OutlierPolicy* policy) {
@@ -296,20 +291,21 @@ const char* ChannelName(int channel) {
 
 std::string WildPoint::Describe() const {
   std::string line = std::string(ChannelName(channel)) + " = " +
-                     Format("%.6g", value) +
-                     " deg at t = " + Format("%.6g", t) + " s: ";
+                     FormatNumber("%.6g", value) +
+                     " deg at t = " + FormatNumber("%.6g", t) + " s: ";
   switch (test) {
     case WildPointTest::kReach:
       return line +
              (channel == 1 ? "at or beyond +-90 deg" : "beyond 1e9 deg") +
              ", where no motion of the model goes";
     case WildPointTest::kJump:
-      return line + Format("%.3g", deviation) +
+      return line + FormatNumber("%.3g", deviation) +
              " deg off the cubic through its neighbours (" +
-             Format("%.3g", sigmas) + " robust sigmas)";
+             FormatNumber("%.3g", sigmas) + " robust sigmas)";
     case WildPointTest::kResidual:
-      return line + Format("%.3g", deviation) + " deg off the fitted motion (" +
-             Format("%.3g", sigmas) + " robust sigmas)";
+      return line + FormatNumber("%.3g", deviation) +
+             " deg off the fitted motion (" + FormatNumber("%.3g", sigmas) +
+             " robust sigmas)";
   }
   return line;
 }

@@ -123,8 +123,23 @@ struct Linearization {
   double ressum = 0.0;
   int points = 0;
 };
-// False when the motion cannot be integrated at the case's values.
+// False when the motion cannot be integrated at the case's values. Reads
+// the case's data (ReadSegmentData).
 bool Linearize(const Case& c, Linearization* out);
+// The same for samples already read: one record per segment of `c`, as
+// ReadSegmentData returns them or a FitResult's segments hold them.
+bool Linearize(const Case& c,
+               const std::vector<TimeHistory>& data,
+               Linearization* out);
+
+// Each segment's samples as a fit uses them: read through its data
+// selection (only the selected samples are kept), noise added (the seed
+// advanced per segment) and screened for wild points (wild_points.h). The
+// points found are appended to `outliers`; a segment whose policy is reject
+// loses their samples. Throws InputError naming the config for an
+// unreadable file or a selection of fewer than 2 samples.
+std::vector<TimeHistory> ReadSegmentData(const Case& c,
+                                         std::vector<Outlier>* outliers);
 
 }  // namespace fit3dof
 

@@ -1,0 +1,165 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// A FitProblem as a Ceres problem, and its normal equations (assembly.h).
+
+#include "assembly.h"
+
+#include <glog/logging.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace fit3dof {
+
+Assembly Assemble(const std::vector<PreparedSegment>& segments,
+                  const FreeLayout& free,
+                  const std::shared_ptr<const MotionModel>& model,
+                  const ChannelValues& sigma,
+                  const std::vector<double>& values,
+                  const std::vector<double>& scale) {
+  Assembly a;
+  ceres::Problem::Options options;
+  a.problem = std::make_unique<ceres::Problem>(options);
+  const int ks = static_cast<int>(free.shared.size());
+  a.shared_u.resize(ks);
+  for (int g = 0; g < ks; ++g) a.shared_u[g] = values[g] / scale[g];
+  a.own_u.resize(segments.size());
+  for (size_t s = 0; s < segments.size(); ++s) {
+    const int first = free.own_offset[s];
+    const int count = static_cast<int>(segments[s].own.size());
+    a.own_u[s].resize(count);
+    for (int j = 0; j < count; ++j) {
+      a.own_u[s][j] = values[first + j] / scale[first + j];
+    }
+  }
+  if (ks > 0) a.blocks.push_back(a.shared_u.data());
+  for (size_t s = 0; s < segments.size(); ++s) {
+    if (!a.own_u[s].empty()) a.blocks.push_back(a.own_u[s].data());
+  }
+  for (size_t s = 0; s < segments.size(); ++s) {
+    const PreparedSegment& p = segments[s];
+    std::vector<int> positions = free.shared;
+    std::vector<double> segment_scale(scale.begin(), scale.begin() + ks);
+    std::vector<double> base = p.base;
+    for (int g = 0; g < ks; ++g) base[free.shared[g]] = values[g];
+    for (size_t j = 0; j < p.own.size(); ++j) {
+      positions.push_back(p.own[j]);
+      segment_scale.push_back(scale[free.own_offset[s] + j]);
+    }
+    auto* cost = new SegmentCostFunction(
+        model, base, positions, ks, segment_scale, p.data, sigma);
+    std::vector<double*> blocks;
+    if (ks > 0) blocks.push_back(a.shared_u.data());
+    if (!a.own_u[s].empty()) blocks.push_back(a.own_u[s].data());
+    a.problem->AddResidualBlock(cost, nullptr, blocks);
+    a.costs.push_back(cost);
+  }
+  return a;
+}
+
+std::vector<double> FreeValues(const Assembly& a,
+                               const FreeLayout& free,
+                               const std::vector<double>& scale) {
+  std::vector<double> values(free.size());
+  const int ks = static_cast<int>(a.shared_u.size());
+  for (int g = 0; g < ks; ++g) values[g] = scale[g] * a.shared_u[g];
+  for (size_t s = 0; s < a.own_u.size(); ++s) {
+    for (size_t j = 0; j < a.own_u[s].size(); ++j) {
+      const int g = free.own_offset[s] + static_cast<int>(j);
+      values[g] = scale[g] * a.own_u[s][j];
+    }
+  }
+  return values;
+}
+
+std::vector<double> SegmentFullValues(const Assembly& a, size_t s) {
+  std::vector<const double*> blocks;
+  if (!a.shared_u.empty()) blocks.push_back(a.shared_u.data());
+  if (!a.own_u[s].empty()) blocks.push_back(a.own_u[s].data());
+  return a.costs[s]->FullValues(blocks.data());
+}
+
+bool Information(const Assembly& a,
+                 Eigen::MatrixXd* jtj,
+                 double* ressum,
+                 Eigen::VectorXd* jtr) {
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = a.blocks;
+  double cost = 0.0;
+  ceres::CRSMatrix crs;
+  std::vector<double> residuals;
+  if (!a.problem->Evaluate(
+          options, &cost, jtr ? &residuals : nullptr, nullptr, &crs)) {
+    return false;
+  }
+  *ressum = 2.0 * cost;
+  // Columns in global free order need every coordinate in the Jacobian: an
+  // assembly with held coordinates (SubsetManifold) has fewer columns.
+  int ambient = 0;
+  for (double* block : a.blocks)
+    ambient += a.problem->ParameterBlockSize(block);
+  CHECK_EQ(crs.num_cols, ambient)
+      << "Information() needs an assembly without held coordinates";
+  // J^T J and J^T r row by row from the CRS form: no second copy of a
+  // Jacobian that has 3 rows per sample.
+  const int k = crs.num_cols;
+  jtj->setZero(k, k);
+  if (jtr != nullptr) jtr->setZero(k);
+  for (int r = 0; r < crs.num_rows; ++r) {
+    const int begin = crs.rows[r], end = crs.rows[r + 1];
+    for (int a = begin; a < end; ++a) {
+      const double va = crs.values[a];
+      for (int b = a; b < end; ++b) {
+        const int i = std::min(crs.cols[a], crs.cols[b]);
+        const int j = std::max(crs.cols[a], crs.cols[b]);
+        (*jtj)(i, j) += va * crs.values[b];
+      }
+      if (jtr != nullptr) (*jtr)(crs.cols[a]) += va * residuals[r];
+    }
+  }
+  const Eigen::MatrixXd upper = *jtj;
+  *jtj = upper.selfadjointView<Eigen::Upper>();
+  return true;
+}
+
+std::vector<double> ColumnScales(const Eigen::MatrixXd& jtj_unscaled,
+                                 const std::vector<double>& old_scale) {
+  std::vector<double> scale(old_scale.size());
+  for (size_t g = 0; g < scale.size(); ++g) {
+    const double norm = std::sqrt(jtj_unscaled(g, g));
+    scale[g] = (norm > 0.0 && std::isfinite(norm)) ? old_scale[g] / norm
+                                                   : old_scale[g];
+  }
+  return scale;
+}
+
+// Real columns span about 1e-1 (deg per unit of a cubic damping term) to
+// 1e8 (deg per unit of Cl_0).
+std::vector<bool> NullColumns(const Eigen::MatrixXd& jtj) {
+  const double largest = jtj.diagonal().maxCoeff();
+  std::vector<bool> null(jtj.rows());
+  for (int g = 0; g < jtj.rows(); ++g) {
+    null[g] = !(jtj(g, g) > 1e-20 * largest);
+  }
+  return null;
+}
+
+void HoldCoordinates(const std::vector<bool>& hold, Assembly* a) {
+  int offset = 0;
+  for (double* block : a->blocks) {
+    const int size = a->problem->ParameterBlockSize(block);
+    std::vector<int> constant;
+    for (int j = 0; j < size; ++j) {
+      if (hold[offset + j]) constant.push_back(j);
+    }
+    if (static_cast<int>(constant.size()) == size) {
+      a->problem->SetParameterBlockConstant(block);
+    } else if (!constant.empty()) {
+      a->problem->SetManifold(block, new ceres::SubsetManifold(size, constant));
+    }
+    offset += size;
+  }
+}
+
+}  // namespace fit3dof

@@ -1,0 +1,143 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The continuation pipeline of one attempt (continuation.h).
+
+#include "continuation.h"
+
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "stage_solver.h"
+
+namespace fit3dof {
+namespace {
+
+// A rough period of the angular motion from the zero crossings of theta and
+// psi about their means; 0 when the record holds too few of them.
+double EstimatePeriod(const TimeHistory& data) {
+  double crossings = 0.0;
+  for (const std::vector<double>* channel : {&data.theta, &data.psi}) {
+    double mean = 0.0;
+    for (double x : *channel) mean += x;
+    mean /= channel->size();
+    for (size_t i = 1; i < channel->size(); ++i) {
+      if (((*channel)[i] - mean) * ((*channel)[i - 1] - mean) < 0.0) {
+        crossings += 0.5;  // averaged over the two channels
+      }
+    }
+  }
+  if (crossings < 8.0) return 0.0;
+  return 2.0 * (data.t.back() - data.t.front()) / crossings;
+}
+
+std::vector<PreparedSegment> Window(const std::vector<PreparedSegment>& all,
+                                    double window) {
+  std::vector<PreparedSegment> out = all;
+  for (PreparedSegment& p : out) {
+    TimeHistory cut;
+    for (int i = 0; i < p.data.size(); ++i) {
+      if (p.data.t[i] - p.data.t[0] > window) break;
+      cut.Append(p.data.t[i], p.data.phi[i], p.data.theta[i], p.data.psi[i]);
+    }
+    p.data = cut;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> ContinuationWindows(
+    const std::vector<PreparedSegment>& segments, int num_free) {
+  double longest = 0.0;
+  double period = 0.0;
+  for (const PreparedSegment& p : segments) {
+    longest = std::max(longest, p.data.t.back() - p.data.t.front());
+    period = std::max(period, EstimatePeriod(p.data));
+  }
+  std::vector<double> windows;
+  if (period > 0.0) {
+    for (double w = 2.0 * period; w < 0.75 * longest; w *= 2.0) {
+      // Enough residuals for the free parameters in the window.
+      int points = 0;
+      for (const PreparedSegment& p : segments) {
+        for (double t : p.data.t) points += (t - p.data.t.front() <= w);
+      }
+      if (3 * points >= 4 * num_free + 30) windows.push_back(w);
+    }
+  }
+  windows.push_back(std::numeric_limits<double>::infinity());
+  return windows;
+}
+
+PipelineOutcome RunPipeline(const Case& c,
+                            const FitProblem& problem,
+                            std::vector<double>* values) {
+  const std::vector<PreparedSegment>& segments = problem.segments;
+  const FreeLayout& free = problem.free;
+  PipelineOutcome result;
+  const int k = free.size();
+  const bool gauss_newton = c.solver.method == "gauss_newton";
+  // The report's plain method fits the whole record at once.
+  const std::vector<double> windows =
+      c.solver.continuation && !gauss_newton
+          ? ContinuationWindows(segments, k)
+          : std::vector<double>{std::numeric_limits<double>::infinity()};
+  const std::vector<double> start = *values;
+  for (size_t w = 0; w < windows.size(); ++w) {
+    const bool last = w + 1 == windows.size();
+    const std::vector<PreparedSegment> stage =
+        last ? segments : Window(segments, windows[w]);
+    StageSettings settings;
+    settings.sigma = c.sigma;
+    // Shorter windows only bring the values near: a looser rule.
+    settings.tolerance = last ? c.solver.tolerance : 0.0;
+    settings.relative_tolerance = last ? 0.0 : 1e-4;
+    settings.max_iterations = last ? c.solver.max_iterations : 50;
+    auto solve = [&](std::vector<double>* trial) {
+      return gauss_newton
+                 ? SolveGaussNewton(stage, free, problem.model, settings, trial)
+                 : SolveStage(stage,
+                              free,
+                              problem.model,
+                              problem.names,
+                              settings,
+                              trial);
+    };
+    std::vector<double> trial = *values;
+    StageOutcome outcome = solve(&trial);
+    if (!outcome.integrable && w > 0) {
+      // The shorter window's answer blows up over this longer one: start
+      // this window again from the original values.
+      VLOG(1) << c.name << ": stage " << w + 1
+              << " cannot start from the previous stage (" << outcome.failure
+              << "); restarting it from the starting values";
+      trial = start;
+      outcome = solve(&trial);
+    }
+    if (!outcome.integrable) {
+      result.integrable = false;
+      result.failure = outcome.failure;
+      return result;
+    }
+    *values = trial;
+    result.iterations += outcome.iterations;
+    result.failed_evaluations += outcome.failed_evaluations;
+    const int stage_points = CountPoints(stage);
+    result.stages.push_back({stage_points, outcome.iterations});
+    VLOG(1) << c.name << ": stage " << w + 1 << "/" << windows.size() << " ("
+            << stage_points << " samples): " << outcome.iterations
+            << " iterations, " << outcome.termination;
+    if (last) {
+      result.converged = outcome.converged;
+      result.termination = outcome.termination;
+      result.probable_error =
+          std::sqrt(outcome.ressum / (3 * stage_points - k));
+    }
+  }
+  return result;
+}
+
+}  // namespace fit3dof

@@ -1,0 +1,38 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Restarts for a fit that ended far above the noise level (a local minimum
+// is likely): from what the data say (linear-theory estimates of every free
+// coefficient, nonlinear terms at zero, initial conditions from the data)
+// and from a spread of points around that, each a whole continuation
+// pipeline (continuation.h), in parallel within the process's thread budget
+// (thread_budget.h). The best is kept.
+
+#ifndef FIT3DOF_SRC_MULTI_START_H_
+#define FIT3DOF_SRC_MULTI_START_H_
+
+#include <vector>
+
+#include "continuation.h"
+#include "fit3dof/case.h"
+#include "fit_problem.h"
+
+namespace fit3dof {
+
+struct MultiStartOutcome {
+  int tried = 0;          // starts including the first attempt
+  int reached = 0;        // of them, within 1% of the best probable error
+  int iterations = 0;     // of every restart
+  bool improved = false;  // a restart beat the first attempt
+  PipelineOutcome best;   // when improved
+  std::vector<double> values;
+};
+
+// Restarts (c.solver.starts of them) after `first`, the attempt from the
+// configured starting values.
+MultiStartOutcome RunMultiStart(const Case& c,
+                                const FitProblem& problem,
+                                const PipelineOutcome& first);
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_SRC_MULTI_START_H_

@@ -1,0 +1,257 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Levenberg-Marquardt and Gauss-Newton solves of one stage (stage_solver.h).
+
+#include "stage_solver.h"
+
+#include <glog/logging.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "assembly.h"
+#include "ceres/ceres.h"
+#include "fit3dof/interrupt.h"
+#include "fit3dof/progress.h"
+#include "format.h"
+
+namespace fit3dof {
+namespace {
+
+// Logs each iteration the way the report's listing prints it and applies its
+// convergence rule: stop when the probable error changes by less than BOUND.
+class ReportIterationCallback : public ceres::IterationCallback {
+ public:
+  ReportIterationCallback(const Assembly* assembly,
+                          const FreeLayout* free,
+                          const std::vector<double>* scale,
+                          const std::vector<std::string>* names,
+                          int degrees_of_freedom,
+                          double tolerance,
+                          double relative_tolerance)
+      : assembly_(assembly),
+        free_(free),
+        scale_(scale),
+        names_(names),
+        dof_(degrees_of_freedom),
+        tolerance_(tolerance),
+        relative_tolerance_(relative_tolerance) {}
+
+  ceres::CallbackReturnType operator()(
+      const ceres::IterationSummary& summary) override {
+    if (StopRequested()) return ceres::SOLVER_ABORT;  // Ctrl-C in a batch
+    const double ressum = 2.0 * summary.cost;
+    const double e = std::sqrt(ressum / dof_);
+    std::vector<double> values = FreeValues(*assembly_, *free_, *scale_);
+    if (summary.iteration == 0) {
+      old_e_ = e;
+      previous_ = values;
+      VLOG(1) << "start: sum of residuals " << std::sqrt(ressum)
+              << "  probable error " << e;
+      return ceres::SOLVER_CONTINUE;
+    }
+    CountIteration(e);
+    if (!summary.step_is_successful) return ceres::SOLVER_CONTINUE;
+    std::ostringstream log;
+    log << "ITERATION NO " << summary.iteration << "\n"
+        << "                      CON        DELTA CON\n";
+    for (size_t g = 0; g < values.size(); ++g) {
+      char line[128];
+      std::snprintf(line,
+                    sizeof(line),
+                    "  %-18s %14.6e %14.6e\n",
+                    (*names_)[g].c_str(),
+                    values[g],
+                    values[g] - previous_[g]);
+      log << line;
+    }
+    log << "  SUM OF RESIDUALS " << std::sqrt(ressum)
+        << "   NEW PROBABLE ERROR = " << e
+        << "   OLD PROBABLE ERROR = " << old_e_;
+    VLOG(1) << log.str();
+    const double change = std::abs(e - old_e_);
+    old_e_ = e;
+    previous_ = values;
+    if (change < std::max(tolerance_, relative_tolerance_ * e)) {
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const Assembly* assembly_;
+  const FreeLayout* free_;
+  const std::vector<double>* scale_;
+  const std::vector<std::string>* names_;
+  int dof_;
+  double tolerance_;
+  double relative_tolerance_;
+  double old_e_ = 0.0;
+  std::vector<double> previous_;
+};
+
+}  // namespace
+
+StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
+                        const FreeLayout& free,
+                        const std::shared_ptr<const MotionModel>& model,
+                        const std::vector<std::string>& names,
+                        const StageSettings& settings,
+                        std::vector<double>* values) {
+  const ChannelValues& sigma = settings.sigma;
+  const double tolerance = settings.tolerance;
+  const double relative_tolerance = settings.relative_tolerance;
+  StageOutcome outcome;
+  const int k = free.size();
+  const int points = CountPoints(segments);
+  std::vector<double> scale(k, 1.0);
+  std::vector<bool> null_columns;
+  {
+    // Scale the free coordinates by the Jacobian at the start.
+    Assembly probe = Assemble(segments, free, model, sigma, *values, scale);
+    Eigen::MatrixXd jtj;
+    double ressum;
+    if (!Information(probe, &jtj, &ressum)) {
+      outcome.integrable = false;
+      outcome.failure = "the motion blows up";
+      for (size_t s = 0; s < probe.costs.size(); ++s) {
+        IntegrationFailure failure;
+        std::vector<double> angles;
+        if (!probe.costs[s]->ComputeAngles(
+                SegmentFullValues(probe, s), &angles, &failure)) {
+          outcome.failure = failure.reason +
+                            FormatNumber(" at t = %.4g s", failure.time) +
+                            " in segment '" + segments[s].name + "'";
+          break;
+        }
+      }
+      return outcome;
+    }
+    scale = ColumnScales(jtj, scale);
+    null_columns = NullColumns(jtj);
+  }
+  Assembly assembly = Assemble(segments, free, model, sigma, *values, scale);
+  // A coordinate without any effect on the residuals would let
+  // Levenberg-Marquardt step without bound along it (the cost never
+  // objects); hold it where it is. The covariance names it afterwards.
+  HoldCoordinates(null_columns, &assembly);
+  ceres::Solver::Options options;
+  options.minimizer_type = ceres::TRUST_REGION;
+  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = settings.max_iterations;
+  // The report's rule (the callback) decides convergence; Ceres' own
+  // tolerances only stop a fit that cannot move at all.
+  options.function_tolerance = 1e-14;
+  options.gradient_tolerance = 1e-16;
+  options.parameter_tolerance = 1e-14;
+  // SILENT also keeps Ceres from logging every rejected trial step.
+  options.logging_type = ceres::SILENT;
+  options.update_state_every_iteration = true;
+  ReportIterationCallback callback(&assembly,
+                                   &free,
+                                   &scale,
+                                   &names,
+                                   3 * points - k,
+                                   tolerance,
+                                   relative_tolerance);
+  options.callbacks.push_back(&callback);
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, assembly.problem.get(), &summary);
+  outcome.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  for (const SegmentCostFunction* cost : assembly.costs) {
+    outcome.failed_evaluations += cost->failed_evaluations();
+  }
+  outcome.converged = summary.termination_type == ceres::USER_SUCCESS ||
+                      summary.termination_type == ceres::CONVERGENCE;
+  if (summary.termination_type == ceres::USER_SUCCESS) {
+    outcome.termination =
+        "probable error changed by less than " +
+        FormatNumber("%g", std::max(tolerance, relative_tolerance));
+  } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    outcome.termination = "CONVERGENCE CRITERIA NOT SATISFIED AFTER " +
+                          std::to_string(outcome.iterations) + " ITERATIONS";
+  } else {
+    outcome.termination = summary.message;
+  }
+  *values = FreeValues(assembly, free, scale);
+  outcome.ressum = 2.0 * summary.final_cost;
+  return outcome;
+}
+
+StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
+                              const FreeLayout& free,
+                              const std::shared_ptr<const MotionModel>& model,
+                              const StageSettings& settings,
+                              std::vector<double>* values) {
+  const ChannelValues& sigma = settings.sigma;
+  const double tolerance = settings.tolerance;
+  const int max_iterations = settings.max_iterations;
+  StageOutcome outcome;
+  const int k = free.size();
+  const int points = CountPoints(segments);
+  const int dof = 3 * points - k;
+  std::vector<double> scale(k, 1.0);
+  double old_e = -1.0;
+  std::vector<double> last_good = *values;
+  for (int iteration = 0; !StopRequested(); ++iteration) {
+    Assembly a = Assemble(segments, free, model, sigma, *values, scale);
+    Eigen::MatrixXd jtj;
+    Eigen::VectorXd jtr;
+    double ressum;
+    if (!Information(a, &jtj, &ressum, &jtr)) {
+      if (iteration == 0) {
+        outcome.integrable = false;
+        outcome.failure = "the motion blows up";
+      } else {
+        outcome.termination =
+            "the Gauss-Newton iteration diverged (the motion blew up)";
+        ++outcome.failed_evaluations;
+        *values = last_good;  // the last iterate that still integrates
+      }
+      return outcome;
+    }
+    if (iteration == 0) {
+      // Unit columns, as for Levenberg-Marquardt; then re-evaluate.
+      scale = ColumnScales(jtj, scale);
+      a = Assemble(segments, free, model, sigma, *values, scale);
+      Information(a, &jtj, &ressum, &jtr);
+    }
+    outcome.ressum = ressum;
+    last_good = *values;
+    const double e = std::sqrt(ressum / dof);
+    if (old_e >= 0.0 && std::abs(e - old_e) < tolerance) {
+      outcome.converged = true;
+      outcome.termination = "probable error changed by less than " +
+                            FormatNumber("%g", tolerance);
+      return outcome;
+    }
+    if (iteration == max_iterations) {
+      outcome.termination = "CONVERGENCE CRITERIA NOT SATISFIED AFTER " +
+                            std::to_string(iteration) + " ITERATIONS";
+      return outcome;
+    }
+    old_e = e;
+    // Solve J^T J du = -J^T r (pseudo-inverse: a singular direction gets no
+    // correction, as the listing's INV would divide by zero instead).
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(jtj);
+    const Eigen::VectorXd lambda = eigen.eigenvalues();
+    Eigen::VectorXd du = Eigen::VectorXd::Zero(k);
+    for (int j = 0; j < k; ++j) {
+      if (lambda(j) > 1e-14 * lambda.maxCoeff()) {
+        const Eigen::VectorXd v = eigen.eigenvectors().col(j);
+        du -= v * (v.dot(jtr) / lambda(j));
+      }
+    }
+    const std::vector<double> u =
+        FreeValues(a, free, std::vector<double>(k, 1.0));
+    for (int g = 0; g < k; ++g) (*values)[g] = scale[g] * (u[g] + du(g));
+    outcome.iterations = iteration + 1;
+  }
+  return outcome;  // stopped on request; Fit throws Interrupted
+}
+
+}  // namespace fit3dof

@@ -1,0 +1,59 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// One solve of a FitProblem's segments from given values: Ceres'
+// Levenberg-Marquardt stopped by the report's rule (the probable error,
+// Eq. 26, changes by less than BOUND between two iterations), or the 1978
+// program's undamped Gauss-Newton iteration. Both first scale the free
+// coordinates to unit Jacobian columns.
+
+#ifndef FIT3DOF_SRC_STAGE_SOLVER_H_
+#define FIT3DOF_SRC_STAGE_SOLVER_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fit_problem.h"
+
+namespace fit3dof {
+
+struct StageOutcome {
+  bool integrable = true;  // false: the motion blew up at the start values
+  bool converged = false;
+  int iterations = 0;
+  int failed_evaluations = 0;  // rejected trial steps that blew up
+  double ressum = 0.0;         // weighted residual sum of squares at the end
+  std::string termination;
+  std::string failure;  // why the start values could not be integrated
+};
+
+// What a stage solve needs besides the segments and the values.
+struct StageSettings {
+  ChannelValues sigma;
+  double tolerance = 0.0;           // absolute, on the probable error
+  double relative_tolerance = 0.0;  // times the probable error
+  int max_iterations = 50;
+};
+
+// One Levenberg-Marquardt run from `values` (global free order, updated in
+// place). A coordinate the data cannot see at the start is held where it
+// is. `names` label the iteration log (-v=1).
+StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
+                        const FreeLayout& free,
+                        const std::shared_ptr<const MotionModel>& model,
+                        const std::vector<std::string>& names,
+                        const StageSettings& settings,
+                        std::vector<double>* values);
+
+// The 1978 program's iteration: the full Gauss-Newton step, no damping, no
+// step rejection, stopped by the same probable-error rule (relative
+// tolerance unused).
+StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
+                              const FreeLayout& free,
+                              const std::shared_ptr<const MotionModel>& model,
+                              const StageSettings& settings,
+                              std::vector<double>* values);
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_SRC_STAGE_SOLVER_H_

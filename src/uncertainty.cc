@@ -1,0 +1,306 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Covariance, rank analysis and named combinations at a fit's solution
+// (uncertainty.h).
+
+#include "uncertainty.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <utility>
+
+#include "assembly.h"
+#include "ceres/ceres.h"
+#include "fit3dof/input_error.h"
+#include "format.h"
+
+namespace fit3dof {
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A correlation as a percentage with enough digits to tell it from 100%.
+std::string Percent(double r) {
+  int digits = 2;
+  while (digits < 6 && 1.0 - r < std::pow(10.0, -digits - 1)) ++digits;
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.*f%%", digits, 100.0 * r);
+  return buffer;
+}
+
+// "only their sum", "only their difference" or the explicit combination
+// a + c b, for a determined direction w = (w_a, w_b).
+std::string Combination(const std::string& a,
+                        const std::string& b,
+                        double w_a,
+                        double w_b) {
+  const double c = w_b / w_a;
+  if (std::abs(c - 1.0) < 0.15) return "only their sum is determined";
+  if (std::abs(c + 1.0) < 0.15) return "only their difference is determined";
+  return "only the combination " + a + (c >= 0 ? " + " : " - ") +
+         FormatNumber("%.3g", std::abs(c)) + " " + b + " is determined";
+}
+
+std::string JoinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " and " : ", ";
+    out += names[i];
+  }
+  return out;
+}
+
+std::string NoEffect(const std::string& name) {
+  return name +
+         " is not determined by the data (it has no effect on the fitted "
+         "motion)";
+}
+
+// The information matrix at the solution, in unit-column coordinates, with
+// the assembly that holds the coordinates the data cannot see at all.
+struct SolutionInformation {
+  Assembly assembly;
+  Eigen::MatrixXd jtj;
+  double ressum = 0.0;
+  std::vector<double> scale;       // physical value = scale * u
+  std::vector<bool> null_columns;  // no effect on the motion
+};
+
+SolutionInformation InformationAtSolution(const FitProblem& p,
+                                          const ChannelValues& sigma,
+                                          const std::vector<double>& values,
+                                          const std::string& source) {
+  const int k = p.free.size();
+  SolutionInformation info;
+  info.scale.assign(k, 1.0);
+  info.assembly =
+      Assemble(p.segments, p.free, p.model, sigma, values, info.scale);
+  if (!Information(info.assembly, &info.jtj, &info.ressum)) {
+    throw InputError(source +
+                     ": the motion cannot be integrated at the solution");
+  }
+  info.null_columns = NullColumns(info.jtj);
+  info.scale = ColumnScales(info.jtj, info.scale);
+  info.assembly =
+      Assemble(p.segments, p.free, p.model, sigma, values, info.scale);
+  // The information matrix in global coordinates first: once a block holds
+  // some of its coordinates (a SubsetManifold), Evaluate returns only the
+  // tangent-space columns.
+  Information(info.assembly, &info.jtj, &info.ressum);
+  HoldCoordinates(info.null_columns, &info.assembly);
+  return info;
+}
+
+// B = (J^T J)^-1 from ceres::Covariance over the blocks not held; false
+// when the matrix is too ill-conditioned for it.
+bool CeresCovariance(const SolutionInformation& info, Eigen::MatrixXd* cov_u) {
+  // ceres::Covariance refuses (and logs an error) when the reciprocal
+  // condition number is below its limit; check first, so that a
+  // rank-deficient fit goes straight to the named-null-space path.
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(info.jtj);
+  const Eigen::VectorXd lambda = eigen.eigenvalues();
+  if (!(lambda.minCoeff() > 1e-13 * lambda.maxCoeff())) return false;
+  const Assembly& a = info.assembly;
+  auto held = [&](size_t b) {
+    return a.problem->IsParameterBlockConstant(a.blocks[b]);
+  };
+  std::vector<std::pair<const double*, const double*>> pairs;
+  std::vector<int> start, size;
+  int offset = 0;
+  for (size_t i = 0; i < a.blocks.size(); ++i) {
+    start.push_back(offset);
+    size.push_back(a.problem->ParameterBlockSize(a.blocks[i]));
+    offset += size.back();
+    for (size_t j = i; j < a.blocks.size(); ++j) {
+      if (!held(i) && !held(j)) pairs.emplace_back(a.blocks[i], a.blocks[j]);
+    }
+  }
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::DENSE_SVD;
+  options.null_space_rank = 0;
+  options.min_reciprocal_condition_number = 1e-14;
+  ceres::Covariance covariance(options);
+  if (!covariance.Compute(pairs, a.problem.get())) return false;
+  cov_u->setZero(offset, offset);
+  for (size_t i = 0; i < a.blocks.size(); ++i) {
+    for (size_t j = i; j < a.blocks.size(); ++j) {
+      if (held(i) || held(j)) continue;
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+          block(size[i], size[j]);
+      covariance.GetCovarianceBlock(a.blocks[i], a.blocks[j], block.data());
+      cov_u->block(start[i], start[j], size[i], size[j]) = block;
+      cov_u->block(start[j], start[i], size[j], size[i]) = block.transpose();
+    }
+  }
+  return true;
+}
+
+// Rank deficient: the pseudo-inverse for the parameters outside the null
+// space, and each null direction named (with the determined combination
+// when two parameters share it). Marks the parameters involved as not
+// determined; returns how many directions it named.
+int PseudoInverse(const SolutionInformation& info,
+                  const std::vector<std::string>& names,
+                  Eigen::MatrixXd* cov_u,
+                  std::vector<bool>* determined,
+                  std::vector<std::string>* warnings) {
+  const int k = static_cast<int>(names.size());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(info.jtj);
+  const Eigen::VectorXd lambda = eigen.eigenvalues();
+  const double lambda_max = lambda.maxCoeff();
+  cov_u->setZero(k, k);
+  int named = 0;
+  for (int e = 0; e < k; ++e) {
+    const Eigen::VectorXd v = eigen.eigenvectors().col(e);
+    bool null_coordinate = false;
+    for (int g = 0; g < k; ++g) {
+      null_coordinate |= info.null_columns[g] && std::abs(v(g)) > 0.5;
+    }
+    if (null_coordinate) continue;  // already named
+    if (lambda(e) > 1e-14 * lambda_max) {
+      *cov_u += v * v.transpose() / lambda(e);
+      continue;
+    }
+    ++named;
+    std::vector<std::string> involved;
+    std::vector<int> index;
+    for (int g = 0; g < k; ++g) {
+      if (std::abs(v(g)) > 0.2) {
+        involved.push_back(names[g]);
+        index.push_back(g);
+        (*determined)[g] = false;
+      }
+    }
+    std::string message =
+        involved.size() == 1
+            ? NoEffect(involved[0])
+            : JoinNames(involved) +
+                  " cannot be separated (the information matrix is "
+                  "singular)";
+    if (index.size() == 2) {
+      // Null direction in physical units n; determined w = (n_b, -n_a).
+      const double na = info.scale[index[0]] * v(index[0]);
+      const double nb = info.scale[index[1]] * v(index[1]);
+      message += ": " + Combination(involved[0], involved[1], nb, -na);
+    }
+    warnings->push_back(message);
+  }
+  return named;
+}
+
+// Highly correlated pairs: the combination that is determined, with its
+// value and error.
+void NamePairs(const Eigen::MatrixXd& cov,
+               const std::vector<std::string>& names,
+               const std::vector<double>& values,
+               Uncertainty* u) {
+  const int k = static_cast<int>(names.size());
+  for (int a = 0; a < k; ++a) {
+    for (int b = a + 1; b < k; ++b) {
+      const double r = u->correlation(a, b);
+      if (!(std::abs(r) > 0.99)) continue;
+      Eigen::Matrix2d block;
+      block << cov(a, a), cov(a, b), cov(b, a), cov(b, b);
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(block);
+      // Largest-variance direction n is undetermined; w = (n_b, -n_a).
+      const Eigen::Vector2d n = eigen.eigenvectors().col(1);
+      Eigen::Vector2d w(n(1), -n(0));
+      w /= w(0);
+      const double value = w(0) * values[a] + w(1) * values[b];
+      const double error = u->probable_error * std::sqrt(w.dot(block * w));
+      u->warnings.push_back(
+          names[a] + " and " + names[b] + " are " + Percent(std::abs(r)) +
+          " correlated: " + Combination(names[a], names[b], w(0), w(1)) + " (" +
+          names[a] + (w(1) >= 0 ? " + " : " - ") +
+          FormatNumber("%.4g", std::abs(w(1))) + " " + names[b] + " = " +
+          FormatNumber("%.6g", value) + " +- " + FormatNumber("%.2g", error) +
+          ")");
+    }
+  }
+}
+
+// Groups of three or more nearly dependent parameters (e.g. Cm_alpha, t1,
+// t3 for small motion, the report's Eq. 43). The smallest eigenvalues of
+// the correlation matrix measure how much the others inflate a
+// combination's variance: a well-determined fit like Table 6 reaches
+// 1e-4 (its initial conditions are correlated with the damping terms),
+// the Eq. 43 case 1e-11. Below 1e-6 (a thousand-fold inflation of the
+// error) the group is named.
+void NameGroups(const std::vector<std::string>& names, Uncertainty* u) {
+  if (!u->correlation.allFinite()) return;
+  const int k = static_cast<int>(names.size());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(u->correlation);
+  for (int e = 0; e < k; ++e) {
+    if (eigen.eigenvalues()(e) > 1e-6) continue;
+    const Eigen::VectorXd v = eigen.eigenvectors().col(e);
+    std::vector<std::string> involved;
+    for (int g = 0; g < k; ++g) {
+      if (std::abs(v(g)) > 0.25) involved.push_back(names[g]);
+    }
+    if (involved.size() >= 3) {
+      u->warnings.push_back(JoinNames(involved) +
+                            " are nearly dependent: the data determine only " +
+                            std::to_string(involved.size() - 1) +
+                            " combinations of these " +
+                            std::to_string(involved.size()) + " parameters");
+    }
+  }
+}
+
+}  // namespace
+
+Uncertainty EstimateUncertainty(const FitProblem& problem,
+                                const ChannelValues& sigma,
+                                const std::vector<double>& values,
+                                const std::string& source) {
+  const int k = problem.free.size();
+  const std::vector<std::string>& names = problem.names;
+  SolutionInformation info =
+      InformationAtSolution(problem, sigma, values, source);
+  Uncertainty u;
+  u.sum_of_residuals = std::sqrt(info.ressum);
+  int undetermined = 0;
+  std::vector<bool> determined(k, true);
+  for (int g = 0; g < k; ++g) {
+    if (!info.null_columns[g]) continue;
+    ++undetermined;
+    determined[g] = false;
+    u.warnings.push_back(NoEffect(names[g]));
+    // Keep the rank analysis away from it.
+    info.jtj.row(g).setZero();
+    info.jtj.col(g).setZero();
+    info.jtj(g, g) = 1.0;
+  }
+  Eigen::MatrixXd cov_u;
+  if (!CeresCovariance(info, &cov_u)) {
+    undetermined +=
+        PseudoInverse(info, names, &cov_u, &determined, &u.warnings);
+  }
+  const int dof = 3 * problem.points - k;
+  u.probable_error = std::sqrt(info.ressum / (dof + undetermined));
+  // Physical covariance and RMS errors (Eq. 27).
+  Eigen::MatrixXd cov(k, k);
+  for (int a = 0; a < k; ++a) {
+    for (int b = 0; b < k; ++b) {
+      cov(a, b) = info.scale[a] * cov_u(a, b) * info.scale[b];
+    }
+  }
+  u.rms.resize(k);
+  u.correlation = Eigen::MatrixXd::Constant(k, k, kNaN);
+  for (int a = 0; a < k; ++a) {
+    u.rms[a] = determined[a] ? u.probable_error * std::sqrt(cov(a, a)) : kNaN;
+    for (int b = 0; b < k; ++b) {
+      if (determined[a] && determined[b]) {
+        u.correlation(a, b) = cov(a, b) / std::sqrt(cov(a, a) * cov(b, b));
+      }
+    }
+  }
+  u.scale = info.scale;
+  NamePairs(cov, names, values, &u);
+  NameGroups(names, &u);
+  return u;
+}
+
+}  // namespace fit3dof
