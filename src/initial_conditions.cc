@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fit3dof/angles.h"
 #include "fit3dof/data_selection.h"
 
 namespace fit3dof {
@@ -18,7 +19,7 @@ namespace {
 // deg/s for the two-point difference and 0.7 to 1.5 deg/s for 4 to 9
 // samples (tests/initial_conditions_test.cc).
 constexpr int kWindow = 7;
-constexpr int kDegree = 3;
+constexpr int kPolynomialDegree = 3;
 
 }  // namespace
 
@@ -60,22 +61,28 @@ std::array<double, 6> EstimateInitialConditions(ModelKind model,
   std::vector<double> psi = record.psi;
   for (double& x : theta) x -= theta_offset;
   for (double& x : psi) x -= psi_offset;
-  const PolynomialEstimate f = LocalPolynomial(record.t, phi, kWindow, kDegree);
+  const PolynomialEstimate f =
+      LocalPolynomial(record.t, phi, kWindow, kPolynomialDegree);
   const PolynomialEstimate th =
-      LocalPolynomial(record.t, theta, kWindow, kDegree);
+      LocalPolynomial(record.t, theta, kWindow, kPolynomialDegree);
   const PolynomialEstimate ps =
-      LocalPolynomial(record.t, psi, kWindow, kDegree);
+      LocalPolynomial(record.t, psi, kWindow, kPolynomialDegree);
   if (model == ModelKind::kSymmetric) {
     return {f.value, f.slope, th.value, th.slope, ps.value, ps.slope};
   }
   // Euler rates to body rates, as the listing's ICS (degrees cancel in the
   // linear combination; the trigonometry needs radians).
-  const double kDeg = M_PI / 180.0;
-  const double sf = std::sin(f.value * kDeg), cf = std::cos(f.value * kDeg);
-  const double st = std::sin(th.value * kDeg), ct = std::cos(th.value * kDeg);
-  const double p = f.slope - ps.slope * st;
-  const double q = th.slope * cf + ps.slope * ct * sf;
-  const double r = ps.slope * ct * cf - th.slope * sf;
+  double p, q, r;
+  EulerToBodyRates(std::sin(f.value * kDegree),
+                   std::cos(f.value * kDegree),
+                   std::sin(th.value * kDegree),
+                   std::cos(th.value * kDegree),
+                   f.slope,
+                   th.slope,
+                   ps.slope,
+                   &p,
+                   &q,
+                   &r);
   return {f.value, th.value, ps.value, p, q, r};
 }
 

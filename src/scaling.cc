@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "fit3dof/angles.h"
+
 namespace fit3dof {
 
 std::vector<double> InternalScaleFactors(ModelKind model,
@@ -13,7 +15,6 @@ std::vector<double> InternalScaleFactors(ModelKind model,
   const double rate = body.diameter / (2.0 * flow.velocity);
   // The symmetric program has one transverse inertia I (= I_y).
   const double iz = model == ModelKind::kSymmetric ? body.Iy : body.Iz;
-  const double kDegree = M_PI / 180.0;
   const auto& table = ParameterTable(model);
   std::vector<double> factors(table.size(), 1.0);
   for (size_t i = 0; i < table.size(); ++i) {

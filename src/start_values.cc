@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "fit3dof/angles.h"
 #include "fit3dof/data_selection.h"
+#include "fit3dof/model_conversion.h"
 #include "fit3dof/scaling.h"
 
 namespace fit3dof {
@@ -57,12 +59,11 @@ EpicyclicFit FitEpicycle(const TimeHistory& record, double cycles) {
     n = std::min(n_all, std::max(30, static_cast<int>(cycles * period / dt)));
   }
   // Differenced complex angle: the constant trim arm drops out.
-  const double kDeg = M_PI / 180.0;
   std::vector<Complex> y(n - 1);
   for (int i = 0; i + 1 < n; ++i) {
     y[i] = Complex(record.theta[i + 1] - record.theta[i],
                    record.psi[i + 1] - record.psi[i]) *
-           kDeg;
+           kDegree;
   }
   const int m = static_cast<int>(y.size());
   const int pencil = std::max(3, m / 3);
@@ -126,6 +127,17 @@ std::vector<std::string> EstimateStartValues(
     log.push_back(Line("%s = %.6g (%s)", table[i].name, (*values)[i], why));
   };
   const bool symmetric = c.model == ModelKind::kSymmetric;
+  // A symmetric-form constant, or its images in the asymmetric program
+  // (Cm_alpha -> Cm_alpha and -Cn_beta, ...; model_conversion.h).
+  auto set_symmetric =
+      [&](const char* name, double internal, const std::string& why) {
+        if (symmetric) return set(name, internal, why);
+        for (const CoefficientImage& image : SymmetricImages()) {
+          if (std::string(image.symmetric) == name) {
+            set(image.asymmetric, image.sign * internal, why);
+          }
+        }
+      };
   // Internal constants of the symmetric form, mapped to both programs.
   const double ratio = symmetric ? c.body.Ix / c.body.Iy
                                  : 2.0 * c.body.Ix / (c.body.Iy + c.body.Iz);
@@ -144,7 +156,7 @@ std::vector<std::string> EstimateStartValues(
     basis(i, 0) = 1.0;
     basis(i, 1) = t;
     basis(i, 2) = t * t;
-    rhs(i) = phi[i] * M_PI / 180.0;
+    rhs(i) = phi[i] * kDegree;
   }
   const Eigen::Vector3d quad = basis.colPivHouseholderQr().solve(rhs);
   const double duration = record.t.back() - t0;
@@ -169,18 +181,13 @@ std::vector<std::string> EstimateStartValues(
       const double c1 = -product.real();
       const double c2 = sum.real();
       const double c4p = -product.imag();
-      set("Cm_alpha", c1, std::string("stiffness from the epicycle, ") + arms);
-      set("Cm_q", c2, "damping from the epicycle (Cm_q + Cm_alphadot)");
+      set_symmetric(
+          "Cm_alpha", c1, std::string("stiffness from the epicycle, ") + arms);
+      set_symmetric(
+          "Cm_q", c2, "damping from the epicycle (Cm_q + Cm_alphadot)");
       if (std::abs(p_mean) > 1e-3) {
-        set(symmetric ? "Cm_p_alpha" : "Cm_p_beta",
-            c4p / p_mean,
-            "Magnus moment from the epicycle");
-        if (!symmetric)
-          set("Cn_p_alpha", c4p / p_mean, "Magnus moment from the epicycle");
-      }
-      if (!symmetric) {
-        set("Cn_beta", -c1, "stiffness from the epicycle");
-        set("Cn_r", c2, "damping from the epicycle");
+        set_symmetric(
+            "Cm_p_alpha", c4p / p_mean, "Magnus moment from the epicycle");
       }
       char spin[160];
       std::snprintf(

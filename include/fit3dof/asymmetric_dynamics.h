@@ -19,6 +19,7 @@
 
 #include <cmath>
 
+#include "fit3dof/angles.h"
 #include "fit3dof/coefficients.h"
 #include "fit3dof/parameters.h"
 
@@ -206,11 +207,8 @@ void AsymmetricDerivative(const CoefficientView<T>& k,
   const T& st = trig.st;
   const T& ct = trig.ct;
 
-  const T sec = 1.0 / ct;
-  const T q_sf_r_cf = q * sf + r * cf;
-  dx[kAsymPhi] = p + st * sec * q_sf_r_cf;
-  dx[kAsymTheta] = q * cf - r * sf;
-  dx[kAsymPsi] = q_sf_r_cf * sec;
+  BodyToEulerRates(
+      sf, cf, st, ct, p, q, r, &dx[kAsymPhi], &dx[kAsymTheta], &dx[kAsymPsi]);
 
   // Ix' = (I_z - I_y)/I_x etc.; J = I_zx / I. With h_x = I_x p - I_zx r and
   // h_z = I_z r - I_zx p, solving the x and z equations of

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "fit3dof/case.h"
+#include "fit3dof/model_conversion.h"  // ToAsymmetric, declared there
 
 namespace fit3dof {
 
@@ -29,16 +30,6 @@ Case ParseConfig(const std::string& text,
 
 // A config (YAML) that loads back into the same case; data paths absolute.
 std::string CaseToYaml(const Case& c);
-
-// The same motion in the asymmetric program (body axes, I_zx): every
-// symmetric term with an exact asymmetric image is mapped to it (Cm_alpha
-// to Cm_alpha and -Cn_beta, Cm_q to Cm_q and Cn_r, the cubic terms to the
-// alpha^3, alpha beta^2, ... terms, Magnus, roll, tunnel, offsets, roll
-// interaction), free flags with them. Throws InputError when the case uses
-// a symmetric term without an image (the |delta| terms, Cm_q_beta2,
-// Cm_r_alpha_beta, Cm_p_alpha_delta2, Cm_alphadot). Initial conditions that
-// are given are converted from Euler rates to body rates.
-Case ToAsymmetric(const Case& c);
 
 }  // namespace fit3dof
 

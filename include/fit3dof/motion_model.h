@@ -16,6 +16,7 @@
 #include <array>
 #include <vector>
 
+#include "fit3dof/angles.h"
 #include "fit3dof/asymmetric_dynamics.h"
 #include "fit3dof/body.h"
 #include "fit3dof/coefficients.h"
@@ -152,7 +153,6 @@ bool MotionModel::Evaluate(const T* values,
   const int phi_index = symmetric ? int{kSymPhi} : int{kAsymPhi};
   const int theta_index = symmetric ? int{kSymTheta} : int{kAsymTheta};
   const int psi_index = symmetric ? int{kSymPsi} : int{kAsymPsi};
-  const double kToDegrees = 180.0 / M_PI;
   // Measurement model (INTGRL): theta_m = theta + theta_T,
   // psi_m = psi + psi_T; plus the roll-interaction reading error of Section
   // 5.2 (first harmonics in phi), when any of its parameters is active.
@@ -170,9 +170,9 @@ bool MotionModel::Evaluate(const T* values,
       theta += internal[ri] * c + internal[ri + 1] * s;
       psi += internal[ri + 2] * c + internal[ri + 3] * s;
     }
-    angles[3 * i + 0] = x[phi_index] * kToDegrees;
-    angles[3 * i + 1] = theta * kToDegrees;
-    angles[3 * i + 2] = psi * kToDegrees;
+    angles[3 * i + 0] = x[phi_index] * kDegreesPerRadian;
+    angles[3 * i + 1] = theta * kDegreesPerRadian;
+    angles[3 * i + 2] = psi * kDegreesPerRadian;
   };
   return Integrate(values, times, n, &internal, observe, failure);
 }

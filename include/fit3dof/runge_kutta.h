@@ -24,6 +24,7 @@
 #include <string>
 
 #include "ceres/jet.h"
+#include "fit3dof/angles.h"
 
 namespace fit3dof {
 
@@ -79,7 +80,7 @@ double ScalarPart(const ceres::Jet<U, N>& x) {
 // are still well away from their singularity at 90 deg.
 struct StateGuard {
   int theta_index = 2;
-  double max_abs_theta = 85.0 * M_PI / 180.0;
+  double max_abs_theta = 85.0 * kDegree;
 };
 
 // Integrates from times[0] (x holds the state there) through times[n-1],
@@ -109,7 +110,8 @@ bool IntegrateSamples(const Rhs& f,
         failure->time = t;
         failure->reason =
             "theta reached " +
-            std::to_string(ScalarPart(x[guard.theta_index]) * 180.0 / M_PI) +
+            std::to_string(ScalarPart(x[guard.theta_index]) *
+                           kDegreesPerRadian) +
             " deg; the Euler-angle equations are singular at 90 deg";
       }
       return false;

@@ -1,0 +1,69 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Angles and angular rates, one definition each: degrees and radians
+// (kDegree), and Euler rates (phidot, thetadot, psidot) against body rates
+// (p, q, r) for the 3-2-1 sequence psi, theta, phi of AEDC-TR-78-10,
+// Appendix A. The asymmetric equations of motion use BodyToEulerRates; the
+// initial-condition estimates and ToAsymmetric (model_conversion.h) use
+// EulerToBodyRates (the listing's ICS). Templated on the scalar so that
+// ceres::Jet flows through.
+//
+// Example Usage:
+//
+//   double p, q, r;
+//   EulerToBodyRates(std::sin(phi * kDegree), std::cos(phi * kDegree),
+//                    std::sin(theta * kDegree), std::cos(theta * kDegree),
+//                    phidot, thetadot, psidot, &p, &q, &r);
+
+#ifndef FIT3DOF_ANGLES_H_
+#define FIT3DOF_ANGLES_H_
+
+#include <cmath>
+
+namespace fit3dof {
+
+// Radians per degree, and degrees per radian.
+inline constexpr double kDegree = M_PI / 180.0;
+inline constexpr double kDegreesPerRadian = 180.0 / M_PI;
+
+// Body rates from Euler rates at roll phi and pitch theta, given their
+// sines and cosines. Any unit of rate; the result is in the same one.
+template <typename T>
+void EulerToBodyRates(const T& sf,
+                      const T& cf,
+                      const T& st,
+                      const T& ct,
+                      const T& phidot,
+                      const T& thetadot,
+                      const T& psidot,
+                      T* p,
+                      T* q,
+                      T* r) {
+  *p = phidot - psidot * st;
+  *q = thetadot * cf + psidot * ct * sf;
+  *r = psidot * ct * cf - thetadot * sf;
+}
+
+// Euler rates from body rates: the kinematic equations of Appendix A
+// (singular at theta = +-90 deg, where cos theta = 0).
+template <typename T>
+void BodyToEulerRates(const T& sf,
+                      const T& cf,
+                      const T& st,
+                      const T& ct,
+                      const T& p,
+                      const T& q,
+                      const T& r,
+                      T* phidot,
+                      T* thetadot,
+                      T* psidot) {
+  const T sec = 1.0 / ct;
+  const T q_sf_r_cf = q * sf + r * cf;
+  *phidot = p + st * sec * q_sf_r_cf;
+  *thetadot = q * cf - r * sf;
+  *psidot = q_sf_r_cf * sec;
+}
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_ANGLES_H_

@@ -1,0 +1,49 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The symmetric program's coefficients and cases in the asymmetric
+// program of AEDC-TR-78-10, one definition used by diagnose, the start
+// values and the tests: a symmetric coefficient's images in the asymmetric
+// expansion (SymmetricImages) and a whole symmetric case as the asymmetric
+// program's case (ToAsymmetric; its rates through angles.h).
+//
+// Example Usage:
+//
+//   Case body_axes = ToAsymmetric(LoadConfig("table6_motion.yaml"));
+
+#ifndef FIT3DOF_MODEL_CONVERSION_H_
+#define FIT3DOF_MODEL_CONVERSION_H_
+
+#include <vector>
+
+#include "fit3dof/angles.h"
+#include "fit3dof/case.h"
+
+namespace fit3dof {
+
+// An asymmetric coefficient that a symmetric one becomes for an
+// axisymmetric body: value = sign * symmetric value.
+struct CoefficientImage {
+  const char* symmetric;
+  const char* asymmetric;
+  double sign;
+};
+
+// Every image, e.g. Cm_alpha -> Cm_alpha (+1) and Cn_beta (-1), Cm_q ->
+// Cm_q and Cn_r, the cubic terms -> alpha^3, alpha beta^2, ... terms,
+// Magnus, roll, tunnel terms, offsets and the roll-interaction error.
+const std::vector<CoefficientImage>& SymmetricImages();
+
+// The symmetric coefficients without an exact image in the asymmetric
+// expansion (the |delta| terms, Cm_q_beta2, Cm_r_alpha_beta,
+// Cm_p_alpha_delta2, Cm_alphadot).
+const std::vector<const char*>& SymmetricWithoutImage();
+
+// The same motion in the asymmetric program (body axes, I_zx): every
+// symmetric term mapped to its images, free flags with them, I_z = I_y.
+// Throws InputError when the case uses a term without an image. Initial
+// conditions are converted from Euler rates to body rates.
+Case ToAsymmetric(const Case& c);
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_MODEL_CONVERSION_H_

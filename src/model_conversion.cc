@@ -1,0 +1,128 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The symmetric program's case as the asymmetric program's
+// (model_conversion.h).
+
+#include "fit3dof/model_conversion.h"
+
+#include <array>
+#include <cmath>
+
+#include "fit3dof/input_error.h"
+#include "fit3dof/parameters.h"
+
+namespace fit3dof {
+
+const std::vector<CoefficientImage>& SymmetricImages() {
+  // alpha (C1 + C5 delta^2) -> Cm_alpha alpha + C5 (alpha^3 + alpha beta^2);
+  // -beta (C1 + C5 delta^2) -> Cn_beta beta + Cn_beta3 beta^3 + ...;
+  // q (C2 + C6 delta^2), r (C2 + C6 delta^2); Magnus p beta C4 in pitch,
+  // p alpha C4 in yaw.
+  static const std::vector<CoefficientImage> images = {
+      {"Cm_alpha", "Cm_alpha", 1.0},
+      {"Cm_alpha", "Cn_beta", -1.0},
+      {"Cm_alpha_delta2", "Cm_alpha3", 1.0},
+      {"Cm_alpha_delta2", "Cm_alpha_beta2", 1.0},
+      {"Cm_alpha_delta2", "Cn_beta3", -1.0},
+      {"Cm_alpha_delta2", "Cn_alpha2_beta", -1.0},
+      {"Cm_q", "Cm_q", 1.0},
+      {"Cm_q", "Cn_r", 1.0},
+      {"Cm_q_delta2", "Cm_q_alpha2", 1.0},
+      {"Cm_q_delta2", "Cm_q_beta2", 1.0},
+      {"Cm_q_delta2", "Cn_r_alpha2", 1.0},
+      {"Cm_q_delta2", "Cn_r_beta2", 1.0},
+      {"Cm_p_alpha", "Cm_p_beta", 1.0},
+      {"Cm_p_alpha", "Cn_p_alpha", 1.0},
+      {"Cl_0", "Cl_0", 1.0},
+      {"Cl_p", "Cl_p", 1.0},
+      {"Cl_p_delta2", "Cl_p_alpha2", 1.0},
+      {"Cl_p_delta2", "Cl_p_beta2", 1.0},
+      {"t1", "t1", 1.0},
+      {"t2", "t2", 1.0},
+      {"t3", "t3", 1.0},
+      {"t4", "t4", 1.0},
+      {"theta_T", "theta_T", 1.0},
+      {"psi_T", "psi_T", 1.0},
+      {"theta_cos_phi", "theta_cos_phi", 1.0},
+      {"theta_sin_phi", "theta_sin_phi", 1.0},
+      {"psi_cos_phi", "psi_cos_phi", 1.0},
+      {"psi_sin_phi", "psi_sin_phi", 1.0},
+  };
+  return images;
+}
+
+const std::vector<const char*>& SymmetricWithoutImage() {
+  static const std::vector<const char*> names = {"Cm_alpha_delta",
+                                                 "Cm_q_beta2",
+                                                 "Cm_r_alpha_beta",
+                                                 "Cm_q_delta",
+                                                 "Cl_p_delta",
+                                                 "Cm_p_alpha_delta2",
+                                                 "Cm_alphadot"};
+  return names;
+}
+
+namespace {
+
+// Initial conditions in the symmetric order (phi, phidot, theta, thetadot,
+// psi, psidot) as the asymmetric program's (phi, theta, psi, p, q, r), each
+// with the flags of the symmetric entry it comes from.
+std::array<ParameterSetting, 6> ToBodyRates(
+    const std::array<ParameterSetting, 6>& in) {
+  const double phi = in[0].value, phidot = in[1].value, theta = in[2].value,
+               thetadot = in[3].value, psi = in[4].value, psidot = in[5].value;
+  double values[6] = {phi, theta, psi, 0.0, 0.0, 0.0};
+  EulerToBodyRates(std::sin(phi * kDegree),
+                   std::cos(phi * kDegree),
+                   std::sin(theta * kDegree),
+                   std::cos(theta * kDegree),
+                   phidot,
+                   thetadot,
+                   psidot,
+                   &values[3],
+                   &values[4],
+                   &values[5]);
+  const int order[6] = {0, 2, 4, 1, 3, 5};
+  std::array<ParameterSetting, 6> out;
+  for (int j = 0; j < 6; ++j) {
+    out[j] = in[order[j]];
+    out[j].value = values[j];
+  }
+  return out;
+}
+
+}  // namespace
+
+Case ToAsymmetric(const Case& c) {
+  if (c.model == ModelKind::kAsymmetric) return c;
+  Case a = c;
+  a.model = ModelKind::kAsymmetric;
+  a.body.Iz = c.body.Iy;
+  a.parameters.assign(NumParameters(ModelKind::kAsymmetric),
+                      ParameterSetting{});
+  auto from = [&](const char* name) -> const ParameterSetting& {
+    return c.parameters[FindParameter(ModelKind::kSymmetric, name)];
+  };
+  for (const char* name : SymmetricWithoutImage()) {
+    const ParameterSetting& p = from(name);
+    if (p.value != 0.0 || p.free) {
+      throw InputError(c.source + ": " + name +
+                       " has no image in the asymmetric program");
+    }
+  }
+  for (const CoefficientImage& image : SymmetricImages()) {
+    ParameterSetting q = from(image.symmetric);
+    q.value = image.sign * q.value;
+    a.parameters[FindParameter(ModelKind::kAsymmetric, image.asymmetric)] = q;
+  }
+  const int sym_first = Layout(ModelKind::kSymmetric).first_initial;
+  const int asym_first = Layout(ModelKind::kAsymmetric).first_initial;
+  std::array<ParameterSetting, 6> defaults;
+  for (int j = 0; j < 6; ++j) defaults[j] = c.parameters[sym_first + j];
+  const auto converted = ToBodyRates(defaults);
+  for (int j = 0; j < 6; ++j) a.parameters[asym_first + j] = converted[j];
+  for (Segment& s : a.segments) s.initial = ToBodyRates(s.initial);
+  return a;
+}
+
+}  // namespace fit3dof
