@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "fit3dof/angles.h"
 #include "fit3dof/config.h"
 #include "fit3dof/noise.h"
 #include "gtest/gtest.h"
@@ -71,7 +72,7 @@ TEST(InitialConditions, AsymmetricRatesAreBodyRates) {
     h.Append(t, 30 + 600 * t, 4 - 20 * t, -2 + 10 * t);
   }
   const auto x = EstimateInitialConditions(ModelKind::kAsymmetric, h, 0.0, 0.0);
-  const double d = M_PI / 180.0;
+  const double d = kDegree;
   EXPECT_NEAR(x[0], 30.0, 1e-9);
   EXPECT_NEAR(x[3], 600 - 10 * std::sin(4 * d), 1e-7);
   EXPECT_NEAR(x[4],

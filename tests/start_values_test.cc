@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 
+#include "fit3dof/angles.h"
 #include "fit3dof/config.h"
 #include "fit3dof/noise.h"
 #include "fit3dof/simulator.h"
@@ -55,7 +56,7 @@ TEST(StartValues, Table6LinearAerodynamicsFromTheMotion) {
   int count = 0;
   for (int i = 0; i < data.size() && data.t[i] < 4.5; ++i, ++count) {
     delta2 += (std::pow(data.theta[i], 2) + std::pow(data.psi[i], 2)) *
-              std::pow(M_PI / 180, 2);
+              std::pow(kDegree, 2);
   }
   delta2 /= count;
   const double effective = -0.236 + 5.81 * delta2;

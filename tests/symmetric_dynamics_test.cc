@@ -7,13 +7,12 @@
 #include <vector>
 
 #include "ceres/jet.h"
+#include "fit3dof/angles.h"
 #include "fit3dof/motion_model.h"
 #include "gtest/gtest.h"
 
 namespace fit3dof {
 namespace {
-
-const double kDeg = M_PI / 180.0;
 
 // Inertial angular momentum and kinetic energy of the axisymmetric body for
 // a symmetric-model state. The aeroballistic frame is Rz(psi) Ry(theta) of
@@ -79,7 +78,7 @@ TEST(SymmetricDynamics, TorqueFreeMotionConservesMomentumAndEnergy) {
     theta_min = std::min(theta_min, states[6 * i + kSymTheta]);
     theta_max = std::max(theta_max, states[6 * i + kSymTheta]);
   }
-  EXPECT_GT(theta_max - theta_min, 5.0 * kDeg);
+  EXPECT_GT(theta_max - theta_min, 5.0 * kDegree);
 }
 
 // The listing's MBAR for a hand-checked state: pure stiffness gives
@@ -91,7 +90,7 @@ TEST(SymmetricDynamics, StiffnessActsAlongTheIncidence) {
   active[0] = true;
   CoefficientView<double> k(c.data(), active);
   SymmetricConstants constants{0.15, Incidence::kVelocityRatio};
-  const double x[6] = {0.3, 10.0, 4.0 * kDeg, 0.0, -2.0 * kDeg, 0.0};
+  const double x[6] = {0.3, 10.0, 4.0 * kDegree, 0.0, -2.0 * kDegree, 0.0};
   double mx, my, mz;
   SymmetricMoments(k, constants, x, SymmetricTrig<double>(x), &mx, &my, &mz);
   EXPECT_DOUBLE_EQ(my, -40.0 * std::cos(x[4]) * std::sin(x[2]));
