@@ -109,6 +109,7 @@ PipelineOutcome Solve(const Case& c,
     if (m.improved) {
       result->iterations += outcome.iterations;
       outcome = m.best;
+      outcome.iterations = 0;  // counted among the restarts' already
       *values = m.values;
     } else if (!outcome.integrable) {
       throw InputError(c.source +

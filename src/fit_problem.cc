@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "fit3dof/data_selection.h"
+#include "fit3dof/fit.h"
 #include "fit3dof/initial_conditions.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/noise.h"

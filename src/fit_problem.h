@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "fit3dof/case.h"
-#include "fit3dof/fit.h"
 #include "fit3dof/motion_model.h"
 #include "fit3dof/time_history.h"
 
