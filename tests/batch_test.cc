@@ -88,12 +88,12 @@ TEST(Batch, HundredRunsThreeBrokenTheRestFinish) {
   const int kMissing = 13, kTypo = kRuns * 42 / 100, kShort = kRuns * 77 / 100;
   const std::string missing = RunName(kMissing), typo = RunName(kTypo),
                     short_run = RunName(kShort);
-  const std::string manifest =
-      Manifest(dir,
-               kRuns,
-               {{kMissing, "    data: {file: missing.csv}\n"},
-                {kTypo, "    parameters: {Cm_alfa: {value: 1.0, free: true}}\n"},
-                {kShort, "    solver: {max_iterations: 1}\n"}});
+  const std::string manifest = Manifest(
+      dir,
+      kRuns,
+      {{kMissing, "    data: {file: missing.csv}\n"},
+       {kTypo, "    parameters: {Cm_alfa: {value: 1.0, free: true}}\n"},
+       {kShort, "    solver: {max_iterations: 1}\n"}});
   const auto result =
       testing::RunFit3dof("batch " + manifest + " --jobs=2 --out_dir=" + dir +
                           "/out --progress=false");
@@ -115,9 +115,8 @@ TEST(Batch, HundredRunsThreeBrokenTheRestFinish) {
     const std::string text = testing::ReadText(manifest);
     const size_t at = text.find("Cm_alfa");
     const long line = 1 + std::count(text.begin(), text.begin() + at, '\n');
-    const std::string expected =
-        "manifest.yaml:" + std::to_string(line) + ": run '" + typo +
-        "': parameters";
+    const std::string expected = "manifest.yaml:" + std::to_string(line) +
+                                 ": run '" + typo + "': parameters";
     EXPECT_NE(RunIn(summary, typo)["reason"].get<std::string>().find(expected),
               std::string::npos)
         << RunIn(summary, typo)["reason"] << " lacks " << expected;
@@ -180,9 +179,9 @@ TEST(Batch, ResumeAfterAKillRedoesOnlyTheUnfinishedRuns) {
       "batch " + manifest +
       " --jobs=2 --resume --progress=false --out_dir=" + out);
   ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
-  EXPECT_NE(resumed.output.find(runs + std::to_string(finished.size()) +
-                                " resumed)"),
-            std::string::npos)
+  EXPECT_NE(
+      resumed.output.find(runs + std::to_string(finished.size()) + " resumed)"),
+      std::string::npos)
       << resumed.output;
   // Finished runs were not redone (their reports, timing included, are
   // untouched); the summary equals the uninterrupted one.
@@ -202,7 +201,8 @@ TEST(Batch, ResumeAfterAKillRedoesOnlyTheUnfinishedRuns) {
   const auto again = testing::RunFit3dof(
       "batch " + manifest +
       " --jobs=2 --resume --progress=false --out_dir=" + out);
-  EXPECT_NE(again.output.find(runs + std::to_string(kRuns - 1) + " resumed)"), std::string::npos)
+  EXPECT_NE(again.output.find(runs + std::to_string(kRuns - 1) + " resumed)"),
+            std::string::npos)
       << again.output;
 }
 

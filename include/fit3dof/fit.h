@@ -69,7 +69,7 @@ struct FitResult {
   std::string name;
   ModelKind model = ModelKind::kSymmetric;
   bool converged = false;
-  int iterations = 0;  // of every attempt: stages, restarts, refits
+  int iterations = 0;       // of every attempt: stages, restarts, refits
   int points = 0;           // samples in all segments
   int free_parameters = 0;  // N_free
   double probable_error = 0.0;
