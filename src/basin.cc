@@ -50,18 +50,18 @@ Case DrawStart(const Case& ref, std::mt19937_64* rng) {
 
 void ApplyMethod(const std::string& method, Case* c) {
   if (method == "gauss_newton") {
-    c->solver.method = "gauss_newton";
+    c->solver.method = FitMethod::kGaussNewton;
     c->solver.multi_start = false;
   } else if (method == "levenberg_marquardt") {
-    c->solver.method = "levenberg_marquardt";
+    c->solver.method = FitMethod::kLevenbergMarquardt;
     c->solver.continuation = false;
     c->solver.multi_start = false;
   } else if (method == "continuation") {
-    c->solver.method = "levenberg_marquardt";
+    c->solver.method = FitMethod::kLevenbergMarquardt;
     c->solver.continuation = true;
     c->solver.multi_start = false;
   } else if (method == "robust") {
-    c->solver.method = "levenberg_marquardt";
+    c->solver.method = FitMethod::kLevenbergMarquardt;
     c->solver.continuation = true;
     c->solver.multi_start = true;
   } else {

@@ -1,168 +1,44 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// YAML config loading with strict validation: unknown keys are errors (a
-// misspelt key silently ignored is a wrong fit), every number must be finite,
-// and every message carries file, line and key.
+// The config reader: YAML tree -> validated Case. Strict: unknown keys are
+// errors (a misspelt key silently ignored is a wrong fit), every number
+// must be finite, and every message carries file, line and key. The YAML
+// text checks live in config_node.cc, the writer in config_writer.cc.
 
 #include "fit3dof/config.h"
 
-#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <limits>
-#include <map>
 #include <set>
 #include <sstream>
 #include <vector>
 
 #include "config_node.h"
 #include "fit3dof/input_error.h"
+#include "node_reader.h"
 
 namespace fit3dof {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ConfigReader {
+class ConfigReader : public NodeReader {
  public:
   ConfigReader(std::string source,
                std::string base_dir,
                bool node_lines,
-               const KeyLines* key_lines = nullptr,
-               std::string label = "")
-      : source_(std::move(source)),
-        base_dir_(std::move(base_dir)),
-        node_lines_(node_lines),
-        key_lines_(key_lines),
-        label_(std::move(label)) {}
+               const KeyLines* key_lines,
+               std::string label)
+      : NodeReader(std::move(source), node_lines, key_lines, std::move(label)),
+        base_dir_(std::move(base_dir)) {}
 
   Case Read(const YAML::Node& root);
 
  private:
-  [[noreturn]] void Fail(const YAML::Node& node,
-                         const std::string& key,
-                         const std::string& message) const {
-    std::ostringstream out;
-    const std::string line = KeyLine(key);
-    if (!line.empty()) {
-      out << line;
-      if (!label_.empty()) out << ": " << label_;
-    } else {
-      out << source_;
-      if (node_lines_ && node.IsDefined() && node.Mark().line >= 0) {
-        out << ":" << node.Mark().line + 1;
-      }
-    }
-    out << ": " << key << ": " << message;
-    throw InputError(out.str());
-  }
-
-  // "file:line" of `key` or of its nearest parent in key_lines_; empty
-  // when there are no key lines or none matches.
-  std::string KeyLine(std::string key) const {
-    if (key_lines_ == nullptr) return "";
-    while (!key.empty()) {
-      const auto found = key_lines_->find(key);
-      if (found != key_lines_->end()) return found->second;
-      const size_t cut = key.find_last_of(".[");
-      key = cut == std::string::npos ? "" : key.substr(0, cut);
-    }
-    return "";
-  }
-
-  void CheckKeys(const YAML::Node& node,
-                 const std::string& path,
-                 const std::set<std::string>& allowed) const {
-    if (!node.IsMap()) Fail(node, path, "expected a mapping of keys");
-    for (const auto& item : node) {
-      const std::string key = item.first.as<std::string>();
-      if (allowed.count(key) == 0) {
-        std::string list;
-        for (const std::string& a : allowed)
-          list += (list.empty() ? "" : ", ") + a;
-        Fail(item.first,
-             Join(path, key),
-             "unknown key (expected one of: " + list + ")");
-      }
-    }
-  }
-
-  static std::string Join(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-
-  double Number(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar()) Fail(node, key, "expected a number");
-    double value = 0.0;
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      Fail(node, key, "expected a number, got '" + node.Scalar() + "'");
-    }
-    if (!std::isfinite(value)) {
-      Fail(node, key, "expected a finite number, got '" + node.Scalar() + "'");
-    }
-    return value;
-  }
-
-  double Positive(const YAML::Node& node, const std::string& key) const {
-    const double value = Number(node, key);
-    if (!(value > 0.0))
-      Fail(node, key, "must be positive, got " + node.Scalar());
-    return value;
-  }
-
-  double NonNegative(const YAML::Node& node, const std::string& key) const {
-    const double value = Number(node, key);
-    if (value < 0.0)
-      Fail(node, key, "must not be negative, got " + node.Scalar());
-    return value;
-  }
-
-  // An integer in [min, max]; the default max fits an int.
-  long Integer(const YAML::Node& node,
-               const std::string& key,
-               long min,
-               long max = std::numeric_limits<int>::max()) const {
-    const double value = Number(node, key);
-    if (value != std::floor(value) || value < min || value > max) {
-      Fail(node,
-           key,
-           "expected an integer from " + std::to_string(min) + " to " +
-               std::to_string(max) + ", got " + node.Scalar());
-    }
-    return static_cast<long>(value);
-  }
-
-  bool Bool(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar()) Fail(node, key, "expected true or false");
-    try {
-      return node.as<bool>();
-    } catch (const YAML::Exception&) {
-      Fail(node, key, "expected true or false, got '" + node.Scalar() + "'");
-    }
-  }
-
-  std::string String(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar()) Fail(node, key, "expected a string");
-    return node.Scalar();
-  }
-
-  const YAML::Node Required(const YAML::Node& parent,
-                            const std::string& path,
-                            const std::string& key) const {
-    const YAML::Node node = parent[key];
-    if (!node.IsDefined() || node.IsNull()) {
-      Fail(parent, Join(path, key), "missing (required)");
-    }
-    return node;
-  }
-
   void ReadBody(const YAML::Node& node, Case* c) const;
   void ReadFlow(const YAML::Node& node, Case* c) const;
   void ReadParameters(const YAML::Node& node, Case* c) const;
@@ -185,11 +61,7 @@ class ConfigReader {
   void ReadSimulate(const YAML::Node& node, Case* c) const;
   void CheckPhysics(const YAML::Node& root, const Case& c) const;
 
-  std::string source_;
   std::string base_dir_;
-  bool node_lines_;  // false for merged trees, whose nodes lost their lines
-  const KeyLines* key_lines_;  // for merged trees: where each key came from
-  std::string label_;          // "run 'x'", after a key's line
 };
 
 Case ConfigReader::Read(const YAML::Node& root) {
@@ -210,8 +82,8 @@ Case ConfigReader::Read(const YAML::Node& root) {
              "solver",
              "simulate"});
   Case c;
-  c.source = source_;
-  c.name = fs::path(source_).stem().string();
+  c.source = source();
+  c.name = fs::path(source()).stem().string();
   if (root["name"]) c.name = String(root["name"], "name");
 
   const std::string model = String(Required(root, "", "model"), "model");
@@ -580,13 +452,12 @@ void ConfigReader::ReadSolver(const YAML::Node& node, Case* c) const {
              "multi_start",
              "starts"});
   if (node["method"]) {
-    c->solver.method = String(node["method"], "solver.method");
-    if (c->solver.method != "levenberg_marquardt" &&
-        c->solver.method != "gauss_newton") {
-      Fail(node["method"],
-           "solver.method",
-           "expected levenberg_marquardt or gauss_newton, got '" +
-               c->solver.method + "'");
+    const std::string method = String(node["method"], "solver.method");
+    if (!StringToFitMethod(method, &c->solver.method)) {
+      Fail(
+          node["method"],
+          "solver.method",
+          "expected levenberg_marquardt or gauss_newton, got '" + method + "'");
     }
   }
   if (node["max_probable_error"]) {
@@ -652,46 +523,6 @@ void ConfigReader::CheckPhysics(const YAML::Node& root, const Case& c) const {
 
 }  // namespace
 
-int SimulateOptions::NumSamples() const {
-  if (samples > 0) return samples;
-  if (dt <= 0.0) return 0;
-  return static_cast<int>(std::floor(duration / dt + 1e-9)) + 1;
-}
-
-ModelSpec Case::Spec() const {
-  ModelSpec spec;
-  spec.model = model;
-  spec.incidence = incidence;
-  spec.body = body;
-  spec.flow = flow;
-  spec.max_step = solver.step;
-  return spec;
-}
-
-std::vector<double> Case::Values() const {
-  std::vector<double> values(parameters.size());
-  for (size_t i = 0; i < parameters.size(); ++i)
-    values[i] = parameters[i].value;
-  return values;
-}
-
-std::vector<bool> Case::FreeFlags() const {
-  std::vector<bool> free(parameters.size());
-  for (size_t i = 0; i < parameters.size(); ++i) free[i] = parameters[i].free;
-  return free;
-}
-
-std::string ShortestNumber(double x) {
-  char out[40];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(out, sizeof(out), "%.*g", digits, x);
-    if (std::strtod(out, nullptr) == x) break;
-  }
-  std::string text = out;
-  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
-  return text;
-}
-
 Case ParseConfigNode(const YAML::Node& root,
                      const std::string& source,
                      const std::string& base_dir,
@@ -703,249 +534,6 @@ Case ParseConfigNode(const YAML::Node& root,
   }
   return ConfigReader(source, base_dir, node_lines, key_lines, label)
       .Read(root);
-}
-
-void RecordKeyLines(const YAML::Node& node,
-                    const std::string& file,
-                    const std::string& prefix,
-                    KeyLines* lines) {
-  auto at = [&](const YAML::Node& n) {
-    return file + ":" + std::to_string(n.Mark().line + 1);
-  };
-  if (node.IsMap()) {
-    for (const auto& item : node) {
-      if (!item.first.IsScalar()) continue;
-      const std::string path = prefix.empty()
-                                   ? item.first.Scalar()
-                                   : prefix + "." + item.first.Scalar();
-      if (item.first.Mark().line >= 0) (*lines)[path] = at(item.first);
-      RecordKeyLines(item.second, file, path, lines);
-    }
-  } else if (node.IsSequence()) {
-    for (size_t i = 0; i < node.size(); ++i) {
-      const std::string path = prefix + "[" + std::to_string(i) + "]";
-      if (node[i].Mark().line >= 0) (*lines)[path] = at(node[i]);
-      RecordKeyLines(node[i], file, path, lines);
-    }
-  }
-}
-
-namespace {
-
-// Length of the valid UTF-8 sequence at `s` (0 if invalid): no overlong
-// forms, no surrogates, nothing above U+10FFFF.
-int Utf8Length(const unsigned char* s, size_t left) {
-  const unsigned char c = s[0];
-  if (c < 0x80) return 1;
-  int n = 0;
-  unsigned min = 0;
-  unsigned code = 0;
-  if ((c & 0xE0) == 0xC0) {
-    n = 2, min = 0x80, code = c & 0x1F;
-  } else if ((c & 0xF0) == 0xE0) {
-    n = 3, min = 0x800, code = c & 0x0F;
-  } else if ((c & 0xF8) == 0xF0) {
-    n = 4, min = 0x10000, code = c & 0x07;
-  } else {
-    return 0;
-  }
-  if (left < static_cast<size_t>(n)) return 0;
-  for (int i = 1; i < n; ++i) {
-    if ((s[i] & 0xC0) != 0x80) return 0;
-    code = (code << 6) | (s[i] & 0x3F);
-  }
-  if (code < min || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) {
-    return 0;
-  }
-  return n;
-}
-
-// Checks what yaml-cpp lets through: a key given twice in one mapping (the
-// first would silently win), a key that is not a plain scalar, and text
-// that is not UTF-8 (it would reach report.json).
-void CheckStrict(const YAML::Node& node, const std::string& source) {
-  auto fail = [&](const YAML::Node& at, const std::string& message) {
-    throw InputError(source + ":" + std::to_string(at.Mark().line + 1) + ": " +
-                     message);
-  };
-  if (node.IsScalar()) {
-    if (!IsValidUtf8(node.Scalar())) {
-      fail(node, "the text is not valid UTF-8");
-    }
-  } else if (node.IsSequence()) {
-    for (const YAML::Node& item : node) CheckStrict(item, source);
-  } else if (node.IsMap()) {
-    std::map<std::string, int> seen;
-    for (const auto& item : node) {
-      if (!item.first.IsScalar()) {
-        fail(item.first,
-             "a key must be a plain name (complex keys are not "
-             "allowed)");
-      }
-      CheckStrict(item.first, source);
-      const std::string key = item.first.Scalar();
-      const auto [at, fresh] = seen.emplace(key, item.first.Mark().line + 1);
-      if (!fresh) {
-        fail(item.first,
-             key + ": given twice in one mapping (first at line " +
-                 std::to_string(at->second) + ")");
-      }
-      CheckStrict(item.second, source);
-    }
-  }
-}
-
-}  // namespace
-
-bool IsValidUtf8(const std::string& text) {
-  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
-  for (size_t i = 0; i < text.size();) {
-    const int n = Utf8Length(s + i, text.size() - i);
-    if (n == 0) return false;
-    i += n;
-  }
-  return true;
-}
-
-// YAML text is Unicode without control characters other than tab, line
-// feed and carriage return. Checked before yaml-cpp sees the text: a NUL
-// byte in a comment sends its parser into a loop that never ends (found by
-// tests/fuzz/config_fuzzer.cc).
-void CheckYamlCharacters(const std::string& text, const std::string& source) {
-  int line = 1;
-  for (const char ch : text) {
-    const auto byte = static_cast<unsigned char>(ch);
-    if (byte == '\n') ++line;
-    if ((byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') ||
-        byte == 0x7f) {
-      char code[8];
-      std::snprintf(code, sizeof(code), "0x%02x", byte);
-      throw InputError(source + ":" + std::to_string(line) +
-                       ": a control character (" + code +
-                       ") where YAML allows only text");
-    }
-  }
-  const auto* bytes = reinterpret_cast<const unsigned char*>(text.data());
-  line = 1;
-  for (size_t i = 0; i < text.size();) {
-    const int n = Utf8Length(bytes + i, text.size() - i);
-    if (n == 0) {
-      throw InputError(source + ":" + std::to_string(line) +
-                       ": the text is not valid UTF-8");
-    }
-    if (bytes[i] == '\n') ++line;
-    i += n;
-  }
-}
-
-namespace {
-
-// Sees whether a document has any content, and where it starts.
-class DocumentProbe : public YAML::EventHandler {
- public:
-  void OnDocumentStart(const YAML::Mark& mark) override { start = mark; }
-  void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override { content = true; }
-  void OnScalar(const YAML::Mark&,
-                const std::string&,
-                YAML::anchor_t,
-                const std::string&) override {
-    content = true;
-  }
-  void OnSequenceStart(const YAML::Mark&,
-                       const std::string&,
-                       YAML::anchor_t,
-                       YAML::EmitterStyle::value) override {
-    content = true;
-  }
-  void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&,
-                  const std::string&,
-                  YAML::anchor_t,
-                  YAML::EmitterStyle::value) override {
-    content = true;
-  }
-  void OnMapEnd() override {}
-
-  YAML::Mark start;
-  bool content = false;
-};
-
-}  // namespace
-
-YAML::Node ParseYamlText(const std::string& text, const std::string& source) {
-  CheckYamlCharacters(text, source);
-  // Not YAML::LoadAll: in yaml-cpp 0.7 it loops for ever, allocating, on
-  // some malformed text (a lone ',' is one; yaml-cpp issue 1040, fixed
-  // upstream in 0.8). One document is loaded; a second one with content is
-  // looked for by parsing at most one more.
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-    std::istringstream in(text);
-    YAML::Parser parser(in);
-    DocumentProbe first, second;
-    if (parser.HandleNextDocument(first) && parser.HandleNextDocument(second) &&
-        second.content) {
-      throw InputError(source + ":" + std::to_string(second.start.line + 1) +
-                       ": a second YAML document ('---'); a config or "
-                       "manifest is one document");
-    }
-  } catch (const YAML::Exception& e) {
-    throw InputError(source + ":" + std::to_string(e.mark.line + 1) +
-                     ": not valid YAML: " + e.msg);
-  }
-  if (!root.IsDefined() || root.IsNull()) return root;
-  CheckStrict(root, source);
-  return root;
-}
-
-YAML::Node LoadYamlFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseYamlText(text.str(), path);
-}
-
-void ResolveDataPaths(const std::string& base_dir, YAML::Node* node) {
-  if (!node->IsMap()) return;
-  auto resolve = [&](YAML::Node data) {
-    if (!data.IsMap() || !data["file"] || !data["file"].IsScalar()) return;
-    const fs::path file(data["file"].Scalar());
-    if (!file.is_absolute()) {
-      data["file"] =
-          fs::absolute(fs::path(base_dir) / file).lexically_normal().string();
-    }
-  };
-  resolve((*node)["data"]);
-  YAML::Node segments = (*node)["segments"];
-  if (segments.IsSequence()) {
-    for (size_t i = 0; i < segments.size(); ++i) resolve(segments[i]["data"]);
-  }
-}
-
-YAML::Node MergeYaml(const YAML::Node& base, const YAML::Node& overrides) {
-  if (!base.IsDefined() || !base.IsMap() || !overrides.IsMap()) {
-    return YAML::Clone(overrides);
-  }
-  // Built afresh (reading base and overrides only through const handles):
-  // YAML::Node assignment writes through to shared nodes.
-  YAML::Node out(YAML::NodeType::Map);
-  for (const auto& item : base) {
-    const std::string key = item.first.Scalar();
-    const YAML::Node over = static_cast<const YAML::Node&>(overrides)[key];
-    out[key] = over.IsDefined() ? MergeYaml(item.second, over)
-                                : YAML::Clone(item.second);
-  }
-  for (const auto& item : overrides) {
-    const std::string key = item.first.Scalar();
-    if (!static_cast<const YAML::Node&>(base)[key].IsDefined()) {
-      out[key] = YAML::Clone(item.second);
-    }
-  }
-  return out;
 }
 
 Case ParseConfig(const std::string& text,
@@ -961,85 +549,6 @@ Case LoadConfig(const std::string& path) {
   text << in.rdbuf();
   const fs::path parent = fs::path(path).parent_path();
   return ParseConfig(text.str(), path, parent.empty() ? "." : parent.string());
-}
-
-}  // namespace fit3dof
-
-namespace fit3dof {
-namespace {
-
-std::string Setting(const ParameterSetting& p) {
-  if (p.auto_start) return "{value: auto, free: true}";
-  return "{value: " + ShortestNumber(p.value) +
-         ", free: " + (p.free ? "true" : "false") + "}";
-}
-
-}  // namespace
-
-std::string CaseToYaml(const Case& c) {
-  std::ostringstream y;
-  y << "name: " << c.name << "\nmodel: " << ModelName(c.model)
-    << "\nincidence: " << IncidenceName(c.incidence) << "\n";
-  y << "body: {area: " << ShortestNumber(c.body.area)
-    << ", diameter: " << ShortestNumber(c.body.diameter)
-    << ", Ix: " << ShortestNumber(c.body.Ix)
-    << ", Iy: " << ShortestNumber(c.body.Iy);
-  if (c.model == ModelKind::kAsymmetric)
-    y << ", Iz: " << ShortestNumber(c.body.Iz);
-  y << "}\nflow: {velocity: " << ShortestNumber(c.flow.velocity)
-    << ", dynamic_pressure: " << ShortestNumber(c.flow.dynamic_pressure)
-    << "}\n";
-  y << "parameters:\n";
-  const auto& table = ParameterTable(c.model);
-  for (int i = 0; i < NumParameters(c.model); ++i) {
-    const ParameterSetting& p = c.parameters[i];
-    if (IsInitialCondition(c.model, i)) continue;  // per segment below
-    if (p.value == 0.0 && !p.free && !p.auto_start) continue;
-    y << "  " << table[i].name << ": " << Setting(p) << "\n";
-  }
-  y << "segments:\n";
-  const int first = Layout(c.model).first_initial;
-  for (const Segment& s : c.segments) {
-    y << "  - name: " << s.name << "\n    data: {file: " << s.data_file
-      << ", start: " << s.selection.start
-      << ", fraction: " << ShortestNumber(s.selection.fraction)
-      << ", every: " << s.selection.every;
-    if (s.selection.t_start > -1e299)
-      y << ", t_start: " << ShortestNumber(s.selection.t_start);
-    if (s.selection.t_end < 1e299)
-      y << ", t_end: " << ShortestNumber(s.selection.t_end);
-    if (s.outliers != OutlierPolicy::kWarn)
-      y << ", outliers: " << OutlierPolicyName(s.outliers);
-    y << "}\n    initial_conditions: "
-      << (s.initial_conditions == InitialConditionMode::kFromData ? "from_data"
-                                                                  : "given")
-      << "\n    parameters:\n";
-    for (int j = 0; j < 6; ++j) {
-      y << "      " << table[first + j].name << ": " << Setting(s.initial[j])
-        << "\n";
-    }
-  }
-  y << "sigma: {phi: " << ShortestNumber(c.sigma.phi)
-    << ", theta: " << ShortestNumber(c.sigma.theta)
-    << ", psi: " << ShortestNumber(c.sigma.psi) << "}\n";
-  if (c.noise.enabled) {
-    y << "noise:\n  sigma: {phi: " << ShortestNumber(c.noise.sigma.phi)
-      << ", theta: " << ShortestNumber(c.noise.sigma.theta)
-      << ", psi: " << ShortestNumber(c.noise.sigma.psi)
-      << "}\n  bias: {phi: " << ShortestNumber(c.noise.bias.phi)
-      << ", theta: " << ShortestNumber(c.noise.bias.theta)
-      << ", psi: " << ShortestNumber(c.noise.bias.psi)
-      << "}\n  seed: " << c.noise.seed << "\n";
-  }
-  y << "solver: {max_iterations: " << c.solver.max_iterations
-    << ", tolerance: " << ShortestNumber(c.solver.tolerance)
-    << ", step: " << ShortestNumber(c.solver.step)
-    << ", continuation: " << (c.solver.continuation ? "true" : "false")
-    << ", method: " << c.solver.method
-    << ", max_probable_error: " << ShortestNumber(c.solver.max_probable_error)
-    << ", multi_start: " << (c.solver.multi_start ? "true" : "false")
-    << ", starts: " << c.solver.starts << "}\n";
-  return y.str();
 }
 
 }  // namespace fit3dof

@@ -79,7 +79,7 @@ PipelineOutcome RunPipeline(const Case& c,
   const FreeLayout& free = problem.free;
   PipelineOutcome result;
   const int k = free.size();
-  const bool gauss_newton = c.solver.method == "gauss_newton";
+  const bool gauss_newton = c.solver.method == FitMethod::kGaussNewton;
   // The report's plain method fits the whole record at once.
   const std::vector<double> windows =
       c.solver.continuation && !gauss_newton

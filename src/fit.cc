@@ -86,7 +86,7 @@ PipelineOutcome Solve(const Case& c,
                       FitResult* result) {
   const double limit = c.solver.max_probable_error;
   const bool plain =
-      c.solver.method == "gauss_newton" || !c.solver.continuation;
+      c.solver.method == FitMethod::kGaussNewton || !c.solver.continuation;
   const bool robust = !plain && c.solver.multi_start && c.solver.starts > 0;
   *values = problem.values;
   PipelineOutcome outcome = RunPipeline(c, problem, values);

@@ -106,7 +106,7 @@ TEST(Config, AutoStartingValuesAndSolverMethod) {
   EXPECT_TRUE(c.parameters[0].auto_start);
   EXPECT_TRUE(c.parameters[1].auto_start);
   EXPECT_FALSE(c.parameters[12].auto_start);
-  EXPECT_EQ(c.solver.method, "gauss_newton");
+  EXPECT_EQ(c.solver.method, FitMethod::kGaussNewton);
   EXPECT_DOUBLE_EQ(c.solver.max_probable_error, 5.0);
   EXPECT_NE(Error(Replace(kValid, "Cl_p: -0.0081", "Cl_p: {value: auto}"))
                 .find("a frozen parameter needs a value"),

@@ -399,7 +399,7 @@ TEST(Fit, AutoStartingValuesReachTheTruth) {
 // where the default pipeline does.
 TEST(Fit, PlainGaussNewtonAsTheReportDid) {
   Case near = Load("table6_sigma0.02.yaml");
-  near.solver.method = "gauss_newton";
+  near.solver.method = FitMethod::kGaussNewton;
   near.segments[0].initial_conditions = InitialConditionMode::kGiven;
   const Case truth = Load("table6_motion.yaml");
   for (int i = 0; i < NumParameters(near.model); ++i) {
@@ -416,7 +416,7 @@ TEST(Fit, PlainGaussNewtonAsTheReportDid) {
   EXPECT_NEAR(Find(good, "Cm_alpha").value, -0.236, 1e-4);
 
   Case poor = Load("table6_sigma0.02.yaml");
-  poor.solver.method = "gauss_newton";
+  poor.solver.method = FitMethod::kGaussNewton;
   const FitResult bad = Fit(poor);
   EXPECT_FALSE(bad.converged);
   EXPECT_FALSE(bad.termination.empty());

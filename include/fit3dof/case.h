@@ -70,6 +70,17 @@ struct NoiseOptions {
   std::uint64_t seed = 1;
 };
 
+// solver.method: how the normal equations are stepped.
+enum class FitMethod {
+  kLevenbergMarquardt,  // damped, with continuation and multi-start
+  kGaussNewton,         // the 1978 program's undamped full step
+};
+
+// "levenberg_marquardt" | "gauss_newton"; the config's spelling.
+const char* FitMethodToString(FitMethod method);
+// False (and *method untouched) for any other text.
+bool StringToFitMethod(const std::string& text, FitMethod* method);
+
 struct SolverOptions {
   int max_iterations = 50;  // NITER
   double tolerance = 1e-6;  // BOUND, on the change of the probable error
@@ -79,7 +90,7 @@ struct SolverOptions {
   bool continuation = true;
   // levenberg_marquardt, or gauss_newton: the 1978 program's undamped full
   // step over the whole record (no continuation, no multi-start).
-  std::string method = "levenberg_marquardt";
+  FitMethod method = FitMethod::kLevenbergMarquardt;
   // A fit whose probable error stays above this is not called converged
   // (residuals more than this many sigmas); 0 disables the check.
   double max_probable_error = 3.0;
@@ -116,6 +127,18 @@ struct Case {
   std::vector<double> Values() const;
   std::vector<bool> FreeFlags() const;
 };
+
+// Member-wise equality; a Case's `source` (where it was read from) is not
+// compared. Numbers compare exactly: a written and re-read config must give
+// back the same doubles.
+bool operator==(const ParameterSetting& a, const ParameterSetting& b);
+bool operator==(const ChannelValues& a, const ChannelValues& b);
+bool operator==(const DataSelection& a, const DataSelection& b);
+bool operator==(const Segment& a, const Segment& b);
+bool operator==(const NoiseOptions& a, const NoiseOptions& b);
+bool operator==(const SolverOptions& a, const SolverOptions& b);
+bool operator==(const SimulateOptions& a, const SimulateOptions& b);
+bool operator==(const Case& a, const Case& b);
 
 }  // namespace fit3dof
 

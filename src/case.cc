@@ -1,0 +1,151 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Case's own methods (case.h): its model spec, parameter values and flags,
+// and equality (the config writer's round trip is checked with it).
+
+#include "fit3dof/case.h"
+
+#include <cmath>
+#include <string>
+#include <tuple>
+
+namespace fit3dof {
+
+const char* FitMethodToString(FitMethod method) {
+  switch (method) {
+    case FitMethod::kLevenbergMarquardt:
+      return "levenberg_marquardt";
+    case FitMethod::kGaussNewton:
+      return "gauss_newton";
+  }
+  return "unknown";
+}
+
+bool StringToFitMethod(const std::string& text, FitMethod* method) {
+  for (FitMethod m :
+       {FitMethod::kLevenbergMarquardt, FitMethod::kGaussNewton}) {
+    if (text == FitMethodToString(m)) {
+      *method = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+int SimulateOptions::NumSamples() const {
+  if (samples > 0) return samples;
+  if (dt <= 0.0) return 0;
+  return static_cast<int>(std::floor(duration / dt + 1e-9)) + 1;
+}
+
+ModelSpec Case::Spec() const {
+  ModelSpec spec;
+  spec.model = model;
+  spec.incidence = incidence;
+  spec.body = body;
+  spec.flow = flow;
+  spec.max_step = solver.step;
+  return spec;
+}
+
+std::vector<double> Case::Values() const {
+  std::vector<double> values(parameters.size());
+  for (size_t i = 0; i < parameters.size(); ++i)
+    values[i] = parameters[i].value;
+  return values;
+}
+
+std::vector<bool> Case::FreeFlags() const {
+  std::vector<bool> free(parameters.size());
+  for (size_t i = 0; i < parameters.size(); ++i) free[i] = parameters[i].free;
+  return free;
+}
+
+namespace {
+
+auto Tie(const Body& b) {
+  return std::tie(b.area, b.diameter, b.Ix, b.Iy, b.Iz);
+}
+auto Tie(const Flow& f) { return std::tie(f.velocity, f.dynamic_pressure); }
+
+}  // namespace
+
+bool operator==(const ParameterSetting& a, const ParameterSetting& b) {
+  return std::tie(a.value, a.free, a.auto_start) ==
+         std::tie(b.value, b.free, b.auto_start);
+}
+
+bool operator==(const ChannelValues& a, const ChannelValues& b) {
+  return std::tie(a.phi, a.theta, a.psi) == std::tie(b.phi, b.theta, b.psi);
+}
+
+bool operator==(const DataSelection& a, const DataSelection& b) {
+  return std::tie(a.start, a.fraction, a.every, a.t_start, a.t_end) ==
+         std::tie(b.start, b.fraction, b.every, b.t_start, b.t_end);
+}
+
+bool operator==(const Segment& a, const Segment& b) {
+  return std::tie(a.name,
+                  a.data_file,
+                  a.selection,
+                  a.initial_conditions,
+                  a.outliers,
+                  a.initial) == std::tie(b.name,
+                                         b.data_file,
+                                         b.selection,
+                                         b.initial_conditions,
+                                         b.outliers,
+                                         b.initial);
+}
+
+bool operator==(const NoiseOptions& a, const NoiseOptions& b) {
+  return std::tie(a.enabled, a.sigma, a.bias, a.seed) ==
+         std::tie(b.enabled, b.sigma, b.bias, b.seed);
+}
+
+bool operator==(const SolverOptions& a, const SolverOptions& b) {
+  return std::tie(a.max_iterations,
+                  a.tolerance,
+                  a.step,
+                  a.continuation,
+                  a.method,
+                  a.max_probable_error,
+                  a.multi_start,
+                  a.starts) == std::tie(b.max_iterations,
+                                        b.tolerance,
+                                        b.step,
+                                        b.continuation,
+                                        b.method,
+                                        b.max_probable_error,
+                                        b.multi_start,
+                                        b.starts);
+}
+
+bool operator==(const SimulateOptions& a, const SimulateOptions& b) {
+  return std::tie(a.dt, a.duration, a.samples) ==
+         std::tie(b.dt, b.duration, b.samples);
+}
+
+// `source` (where the case was read from) is not part of what it is.
+bool operator==(const Case& a, const Case& b) {
+  return std::tie(a.name,
+                  a.model,
+                  a.incidence,
+                  a.parameters,
+                  a.segments,
+                  a.sigma,
+                  a.noise,
+                  a.solver,
+                  a.simulate) == std::tie(b.name,
+                                          b.model,
+                                          b.incidence,
+                                          b.parameters,
+                                          b.segments,
+                                          b.sigma,
+                                          b.noise,
+                                          b.solver,
+                                          b.simulate) &&
+         Tie(a.body) == Tie(b.body) && Tie(a.flow) == Tie(b.flow);
+}
+
+}  // namespace fit3dof
