@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "config_node.h"
+#include "deck_config.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/namelist.h"
 
@@ -276,10 +277,11 @@ std::vector<RunSpec> LoadManifest(const std::string& path,
   } else if (IsDeckFile(path)) {
     const Deck deck = ReadDeck(path);
     const std::string dir = fs::path(path).parent_path().string();
-    for (const DeckRun& run : DeckRuns(deck, deck_data)) {
+    for (const DeckConfig& group : DeckConfigs(deck, deck_data)) {
+      const DeckRun& run = group.run;
       RunSpec spec;
       spec.name = run.name;
-      spec.config = YAML::Load(run.config_yaml);
+      spec.config = group.config;
       spec.base_dir = dir.empty() ? "." : dir;
       ResolveDataPaths(spec.base_dir, &spec.config);
       spec.start_from = run.start_from;

@@ -1,23 +1,8 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// NAMELIST /NAM/ of both listings (Tables 1 and 2) and Table 4:
-//
-//   NSWTCH  0 fit, 1/2 generate motion  -> fit, or simulate: block
-//   NITER, BOUND, DTMIN                 -> solver.max_iterations, tolerance,
-//   step AREA, DIA, IX, IY, IZ               -> body IZX -> parameter Izx
-//   (AACON(60)) RO, U                               -> flow.density,
-//   flow.velocity AACON(i), NCON(i)                   -> parameters (value,
-//   free) NSESWH, SPHI, STHTA, SPSI, AMPHI, AMTHTA, AMPSI                ->
-//   noise (seed 1: the 1978 program
-//                                          seeded from the clock)
-//   SAMPLE, NDELTA, NSTART              -> data.fraction, every, start
-//   IUPDAT                              -> the next group: start_from
-//   INLCON                              -> initial_conditions
-//   IANGLE                              -> incidence
-//   DTGEN, NTOT (NSWTCH != 0)           -> simulate.dt, samples
-//   SIGPHI, SIGTHA, SIGPSI              -> sigma
-//   IGPNO, IBLKNO, IRCGEN, IRCSTR, NC,
-//   NTOT (NSWTCH = 0)                   -> accepted and ignored
+// The NAMELIST deck parser (namelist.h): card images -> Deck, and the
+// public entry points. The variables' meaning and their config keys are in
+// deck_config.cc.
 
 #include "fit3dof/namelist.h"
 
@@ -31,6 +16,7 @@
 #include <sstream>
 
 #include "config_node.h"
+#include "deck_config.h"
 #include "fit3dof/case.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/parameters.h"
@@ -291,233 +277,7 @@ class DeckParser {
   int line_ = 1;
 };
 
-// The deck's variables after some groups: scalars and 1-based arrays.
-struct DeckState {
-  std::map<std::string, DeckValue> scalars;
-  std::map<std::string, std::map<int, DeckValue>> arrays;
-  std::map<std::string, int> line;  // where each was last set
-
-  bool Has(const std::string& name) const { return scalars.count(name) > 0; }
-  double Number(const std::string& name, double fallback) const {
-    const auto it = scalars.find(name);
-    if (it == scalars.end()) return fallback;
-    if (it->second.kind == DeckValue::kLogical)
-      return it->second.logical ? 1 : 0;
-    return it->second.number;
-  }
-};
-
-const std::set<std::string>& ScalarVariables() {
-  static const std::set<std::string> names = {
-      "NSWTCH", "NTOT",  "NC",     "NITER",  "DTMIN",  "BOUND",  "AREA",
-      "DIA",    "IX",    "IY",     "IZ",     "IZX",    "RO",     "U",
-      "NSESWH", "SPHI",  "STHTA",  "STHA",   "SPSI",   "AMPHI",  "AMTHTA",
-      "AMTHA",  "AMPSI", "SAMPLE", "NDELTA", "IUPDAT", "INLCON", "IANGLE",
-      "DTGEN",  "IGPNO", "IBLKNO", "IRCGEN", "SIGPHI", "SIGTHA", "SIGPSI",
-      "NSTART", "IRCSTR"};
-  return names;
-}
-
-const std::set<std::string>& IgnoredVariables() {
-  static const std::set<std::string> names = {
-      "IGPNO", "IBLKNO", "IRCGEN", "IRCSTR", "NC"};
-  return names;
-}
-
-void Apply(const std::string& source,
-           const DeckAssignment& a,
-           DeckState* state) {
-  const std::string where = source + ":" + std::to_string(a.line) + ": ";
-  if (a.variable == "AACON" || a.variable == "NCON") {
-    const int first = a.index > 0 ? a.index : 1;
-    for (size_t i = 0; i < a.values.size(); ++i) {
-      const DeckValue& v = a.values[i];
-      if (v.kind == DeckValue::kNull) continue;
-      if (v.kind != DeckValue::kNumber) {
-        throw InputError(where + a.variable + ": expected numbers");
-      }
-      const int index = first + static_cast<int>(i);
-      if (index > kMaxParameters) {
-        throw InputError(
-            where + a.variable + "(" + std::to_string(index) +
-            "): beyond the 72 parameters of the asymmetric program");
-      }
-      state->arrays[a.variable][index] = v;
-    }
-    state->line[a.variable] = a.line;
-    return;
-  }
-  if (ScalarVariables().count(a.variable) == 0) {
-    throw InputError(
-        where + a.variable +
-        ": not a variable of the report's NAMELIST /NAM/ (Table 4)");
-  }
-  if (a.index > 1 || a.values.size() != 1) {
-    throw InputError(where + a.variable + ": expected a single value");
-  }
-  if (a.values[0].kind == DeckValue::kString) {
-    throw InputError(where + a.variable + ": expected a number");
-  }
-  // The listing's integer variables (Fortran's I-N rule; IX, IY, IZ, IZX
-  // are declared real) hold whole numbers an INTEGER can: anything else is
-  // refused here, where the line is known, before it is cast.
-  static const std::set<std::string> kIntegers = {"NSWTCH",
-                                                  "NTOT",
-                                                  "NC",
-                                                  "NITER",
-                                                  "NSESWH",
-                                                  "NDELTA",
-                                                  "NSTART",
-                                                  "IUPDAT",
-                                                  "INLCON",
-                                                  "IANGLE",
-                                                  "IGPNO",
-                                                  "IBLKNO",
-                                                  "IRCGEN",
-                                                  "IRCSTR"};
-  const DeckValue& v = a.values[0];
-  if (kIntegers.count(a.variable) > 0 && v.kind == DeckValue::kNumber &&
-      !(v.number == std::floor(v.number) &&
-        std::abs(v.number) <= 2147483647.0)) {
-    throw InputError(where + a.variable +
-                     ": expected an integer from -2147483647 to 2147483647");
-  }
-  state->scalars[a.variable] = v;
-  state->line[a.variable] = a.line;
-}
-
-// The config of one group, from the state after it.
-std::string GroupConfig(const Deck& deck,
-                        const DeckState& state,
-                        int group,
-                        const std::string& name,
-                        const std::string& data_file,
-                        std::vector<std::string>* ignored) {
-  const std::string where = deck.source + " group " + std::to_string(group);
-  auto require = [&](const char* variable, const char* key) {
-    if (!state.Has(variable)) {
-      throw InputError(where + ": " + variable + " (" + key +
-                       ") is not set in this group or an earlier one");
-    }
-    return state.Number(variable, 0.0);
-  };
-  const auto aacon_it = state.arrays.find("AACON");
-  const auto ncon_it = state.arrays.find("NCON");
-  int largest = 0;
-  if (aacon_it != state.arrays.end() && !aacon_it->second.empty()) {
-    largest = aacon_it->second.rbegin()->first;
-  }
-  if (ncon_it != state.arrays.end() && !ncon_it->second.empty()) {
-    largest = std::max(largest, ncon_it->second.rbegin()->first);
-  }
-  const bool asymmetric = state.Number("NC", 0) == 72 || state.Has("IZ") ||
-                          state.Has("IZX") || largest > 30;
-  const ModelKind model =
-      asymmetric ? ModelKind::kAsymmetric : ModelKind::kSymmetric;
-  const auto& table = ParameterTable(model);
-  if (largest > NumParameters(model)) {
-    throw InputError(where + ": AACON/NCON index " + std::to_string(largest) +
-                     " is beyond the " + std::to_string(NumParameters(model)) +
-                     " parameters of the " + ModelName(model) + " program");
-  }
-  const int nswtch = static_cast<int>(state.Number("NSWTCH", 0));
-  std::ostringstream y;
-  y << "# converted from " << deck.source << ", NAMELIST group " << group;
-  if (!deck.titles.empty()) y << " (" << deck.titles.front() << ")";
-  y << "\nname: " << name << "\n";
-  y << "model: " << ModelName(model) << "\n";
-  y << "incidence: "
-    << (state.Number("IANGLE", 0) == 0 ? "velocity_ratio" : "angle_of_attack")
-    << "\n";
-  y << "body:\n  area: " << ShortestNumber(require("AREA", "body.area"))
-    << "\n  diameter: " << ShortestNumber(require("DIA", "body.diameter"))
-    << "\n  Ix: " << ShortestNumber(require("IX", "body.Ix"))
-    << "\n  Iy: " << ShortestNumber(require("IY", "body.Iy")) << "\n";
-  if (asymmetric)
-    y << "  Iz: " << ShortestNumber(require("IZ", "body.Iz")) << "\n";
-  y << "flow:\n  velocity: " << ShortestNumber(require("U", "flow.velocity"))
-    << "\n  density: " << ShortestNumber(require("RO", "flow.density")) << "\n";
-  y << "parameters:\n";
-  for (int i = 1; i <= NumParameters(model); ++i) {
-    double value = 0.0;
-    bool free = false;
-    if (aacon_it != state.arrays.end() && aacon_it->second.count(i)) {
-      value = aacon_it->second.at(i).number;
-    }
-    if (ncon_it != state.arrays.end() && ncon_it->second.count(i)) {
-      free = ncon_it->second.at(i).number != 0.0;
-    }
-    if (asymmetric && i == 60 && state.Has("IZX"))
-      value = state.Number("IZX", 0);
-    const ParameterInfo& info = table[i - 1];
-    if (info.scaling == Scaling::kUnused) {
-      if (value != 0.0 || free) {
-        ignored->push_back("AACON(" + std::to_string(i) + ") (spare slot " +
-                           info.name + ")");
-      }
-      continue;
-    }
-    if (value == 0.0 && !free) continue;
-    y << "  " << info.name << ": {value: " << ShortestNumber(value)
-      << ", free: " << (free ? "true" : "false") << "}  # AACON(" << i << ")\n";
-  }
-  y << "initial_conditions: "
-    << (state.Number("INLCON", 0) == 0 ? "from_data" : "given") << "\n";
-  if (nswtch == 0 && !data_file.empty()) {
-    y << "data:\n  file: " << data_file
-      << "\n  start: " << static_cast<long>(state.Number("NSTART", 1))
-      << "\n  fraction: " << ShortestNumber(state.Number("SAMPLE", 1.0))
-      << "\n  every: " << static_cast<long>(state.Number("NDELTA", 1)) << "\n";
-  }
-  if (state.Has("SIGPHI") || state.Has("SIGTHA") || state.Has("SIGPSI")) {
-    y << "sigma: {phi: " << ShortestNumber(state.Number("SIGPHI", 1.0))
-      << ", theta: " << ShortestNumber(state.Number("SIGTHA", 1.0))
-      << ", psi: " << ShortestNumber(state.Number("SIGPSI", 1.0)) << "}\n";
-  }
-  if (state.Number("NSESWH", 0) == 1) {
-    const double stheta =
-        state.Has("STHTA") ? state.Number("STHTA", 0) : state.Number("STHA", 0);
-    const double btheta = state.Has("AMTHTA") ? state.Number("AMTHTA", 0)
-                                              : state.Number("AMTHA", 0);
-    y << "noise:  # NSESWH = 1; the 1978 program seeded its RANDU from the "
-         "clock\n"
-      << "  sigma: {phi: " << ShortestNumber(state.Number("SPHI", 0))
-      << ", theta: " << ShortestNumber(stheta)
-      << ", psi: " << ShortestNumber(state.Number("SPSI", 0)) << "}\n"
-      << "  bias: {phi: " << ShortestNumber(state.Number("AMPHI", 0))
-      << ", theta: " << ShortestNumber(btheta)
-      << ", psi: " << ShortestNumber(state.Number("AMPSI", 0))
-      << "}\n  seed: 1\n";
-  }
-  y << "solver:\n";
-  if (state.Has("NITER")) {
-    y << "  max_iterations: " << static_cast<long>(state.Number("NITER", 50))
-      << "\n";
-  }
-  if (state.Has("BOUND"))
-    y << "  tolerance: " << ShortestNumber(state.Number("BOUND", 0)) << "\n";
-  if (state.Has("DTMIN"))
-    y << "  step: " << ShortestNumber(state.Number("DTMIN", 0)) << "\n";
-  if (nswtch != 0) {
-    y << "simulate:\n  dt: " << ShortestNumber(require("DTGEN", "simulate.dt"))
-      << "\n  samples: "
-      << static_cast<long>(require("NTOT", "simulate.samples")) << "\n";
-  } else if (state.Has("NTOT")) {
-    ignored->push_back("NTOT (array size; the data file sets the samples)");
-  }
-  for (const std::string& v : IgnoredVariables()) {
-    if (state.Has(v)) ignored->push_back(v);
-  }
-  if (!ignored->empty()) {
-    y << "# ignored (no meaning today):";
-    for (const std::string& v : *ignored) y << " " << v << ";";
-    y << "\n";
-  }
-  return y.str();
-}
-
 }  // namespace
-
 Deck ParseDeck(const std::string& text, const std::string& source) {
   return DeckParser(text, source).Parse();
 }
@@ -531,27 +291,10 @@ Deck ReadDeck(const std::string& path) {
 }
 
 std::vector<DeckRun> DeckRuns(const Deck& deck, const std::string& data_file) {
-  const std::string stem = std::filesystem::path(deck.source).stem().string();
   std::vector<DeckRun> runs;
-  DeckState state;
-  bool update_next = false;
-  for (size_t g = 0; g < deck.groups.size(); ++g) {
-    const DeckGroup& group = deck.groups[g];
-    if (group.name != "NAM") {
-      throw InputError(deck.source + ":" + std::to_string(group.line) + ": &" +
-                       group.name + ": the programs read NAMELIST /NAM/ only");
-    }
-    for (const DeckAssignment& a : group.assignments)
-      Apply(deck.source, a, &state);
-    DeckRun run;
-    run.group = static_cast<int>(g) + 1;
-    run.name =
-        deck.groups.size() == 1 ? stem : stem + "-" + std::to_string(run.group);
-    if (update_next && !runs.empty()) run.start_from = runs.back().name;
-    run.config_yaml =
-        GroupConfig(deck, state, run.group, run.name, data_file, &run.ignored);
-    update_next = state.Number("IUPDAT", 0) == 1;
-    runs.push_back(run);
+  for (const DeckConfig& config : DeckConfigs(deck, data_file)) {
+    runs.push_back(config.run);
+    runs.back().config_yaml = DeckConfigYaml(deck, config);
   }
   return runs;
 }
@@ -568,38 +311,18 @@ bool IsDeckFile(const std::string& path) {
 }
 
 Case LoadDeckCase(const std::string& path, const std::string& data_file) {
-  const std::vector<DeckRun> runs = DeckRuns(ReadDeck(path), data_file);
-  if (runs.size() != 1) {
-    throw InputError(path + ": the deck has " + std::to_string(runs.size()) +
+  const std::vector<DeckConfig> configs =
+      DeckConfigs(ReadDeck(path), data_file);
+  if (configs.size() != 1) {
+    throw InputError(path + ": the deck has " + std::to_string(configs.size()) +
                      " groups; run it with fit3dof batch");
   }
-  YAML::Node config = YAML::Load(runs[0].config_yaml);
   const std::string dir = std::filesystem::path(path).parent_path().string();
-  return ParseConfigNode(config, path, dir.empty() ? "." : dir);
+  return ParseConfigNode(configs[0].config, path, dir.empty() ? "." : dir);
 }
 
 std::string DeckToYaml(const Deck& deck, const std::string& data_file) {
-  const std::vector<DeckRun> runs = DeckRuns(deck, data_file);
-  if (runs.size() == 1) return runs[0].config_yaml;
-  std::ostringstream y;
-  y << "# converted from " << deck.source << ": " << runs.size()
-    << " NAMELIST groups, one run each\nruns:\n";
-  for (const DeckRun& run : runs) {
-    std::istringstream lines(run.config_yaml);
-    std::string line;
-    bool first = true;
-    while (std::getline(lines, line)) {
-      if (line.rfind("#", 0) == 0) {
-        y << "  " << line << "\n";
-        continue;
-      }
-      y << (first ? "  - " : "    ") << line << "\n";
-      first = false;
-    }
-    if (!run.start_from.empty())
-      y << "    start_from: " << run.start_from << "  # IUPDAT = 1\n";
-  }
-  return y.str();
+  return DeckYaml(deck, DeckConfigs(deck, data_file));
 }
 
 }  // namespace fit3dof

@@ -139,7 +139,7 @@ TEST(Namelist, GroupsAccumulateAndChain) {
   EXPECT_EQ(runs[0].ignored[0], "IGPNO");
   // The manifest form chains with start_from.
   const std::string yaml = DeckToYaml(deck, "/data/run.csv");
-  EXPECT_NE(yaml.find("start_from: sharp-1"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("start_from: \"sharp-1\""), std::string::npos) << yaml;
 }
 
 TEST(Namelist, MissingConstantsNameTheGroup) {
