@@ -109,8 +109,9 @@ int BatchCommand(const std::vector<std::string>& args) {
             << summary.NumFailed() << " failed or not converged; summary in "
             << FLAGS.out_dir << "/summary.csv\n";
   for (const RunResult& r : summary.runs) {
-    if (r.status != "converged") {
-      std::cout << "  " << r.name << ": " << r.status << ": " << r.reason
+    if (r.status != RunStatus::kConverged) {
+      std::cout << "  " << r.name << ": " << RunStatusToString(r.status)
+                << ": " << r.reason
                 << "\n";
     }
   }

@@ -9,13 +9,15 @@
 #include "csv_field.h"
 #include "fit3dof/atomic_file.h"
 #include "json_values.h"
+#include "report_json.h"
 
 namespace fit3dof {
 
 using nlohmann::json;
+using nlohmann::ordered_json;
 
-std::string ReportJson(const FitResult& r) {
-  json report;
+ordered_json ReportObject(const FitResult& r) {
+  ordered_json report;
   report["name"] = r.name;
   report["model"] = ModelName(r.model);
   report["converged"] = r.converged;
@@ -26,7 +28,7 @@ std::string ReportJson(const FitResult& r) {
   report["probable_error"] = JsonNumber(r.probable_error);
   report["sum_of_residuals"] = JsonNumber(r.sum_of_residuals);
   report["rms_residual_deg"] = JsonChannels(r.rms_residual_deg);
-  json parameters = json::object();
+  ordered_json parameters = ordered_json::object();
   for (const ParameterEstimate& e : r.parameters) {
     parameters[e.name] = {
         {"value", JsonNumber(e.value)},
@@ -84,7 +86,11 @@ std::string ReportJson(const FitResult& r) {
                              {"reached_best", r.starts_reached_best}};
   }
   report["seconds"] = r.seconds;
-  return report.dump(2) + "\n";
+  return report;
+}
+
+std::string ReportJson(const FitResult& r) {
+  return ReportObject(r).dump(2) + "\n";
 }
 
 std::string FitComparisonCsv(const FitResult& r) {

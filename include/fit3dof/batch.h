@@ -45,16 +45,30 @@ struct RunParameter {
   double rms_error = 0.0;  // NaN when not determined
 };
 
+// How a run of a batch ended.
+enum class RunStatus {
+  kConverged,
+  kNotConverged,  // the fit ran and wrote its report, but did not converge
+  kFailed,        // bad input or a motion that cannot be integrated
+  kInterrupted,   // abandoned at a stop request; not in the summary
+};
+
+// "converged" | "not converged" | "failed" | "interrupted": the spelling of
+// summary.csv and summary.json.
+const char* RunStatusToString(RunStatus status);
+// False (and *status untouched) for any other text.
+bool StringToRunStatus(const std::string& text, RunStatus* status);
+
 struct RunResult {
   std::string name;
-  std::string status;  // "converged", "not converged" or "failed"
+  RunStatus status = RunStatus::kFailed;
   std::string reason;  // why it failed or did not converge
   int iterations = 0;
   double probable_error = 0.0;       // NaN for a failed run
   std::vector<RunParameter> free;    // the free parameters
   std::vector<RunParameter> values;  // every parameter (for start_from)
   std::string model;
-  bool resumed = false;  // taken from an earlier batch
+  bool resumed = false;    // taken from an earlier batch
   std::string resume_key;  // what --resume compares (data, config, version)
 };
 
