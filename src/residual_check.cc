@@ -1,0 +1,80 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Are the residuals measurement noise? (CheckResiduals, diagnose.h): the
+// probable error, each channel's lag-1 autocorrelation and the periodogram
+// of theta + i psi.
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "fit3dof/diagnose.h"
+
+namespace fit3dof {
+
+ResidualCheck CheckResiduals(const FitResult& fit,
+                             const DiagnoseOptions& options) {
+  ResidualCheck check;
+  check.probable_error = fit.probable_error;
+  check.rms_deg = fit.rms_residual_deg;
+  double lag[3] = {0, 0, 0};
+  for (int ch = 0; ch < 3; ++ch) {
+    double num = 0.0, den = 0.0;
+    for (const SegmentFit& s : fit.segments) {
+      const std::vector<double>* measured[3] = {
+          &s.data.phi, &s.data.theta, &s.data.psi};
+      std::vector<double> r(s.data.size());
+      double mean = 0.0;
+      for (int i = 0; i < s.data.size(); ++i) {
+        r[i] = s.computed[3 * i + ch] - (*measured[ch])[i];
+        mean += r[i] / s.data.size();
+      }
+      for (int i = 0; i + 1 < s.data.size(); ++i)
+        num += (r[i] - mean) * (r[i + 1] - mean);
+      for (int i = 0; i < s.data.size(); ++i)
+        den += (r[i] - mean) * (r[i] - mean);
+    }
+    lag[ch] = den > 0.0 ? num / den : 0.0;
+  }
+  check.lag1 = {lag[0], lag[1], lag[2]};
+  // Periodogram of theta + i psi residuals over the first segment.
+  double spectral_limit = 1e300;
+  if (!fit.segments.empty() && fit.segments[0].data.size() >= 16) {
+    const SegmentFit& s = fit.segments[0];
+    const int n = s.data.size();
+    std::vector<std::complex<double>> z(n);
+    std::complex<double> mean(0.0, 0.0);
+    for (int i = 0; i < n; ++i) {
+      z[i] = {s.computed[3 * i + 1] - s.data.theta[i],
+              s.computed[3 * i + 2] - s.data.psi[i]};
+      mean += z[i] / static_cast<double>(n);
+    }
+    double total = 0.0, peak = 0.0;
+    int peak_k = 0;
+    for (int k = 1; k < n; ++k) {  // the mean (k = 0) is not a line
+      std::complex<double> sum(0.0, 0.0);
+      for (int i = 0; i < n; ++i) {
+        sum += (z[i] - mean) * std::polar(1.0, -2.0 * M_PI * k * i / n);
+      }
+      const double power = std::norm(sum);
+      total += power;
+      if (power > peak) {
+        peak = power;
+        peak_k = k;
+      }
+    }
+    check.peak_ratio = total > 0.0 ? peak / (total / (n - 1)) : 0.0;
+    const double duration = s.data.t.back() - s.data.t.front();
+    const int signed_k = peak_k <= n / 2 ? peak_k : peak_k - n;
+    check.peak_frequency_hz = signed_k * (n - 1) / (n * duration);
+    spectral_limit = options.spectral_factor * std::log(static_cast<double>(n));
+  }
+  const double worst =
+      std::max({std::abs(lag[0]), std::abs(lag[1]), std::abs(lag[2])});
+  check.at_noise_level = fit.probable_error < options.noise_limit &&
+                         worst < options.whiteness_limit &&
+                         check.peak_ratio < spectral_limit;
+  return check;
+}
+
+}  // namespace fit3dof

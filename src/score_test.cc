@@ -1,0 +1,96 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The score (Lagrange-multiplier) test of a candidate effect at the current
+// solution (diagnose.h): how much the weighted residual sum of squares
+// would drop, to first order, if its parameters were freed.
+
+#include <Eigen/Dense>
+#include <algorithm>
+
+#include "diagnose_internal.h"
+#include "fit3dof/fit.h"
+#include "fit3dof/parameters.h"
+
+namespace fit3dof {
+namespace {
+
+// Pseudo-inverse of a symmetric positive semi-definite matrix, dropping
+// directions below `relative` of the largest eigenvalue; `rank` receives
+// the number kept.
+Eigen::MatrixXd PseudoInverse(const Eigen::MatrixXd& m,
+                              double relative,
+                              int* rank) {
+  if (m.rows() == 0) {
+    if (rank) *rank = 0;
+    return m;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(m);
+  const Eigen::VectorXd lambda = eigen.eigenvalues();
+  const double limit = relative * std::max(lambda.maxCoeff(), 0.0);
+  Eigen::MatrixXd inverse = Eigen::MatrixXd::Zero(m.rows(), m.cols());
+  int kept = 0;
+  for (int j = 0; j < lambda.size(); ++j) {
+    if (lambda(j) > limit && lambda(j) > 0.0) {
+      const Eigen::VectorXd v = eigen.eigenvectors().col(j);
+      inverse += v * v.transpose() / lambda(j);
+      ++kept;
+    }
+  }
+  if (rank) *rank = kept;
+  return inverse;
+}
+
+}  // namespace
+
+CandidateScore Score(const Case& candidate,
+                     const std::vector<std::string>& added,
+                     const std::string& id,
+                     const std::vector<TimeHistory>& data) {
+  CandidateScore score;
+  score.effect = id;
+  Linearization l;
+  if (!Linearize(candidate, data, &l)) return score;
+  std::vector<int> c_index, f_index;
+  const auto& table = ParameterTable(candidate.model);
+  for (size_t g = 0; g < l.names.size(); ++g) {
+    const bool is_added =
+        l.segments[g] < 0 &&
+        std::find(added.begin(), added.end(), table[l.positions[g]].name) !=
+            added.end();
+    (is_added ? c_index : f_index).push_back(static_cast<int>(g));
+  }
+  auto block = [&](const std::vector<int>& rows, const std::vector<int>& cols) {
+    Eigen::MatrixXd m(rows.size(), cols.size());
+    for (size_t i = 0; i < rows.size(); ++i) {
+      for (size_t j = 0; j < cols.size(); ++j)
+        m(i, j) = l.jtj(rows[i], cols[j]);
+    }
+    return m;
+  };
+  auto part = [&](const std::vector<int>& rows) {
+    Eigen::VectorXd v(rows.size());
+    for (size_t i = 0; i < rows.size(); ++i) v(i) = l.jtr(rows[i]);
+    return v;
+  };
+  if (c_index.empty()) return score;
+  const Eigen::MatrixXd iff = block(f_index, f_index);
+  const Eigen::MatrixXd icf = block(c_index, f_index);
+  const Eigen::MatrixXd icc = block(c_index, c_index);
+  const Eigen::MatrixXd iff_inverse = PseudoInverse(iff, 1e-14, nullptr);
+  const Eigen::MatrixXd schur = icc - icf * iff_inverse * icf.transpose();
+  const Eigen::VectorXd g = part(c_index) - icf * iff_inverse * part(f_index);
+  int rank = 0;
+  // Directions the parameters already free span (Eq. 43) carry no new
+  // information: they drop out here.
+  const double own = icc.diagonal().maxCoeff();
+  Eigen::MatrixXd schur_scaled = schur / std::max(own, 1e-300);
+  const Eigen::MatrixXd inverse =
+      PseudoInverse(schur_scaled, 1e-6, &rank) / std::max(own, 1e-300);
+  const int dof = 3 * l.points - static_cast<int>(f_index.size());
+  const double variance = l.ressum / std::max(dof, 1);
+  score.score = g.dot(inverse * g) / variance;
+  score.dof = rank;
+  return score;
+}
+
+}  // namespace fit3dof
