@@ -110,9 +110,8 @@ int BatchCommand(const std::vector<std::string>& args) {
             << FLAGS.out_dir << "/summary.csv\n";
   for (const RunResult& r : summary.runs) {
     if (r.status != RunStatus::kConverged) {
-      std::cout << "  " << r.name << ": " << RunStatusToString(r.status)
-                << ": " << r.reason
-                << "\n";
+      std::cout << "  " << r.name << ": " << RunStatusToString(r.status) << ": "
+                << r.reason << "\n";
     }
   }
   return summary.NumFailed() > 0 ? 1 : 0;
@@ -227,37 +226,24 @@ void AddJobs(CLI::App* sub, const char* what) {
   sub->add_option("--jobs", FLAGS.jobs, what)->check(CLI::Range(1, 4096));
 }
 
-int Run(int argc, char** argv) {
-  CLI::App app(
-      "fit3dof " FIT3DOF_VERSION
-      ": aerodynamic coefficients from 3DOF gas-bearing motion\n"
-      "Exit status: 0 success, 1 the job ran but failed, 2 bad input, 130 "
-      "interrupted.",
-      "fit3dof");
-  app.set_version_flag("--version", "fit3dof " FIT3DOF_VERSION);
-  app.require_subcommand(1, 1);
-  int verbosity = 0;
-  app.add_option("-v,--v",
-                 verbosity,
-                 "log every iteration (1) like the report's listing")
-      ->check(CLI::Range(0, 9));
-  std::map<CLI::App*, Handler> handlers;
+using Handlers = std::map<CLI::App*, Handler>;
 
-  CLI::App* simulate = Command(&app,
+void AddSimulateFitAndBatch(CLI::App* app, Handlers* handlers) {
+  CLI::App* simulate = Command(app,
                                "simulate",
                                "motion from the config's parameters "
                                "(NSWTCH 1/2)",
                                "CONFIG");
   simulate->add_option("--out", FLAGS.out, "CSV of t, phi, theta, psi");
-  handlers[simulate] = &Simulate;
+  (*handlers)[simulate] = &Simulate;
 
   CLI::App* fit =
-      Command(&app, "fit", "fit the config's data (NSWTCH 0)", "CONFIG");
+      Command(app, "fit", "fit the config's data (NSWTCH 0)", "CONFIG");
   fit->add_option("--out_dir", FLAGS.out_dir, "report.json and fit.csv");
   AddData(fit);
-  handlers[fit] = &FitCommand;
+  (*handlers)[fit] = &FitCommand;
 
-  CLI::App* batch = app.add_subcommand(
+  CLI::App* batch = app->add_subcommand(
       "batch",
       "reduce a campaign: a manifest, a directory of configs, a "
       "config or a deck (or --merge shard directories)");
@@ -276,15 +262,17 @@ int Run(int argc, char** argv) {
                   FLAGS.progress,
                   "live progress line on a terminal (default true)");
   AddData(batch);
-  handlers[batch] = &BatchCommand;
+  (*handlers)[batch] = &BatchCommand;
+}
 
+void AddNamelistBasinAndDiagnose(CLI::App* app, Handlers* handlers) {
   CLI::App* namelist = Command(
-      &app, "namelist", "convert a legacy NAMELIST deck to YAML", "DECK");
+      app, "namelist", "convert a legacy NAMELIST deck to YAML", "DECK");
   namelist->add_option("--out", FLAGS.out, "YAML file (default: stdout)");
   AddData(namelist);
-  handlers[namelist] = &NamelistCommand;
+  (*handlers)[namelist] = &NamelistCommand;
 
-  CLI::App* basin = Command(&app, "basin", "convergence-basin study", "CONFIG");
+  CLI::App* basin = Command(app, "basin", "convergence-basin study", "CONFIG");
   basin->add_option("--starts", FLAGS.starts, "starting guesses drawn")
       ->check(CLI::Range(1, 1000000));
   basin->add_option("--seed", FLAGS.seed, "seed of the draws");
@@ -295,37 +283,29 @@ int Run(int argc, char** argv) {
   basin->add_option("--out", FLAGS.out, "JSON of the study");
   AddJobs(basin, "fits in parallel (default: one per core)");
   AddData(basin);
-  handlers[basin] = &BasinCommand;
+  (*handlers)[basin] = &BasinCommand;
 
   CLI::App* diagnose =
-      Command(&app, "diagnose", "find, name and add missing effects", "CONFIG");
+      Command(app, "diagnose", "find, name and add missing effects", "CONFIG");
   diagnose->add_option("--out_dir",
                        FLAGS.out_dir,
                        "each step's fit, diagnosis.json, final.yaml");
   AddData(diagnose);
-  handlers[diagnose] = &DiagnoseCommand;
+  (*handlers)[diagnose] = &DiagnoseCommand;
+}
 
-  CLI::App* help = app.add_subcommand("help", "help on a command");
-  std::string topic;
-  help->add_option("COMMAND", topic, "a command");
-
-  bool known = argc < 2 || argv[1][0] == '-' || std::string(argv[1]) == "help";
-  for (const auto& [sub, handler] : handlers) {
-    known |= argc >= 2 && sub->get_name() == argv[1];
-  }
-  if (!known) {
-    std::cerr << "fit3dof: unknown command '" << argv[1]
-              << "' (fit3dof --help lists the commands)\n";
-    return 2;
-  }
+// Parses the command line; false with the exit status in *status when the
+// run ends here (help, version, or a parse error, reported on stderr).
+bool Parse(CLI::App* app, int argc, char** argv, int* status) {
   try {
-    app.parse(argc, argv);
+    app->parse(argc, argv);
+    return true;
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);  // prints the help of the command asked; 0
+    *status = app->exit(e);  // prints the help of the command asked; 0
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    *status = app->exit(e);
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    *status = app->exit(e);
   } catch (const CLI::ExtrasError& e) {
     // "The following argument(s) were not expected: --x --y"
     const std::string what = e.what();
@@ -334,28 +314,37 @@ int Run(int argc, char** argv) {
               << (colon == std::string::npos ? what : what.substr(colon + 2))
               << "' for this command (fit3dof COMMAND --help lists its "
                  "flags)\n";
-    return 2;
+    *status = 2;
   } catch (const CLI::ParseError& e) {
     std::cerr << "fit3dof: " << e.what()
               << " (fit3dof --help lists the commands, fit3dof COMMAND "
                  "--help their flags)\n";
-    return 2;
+    *status = 2;
   }
-  FLAGS_v = verbosity;
-  if (help->parsed()) {
-    if (topic.empty()) {
-      std::cout << app.help();
+  return false;
+}
+
+// `fit3dof help [COMMAND]`.
+int Help(const CLI::App& app,
+         const Handlers& handlers,
+         const std::string& topic) {
+  if (topic.empty()) {
+    std::cout << app.help();
+    return 0;
+  }
+  for (const auto& [sub, handler] : handlers) {
+    if (sub->get_name() == topic) {
+      std::cout << sub->help();
       return 0;
     }
-    for (const auto& [sub, handler] : handlers) {
-      if (sub->get_name() == topic) {
-        std::cout << sub->help();
-        return 0;
-      }
-    }
-    std::cerr << "fit3dof: help: no command '" << topic << "'\n";
-    return 2;
   }
+  std::cerr << "fit3dof: help: no command '" << topic << "'\n";
+  return 2;
+}
+
+// Runs the command parsed; InputError is exit status 2, any other failure
+// of the job 1.
+int Dispatch(const Handlers& handlers) {
   for (const auto& [sub, handler] : handlers) {
     if (!sub->parsed()) continue;
     try {
@@ -369,6 +358,43 @@ int Run(int argc, char** argv) {
     }
   }
   return 2;  // unreachable: require_subcommand(1)
+}
+
+int Run(int argc, char** argv) {
+  CLI::App app(
+      "fit3dof " FIT3DOF_VERSION
+      ": aerodynamic coefficients from 3DOF gas-bearing motion\n"
+      "Exit status: 0 success, 1 the job ran but failed, 2 bad input, 130 "
+      "interrupted.",
+      "fit3dof");
+  app.set_version_flag("--version", "fit3dof " FIT3DOF_VERSION);
+  app.require_subcommand(1, 1);
+  int verbosity = 0;
+  app.add_option("-v,--v",
+                 verbosity,
+                 "log every iteration (1) like the report's listing")
+      ->check(CLI::Range(0, 9));
+  Handlers handlers;
+  AddSimulateFitAndBatch(&app, &handlers);
+  AddNamelistBasinAndDiagnose(&app, &handlers);
+  CLI::App* help = app.add_subcommand("help", "help on a command");
+  std::string topic;
+  help->add_option("COMMAND", topic, "a command");
+
+  bool known = argc < 2 || argv[1][0] == '-' || std::string(argv[1]) == "help";
+  for (const auto& [sub, handler] : handlers) {
+    known |= argc >= 2 && sub->get_name() == argv[1];
+  }
+  if (!known) {
+    std::cerr << "fit3dof: unknown command '" << argv[1]
+              << "' (fit3dof --help lists the commands)\n";
+    return 2;
+  }
+  int status = 0;
+  if (!Parse(&app, argc, argv, &status)) return status;
+  FLAGS_v = verbosity;
+  if (help->parsed()) return Help(app, handlers, topic);
+  return Dispatch(handlers);
 }
 
 }  // namespace
