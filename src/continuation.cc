@@ -10,28 +10,11 @@
 #include <cmath>
 #include <limits>
 
+#include "fit3dof/time_history.h"
 #include "stage_solver.h"
 
 namespace fit3dof {
 namespace {
-
-// A rough period of the angular motion from the zero crossings of theta and
-// psi about their means; 0 when the record holds too few of them.
-double EstimatePeriod(const TimeHistory& data) {
-  double crossings = 0.0;
-  for (const std::vector<double>* channel : {&data.theta, &data.psi}) {
-    double mean = 0.0;
-    for (double x : *channel) mean += x;
-    mean /= channel->size();
-    for (size_t i = 1; i < channel->size(); ++i) {
-      if (((*channel)[i] - mean) * ((*channel)[i - 1] - mean) < 0.0) {
-        crossings += 0.5;  // averaged over the two channels
-      }
-    }
-  }
-  if (crossings < 8.0) return 0.0;
-  return 2.0 * (data.t.back() - data.t.front()) / crossings;
-}
 
 std::vector<PreparedSegment> Window(const std::vector<PreparedSegment>& all,
                                     double window) {
@@ -55,7 +38,8 @@ std::vector<double> ContinuationWindows(
   double period = 0.0;
   for (const PreparedSegment& p : segments) {
     longest = std::max(longest, p.data.t.back() - p.data.t.front());
-    period = std::max(period, EstimatePeriod(p.data));
+    // Fewer than 8 crossings (4 cycles): too short for windows.
+    period = std::max(period, CrossingPeriod(p.data, 8.0));
   }
   std::vector<double> windows;
   if (period > 0.0) {

@@ -10,6 +10,7 @@
 #include "fit3dof/data_selection.h"
 #include "fit3dof/model_conversion.h"
 #include "fit3dof/scaling.h"
+#include "fit3dof/time_history.h"
 
 namespace fit3dof {
 namespace {
@@ -24,17 +25,6 @@ std::string Line(const char* format,
   std::snprintf(
       buffer, sizeof(buffer), format, name.c_str(), value, why.c_str());
   return buffer;
-}
-
-// A rough period from the zero crossings of theta about its mean.
-double CrossingPeriod(const TimeHistory& r) {
-  double mean = 0.0;
-  for (double x : r.theta) mean += x / r.size();
-  int crossings = 0;
-  for (int i = 1; i < r.size(); ++i) {
-    crossings += (r.theta[i] - mean) * (r.theta[i - 1] - mean) < 0.0;
-  }
-  return crossings >= 2 ? 2.0 * (r.t.back() - r.t.front()) / crossings : 0.0;
 }
 
 }  // namespace
@@ -53,7 +43,7 @@ EpicyclicFit FitEpicycle(const TimeHistory& record, double cycles) {
       return fit;
     }
   }
-  const double period = CrossingPeriod(record);
+  const double period = CrossingPeriod(record, 2.0);
   int n = n_all;
   if (period > 0.0) {
     n = std::min(n_all, std::max(30, static_cast<int>(cycles * period / dt)));

@@ -189,4 +189,21 @@ void WriteTimeHistory(const std::string& path, const TimeHistory& history) {
   WriteFileAtomically(path, FormatTimeHistory(history));
 }
 
+double CrossingPeriod(const TimeHistory& data, double min_crossings) {
+  if (data.size() < 2) return 0.0;
+  double crossings = 0.0;
+  for (const std::vector<double>* channel : {&data.theta, &data.psi}) {
+    double mean = 0.0;
+    for (double x : *channel) mean += x;
+    mean /= channel->size();
+    for (size_t i = 1; i < channel->size(); ++i) {
+      if (((*channel)[i] - mean) * ((*channel)[i - 1] - mean) < 0.0) {
+        crossings += 0.5;  // averaged over the two channels
+      }
+    }
+  }
+  if (crossings < min_crossings || crossings <= 0.0) return 0.0;
+  return 2.0 * (data.t.back() - data.t.front()) / crossings;
+}
+
 }  // namespace fit3dof

@@ -2,6 +2,7 @@
 
 #include "fit3dof/time_history.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "fit3dof/input_error.h"
@@ -78,9 +79,21 @@ TEST(TimeHistory, BadFilesNameTheFileAndLine) {
 // Issue 9: tokens that are not whole numbers were read as 0 (or as their
 // numeric prefix) and ended in a misleading "local minimum".
 TEST(TimeHistory, EveryTokenIsAWholeFiniteNumber) {
-  for (const char* token :
-       {"", "-", ".", "1.5e", "+", "e5", "1e+", "0x10", "inf", "1.2.3", "1,5",
-        "\"\"", "1 2", "--1", "1e5x"}) {
+  for (const char* token : {"",
+                            "-",
+                            ".",
+                            "1.5e",
+                            "+",
+                            "e5",
+                            "1e+",
+                            "0x10",
+                            "inf",
+                            "1.2.3",
+                            "1,5",
+                            "\"\"",
+                            "1 2",
+                            "--1",
+                            "1e5x"}) {
     const std::string text =
         std::string("t,phi,theta,psi\n0,0,0,0\n0.1,0,") + token + ",0\n";
     try {
@@ -108,6 +121,21 @@ TEST(TimeHistory, AcceptsQuotedNumbersAndExponents) {
   EXPECT_DOUBLE_EQ(r.psi[0], 3.0);
   EXPECT_DOUBLE_EQ(r.t[1], 10.0);
   EXPECT_DOUBLE_EQ(r.phi[1], 0.5);
+}
+
+// One period estimator for the continuation and the epicyclic start: a
+// coning motion of period 0.4 s is found within a sample's worth, and a
+// record with fewer crossings than asked for gives 0.
+TEST(CrossingPeriod, FindsTheConingPeriod) {
+  TimeHistory h;
+  for (int i = 0; i <= 2000; ++i) {
+    const double t = 0.001 * i;
+    const double phase = 2.0 * M_PI * t / 0.4 + 0.3;
+    h.Append(t, 0.0, 1.0 + 5.0 * std::cos(phase), -2.0 + 5.0 * std::sin(phase));
+  }
+  EXPECT_NEAR(CrossingPeriod(h, 8.0), 0.4, 0.4 / 20.0);
+  EXPECT_EQ(CrossingPeriod(h, 21.0), 0.0);  // 5 cycles: 20 crossings
+  EXPECT_EQ(CrossingPeriod(TimeHistory(), 2.0), 0.0);
 }
 
 }  // namespace

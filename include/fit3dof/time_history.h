@@ -52,6 +52,12 @@ std::string FormatTimeHistory(const TimeHistory& history);
 // Writes the CSV atomically.
 void WriteTimeHistory(const std::string& path, const TimeHistory& history);
 
+// A rough period of the angular motion (s): twice the record's length over
+// the zero crossings of theta and psi about their means (averaged over the
+// two channels); 0 when there are fewer than `min_crossings`. The
+// continuation's first window and the epicyclic start's span use it.
+double CrossingPeriod(const TimeHistory& data, double min_crossings);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_TIME_HISTORY_H_
