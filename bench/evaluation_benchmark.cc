@@ -5,12 +5,17 @@
 // (800 samples, step 0.01 s), as the number of free parameters k grows.
 // The ratios are what matter: Jacobian / forward should stay below
 // (k + 1) / 2, and 4 free parameters should cost at most a quarter of 27.
+// BM_DynamicJacobian is the same residual block as Ceres'
+// DynamicAutoDiffCostFunction would build it (stride 4, Ceres' default,
+// and 8): the comparison SegmentCostFunction's header quotes.
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
+#include "ceres/dynamic_autodiff_cost_function.h"
 #include "fit3dof/config.h"
 #include "fit3dof/segment_cost_function.h"
 #include "fit3dof/time_history.h"
@@ -21,6 +26,42 @@ namespace {
 struct Block {
   std::unique_ptr<SegmentCostFunction> cost;
   std::vector<double> u;  // free values (scale 1)
+  std::shared_ptr<const MotionModel> model;
+  std::vector<double> base;
+  std::vector<int> free;
+  TimeHistory data;
+  ChannelValues sigma;
+};
+
+// The segment's residuals as a functor for DynamicAutoDiffCostFunction:
+// every free coordinate in one parameter block, the equations evaluated
+// with whatever Jet Ceres passes.
+struct DynamicSegmentResiduals {
+  const Block* b;
+
+  template <typename T>
+  bool operator()(T const* const* parameters, T* residuals) const {
+    std::vector<T> full(b->base.size());
+    for (size_t i = 0; i < b->base.size(); ++i) full[i] = T(b->base[i]);
+    for (size_t j = 0; j < b->free.size(); ++j) {
+      full[b->free[j]] = parameters[0][j];
+    }
+    const int n = b->data.size();
+    std::vector<T> angles(3 * n);
+    if (!b->model->Evaluate(
+            full.data(), b->data.t.data(), n, angles.data(), nullptr)) {
+      return false;
+    }
+    const double sigma[3] = {b->sigma.phi, b->sigma.theta, b->sigma.psi};
+    const double* measured[3] = {
+        b->data.phi.data(), b->data.theta.data(), b->data.psi.data()};
+    for (int i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        residuals[3 * i + c] = (angles[3 * i + c] - measured[c][i]) / sigma[c];
+      }
+    }
+    return true;
+  }
 };
 
 // The Table 6 truth with the first k of the symmetric model's 27 usable
@@ -51,6 +92,11 @@ Block MakeBlock(int k) {
       c.Spec(), ActiveParameters(base, flags));
   Block b;
   for (int i : free) b.u.push_back(base[i]);
+  b.model = model;
+  b.base = base;
+  b.free = free;
+  b.data = data;
+  b.sigma = c.sigma;
   b.cost = std::make_unique<SegmentCostFunction>(
       model, base, free, k, std::vector<double>(k, 1.0), data, c.sigma);
   return b;
@@ -79,6 +125,24 @@ void BM_Jacobian(benchmark::State& state) {
   }
 }
 
+template <int kStride>
+void BM_DynamicJacobian(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  Block b = MakeBlock(k);
+  ceres::DynamicAutoDiffCostFunction<DynamicSegmentResiduals, kStride> cost(
+      new DynamicSegmentResiduals{&b});
+  cost.AddParameterBlock(k);
+  cost.SetNumResiduals(b.cost->num_residuals());
+  std::vector<double> residuals(b.cost->num_residuals());
+  std::vector<double> jacobian(b.cost->num_residuals() * k);
+  const double* blocks[1] = {b.u.data()};
+  double* jacobians[1] = {jacobian.data()};
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        cost.Evaluate(blocks, residuals.data(), jacobians));
+  }
+}
+
 BENCHMARK(BM_Forward)->Arg(10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Jacobian)
     ->Arg(1)
@@ -89,6 +153,19 @@ BENCHMARK(BM_Jacobian)
     ->Arg(16)
     ->Arg(20)
     ->Arg(24)
+    ->Arg(25)
+    ->Arg(27)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_DynamicJacobian, 4)
+    ->Arg(4)
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(27)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_DynamicJacobian, 8)
+    ->Arg(4)
+    ->Arg(10)
+    ->Arg(20)
     ->Arg(27)
     ->Unit(benchmark::kMillisecond);
 

@@ -2,6 +2,8 @@
 
 #include "fit3dof/segment_cost_function.h"
 
+#include <glog/logging.h>
+
 #include <cmath>
 
 namespace fit3dof {
@@ -76,20 +78,11 @@ bool SegmentCostFunction::EvaluatePass(const double* u,
                                        int count,
                                        double* residuals,
                                        double** jacobians) const {
-  if (count <= 4)
+  CHECK_LE(count, kMaxLanes);
+  if (count <= 4) {
     return EvaluateLanes<4>(u, lanes, count, residuals, jacobians);
-  if (count <= 8)
-    return EvaluateLanes<8>(u, lanes, count, residuals, jacobians);
-  if (count <= 12) {
-    return EvaluateLanes<12>(u, lanes, count, residuals, jacobians);
   }
-  if (count <= 16) {
-    return EvaluateLanes<16>(u, lanes, count, residuals, jacobians);
-  }
-  if (count <= 24) {
-    return EvaluateLanes<24>(u, lanes, count, residuals, jacobians);
-  }
-  return EvaluateLanes<32>(u, lanes, count, residuals, jacobians);
+  return EvaluateLanes<12>(u, lanes, count, residuals, jacobians);
 }
 
 bool SegmentCostFunction::Evaluate(double const* const* parameters,
@@ -131,11 +124,15 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
     }
     return true;
   }
-  for (size_t first = 0; first < lanes.size(); first += kMaxLanes) {
-    const int count =
-        static_cast<int>(std::min<size_t>(kMaxLanes, lanes.size() - first));
-    if (!EvaluatePass(
-            u.data(), lanes.data() + first, count, residuals, jacobians)) {
+  // Passes of 12 lanes, the last of 4 when at most 4 remain (the header
+  // says why).
+  for (size_t first = 0, count = 0; first < lanes.size(); first += count) {
+    count = std::min<size_t>(kMaxLanes, lanes.size() - first);
+    if (!EvaluatePass(u.data(),
+                      lanes.data() + first,
+                      static_cast<int>(count),
+                      residuals,
+                      jacobians)) {
       return false;
     }
   }

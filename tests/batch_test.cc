@@ -305,9 +305,9 @@ TEST(Batch, ResumeRedoesARunWhoseDataChanged) {
   }
   const std::string manifest = Manifest(dir, 3, extra);
   const std::string out = dir + "/out";
-  const std::string command = "batch " + manifest +
-                              " --jobs=2 --resume --progress=false --out_dir=" +
-                              out;
+  const std::string command =
+      "batch " + manifest +
+      " --jobs=2 --resume --progress=false --out_dir=" + out;
   ASSERT_EQ(testing::RunFit3dof(command).exit_status, 0);
   // Regenerated data under the same name (one sample moved).
   std::string changed = clean;
@@ -319,8 +319,7 @@ TEST(Batch, ResumeRedoesARunWhoseDataChanged) {
   EXPECT_NE(again.output.find("3 runs (2 resumed)"), std::string::npos)
       << again.output;
   EXPECT_FALSE(fs::exists(out + "/r000/report.json.tmp.AbC123"));
-  const json report =
-      json::parse(testing::ReadText(out + "/r001/report.json"));
+  const json report = json::parse(testing::ReadText(out + "/r001/report.json"));
   EXPECT_EQ(report["resume_key"].get<std::string>().size(), 16u);
 }
 
@@ -371,9 +370,11 @@ TEST(Batch, InterruptWritesTheSummaryOfWhatFinished) {
         "( " + std::string(FIT3DOF_BINARY) + " batch " + manifest +
         " --jobs=1 --out_dir=" + out + " --progress=false >" + dir +
         "/stdout 2>/dev/null & pid=$!; "
-        "while [ $(ls " + out +
+        "while [ $(ls " +
+        out +
         "/*/report.json 2>/dev/null | wc -l) -lt 3 ]; do sleep 0.02; done; "
-        "kill -" + signal + " $pid; wait $pid; echo $? > " + dir + "/status )";
+        "kill -" +
+        signal + " $pid; wait $pid; echo $? > " + dir + "/status )";
     ASSERT_EQ(std::system(script.c_str()), 0);
     EXPECT_EQ(testing::ReadText(dir + "/status"), "130\n") << signal;
     const json summary = Summary(out);
@@ -388,8 +389,8 @@ TEST(Batch, InterruptWritesTheSummaryOfWhatFinished) {
     EXPECT_FALSE(fs::exists(out + "/.fit3dof.lock"));
   }
   const auto resumed = testing::RunFit3dof(
-      "batch " + manifest + " --jobs=2 --resume --progress=false --out_dir=" +
-      out);
+      "batch " + manifest +
+      " --jobs=2 --resume --progress=false --out_dir=" + out);
   EXPECT_EQ(resumed.exit_status, 0) << resumed.output;
   EXPECT_EQ(Summary(out)["counts"]["total"], 30);
 }

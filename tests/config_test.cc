@@ -220,9 +220,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "{duration: 10.0, samples: 5, dt: 0.01}",
                 "give exactly one of duration"},
         BadCase{"Cl_p: -0.0081", "Cl_p: -0.0081\n  t1: 0.02", "given twice"},
-        BadCase{"seed: 7",
-                "seed: -1",
-                "noise.seed: expected an integer from 0 to"},
+        BadCase{
+            "seed: 7", "seed: -1", "noise.seed: expected an integer from 0 to"},
         BadCase{"every: 3", "every: [3]", "data.every: expected a number"},
         // Issue 9: what yaml-cpp lets through.
         BadCase{"  start: 2\n",

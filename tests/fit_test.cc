@@ -284,7 +284,8 @@ TEST(Fit, NamesParametersTheDataCannotDetermine) {
     }
     // From the truth, so that both fits find the same minimum (from far
     // off, their first stages' paths may part in the last bits).
-    for (const char* p : {"Cm_alpha", "Cm_q", "Cm_alpha_delta2", "Cm_q_delta2"}) {
+    for (const char* p :
+         {"Cm_alpha", "Cm_q", "Cm_alpha_delta2", "Cm_q_delta2"}) {
       const std::string from = std::string("  ") + p + ": {value: ";
       const size_t at = text.find(from) + from.size();
       char value[64];

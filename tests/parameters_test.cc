@@ -15,7 +15,8 @@ namespace {
 
 // Names by index from docs/parameters.md, the project's naming contract.
 std::map<int, std::string> DesignNames(const std::string& heading) {
-  const std::string text = testing::ReadText(testing::SourcePath("docs/parameters.md"));
+  const std::string text =
+      testing::ReadText(testing::SourcePath("docs/parameters.md"));
   const size_t begin = text.find(heading);
   EXPECT_NE(begin, std::string::npos);
   const size_t end = text.find("\n## ", begin + 1);

@@ -95,8 +95,7 @@ TEST(SimulateCli, UsageErrorsExitTwo) {
   EXPECT_EQ(flag.exit_status, 2);
   EXPECT_NE(flag.output.find("unknown flag '--outt=y.csv'"), std::string::npos)
       << flag.output;
-  EXPECT_NE(testing::RunFit3dof(
-                "simulate /nonexistent.yaml --out=/tmp/x.csv")
+  EXPECT_NE(testing::RunFit3dof("simulate /nonexistent.yaml --out=/tmp/x.csv")
                 .output.find("/nonexistent.yaml"),
             std::string::npos);
   const auto missing =

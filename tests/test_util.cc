@@ -17,7 +17,8 @@ namespace fs = std::filesystem;
 const nlohmann::json& PaperResults() {
   static const nlohmann::json results = [] {
     std::ifstream in(SourcePath("tests/data/report_numbers.json"));
-    if (!in) throw std::runtime_error("cannot read tests/data/report_numbers.json");
+    if (!in)
+      throw std::runtime_error("cannot read tests/data/report_numbers.json");
     return nlohmann::json::parse(in);
   }();
   return results;

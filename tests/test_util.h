@@ -1,7 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// Helpers shared by the tests: where the sources, the report's published numbers
-// and the built command are, scratch directories, running the command.
+// Helpers shared by the tests: where the sources, the report's published
+// numbers and the built command are, scratch directories, running the command.
 
 #ifndef FIT3DOF_TESTS_TEST_UTIL_H_
 #define FIT3DOF_TESTS_TEST_UTIL_H_

@@ -66,10 +66,20 @@ def main():
     rows = []
     print(f"  forward integration: {forward:.3f} ms")
     print("   k  Jacobian (ms)  / forward   limit (k+1)/2")
-    for k in (1, 4, 8, 10, 12, 16, 20, 24, 27):
+    for k in (1, 4, 8, 10, 12, 16, 20, 24, 25, 27):
         jac = times[f"BM_Jacobian/{k}"]
         rows.append({"k": k, "jacobian_ms": jac, "ratio": jac / forward})
         print(f"  {k:2d}  {jac:12.3f}  {jac / forward:9.2f}   {(k + 1) / 2:8.1f}")
+    print("   k  Jacobian / forward / (k+1): this class, "
+          "DynamicAutoDiffCostFunction stride 4, stride 8")
+    dynamic = []
+    for k in (4, 10, 20, 27):
+        ours = times[f"BM_Jacobian/{k}"] / forward / (k + 1)
+        d4 = times[f"BM_DynamicJacobian<4>/{k}"] / forward / (k + 1)
+        d8 = times[f"BM_DynamicJacobian<8>/{k}"] / forward / (k + 1)
+        dynamic.append({"k": k, "ours": ours, "dynamic4": d4, "dynamic8": d8})
+        print(f"  {k:2d}  {ours:6.2f}  {d4:6.2f}  {d8:6.2f}")
+    result["dynamic_autodiff"] = dynamic
     four_vs_all = times["BM_Jacobian/4"] / times["BM_Jacobian/27"]
     print(f"  Jacobian with 4 free / with 27 free: {four_vs_all:.3f}")
     result["evaluation"] = {"forward_ms": forward, "jacobian": rows,
