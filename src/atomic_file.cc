@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Output files written whole or not at all (atomic_file.h): a temporary
+// beside the target, renamed over it when complete.
 
 #include "fit3dof/atomic_file.h"
 

@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The convergence-basin study (basin.h): fits from a box of poor guesses
+// by each method, counted by whether they reach the reference solution.
 
 #include "fit3dof/basin.h"
 

@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Which samples of a record a segment uses (data_selection.h): the time
+// window, NSTART, SAMPLE and NDELTA, applied while the CSV is read.
 
 #include "fit3dof/data_selection.h"
 

@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// What a fit writes (fit_report.h): report.json, fit.csv and the table
+// printed on the terminal.
 
 #include "fit3dof/fit_report.h"
 

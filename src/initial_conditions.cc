@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Initial conditions from the data (initial_conditions.h): angles and
+// rates at the first sample from a local polynomial fit (INLCON = 0).
 
 #include "fit3dof/initial_conditions.h"
 

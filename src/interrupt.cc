@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Stop requests (interrupt.h): SIGINT and SIGTERM set a flag the fits and
+// the batch poll.
 
 #include "fit3dof/interrupt.h"
 

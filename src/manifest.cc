@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// A batch manifest turned into runs (manifest.h): YAML manifests with
+// defaults and start_from chains, directories of configs, decks.
 
 #include "manifest.h"
 

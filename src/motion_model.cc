@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The motion model (motion_model.h): the active parameter set and the
+// double instantiations of the templated integration.
 
 #include "fit3dof/motion_model.h"
 

@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Simulated measurement noise (noise.h): seeded Gaussian noise and biases
+// added to a record (NSESWH = 1).
 
 #include "fit3dof/noise.h"
 

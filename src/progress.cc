@@ -1,4 +1,6 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The status line of a long fit, diagnosis or basin study (progress.h).
 
 #include "fit3dof/progress.h"
 

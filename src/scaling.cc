@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Parameter scaling (scaling.h): the factors between the report's units and
+// the internal units of the equations of motion (REG and REGOUT).
 
 #include "fit3dof/scaling.h"
 

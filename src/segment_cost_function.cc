@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// One data segment as a Ceres residual block (segment_cost_function.h):
+// the forward pass, the Jacobian in passes of Jet lanes.
 
 #include "fit3dof/segment_cost_function.h"
 

@@ -1,4 +1,6 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The motion from a case's parameters (simulator.h), NSWTCH = 1/2.
 
 #include "fit3dof/simulator.h"
 

@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Starting values from the data (start_values.h): the epicyclic fit of
+// theta + i psi and the coefficients it implies.
 
 #include "fit3dof/start_values.h"
 

@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// One budget of threads for the process (thread_budget.h), shared by the
+// batch, multi-start and basin studies.
 
 #include "fit3dof/thread_budget.h"
 

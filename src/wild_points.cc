@@ -1,4 +1,7 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Wild points (wild_points.h): samples out of reach, jumps, and residuals
+// the fit cannot reach, found by robust statistics.
 
 #include "fit3dof/wild_points.h"
 
