@@ -80,33 +80,39 @@ std::vector<double> SegmentFullValues(const Assembly& a, size_t s) {
   return a.costs[s]->FullValues(blocks.data());
 }
 
-bool Information(const Assembly& a,
-                 Eigen::MatrixXd* jtj,
-                 double* ressum,
-                 Eigen::VectorXd* jtr) {
+bool EvaluateJacobian(const Assembly& a,
+                      ceres::CRSMatrix* jacobian,
+                      std::vector<double>* residuals) {
   ceres::Problem::EvaluateOptions options;
   options.parameter_blocks = a.blocks;
   double cost = 0.0;
-  ceres::CRSMatrix crs;
-  std::vector<double> residuals;
-  if (!a.problem->Evaluate(
-          options, &cost, jtr ? &residuals : nullptr, nullptr, &crs)) {
+  if (!a.problem->Evaluate(options, &cost, residuals, nullptr, jacobian)) {
     return false;
   }
-  *ressum = 2.0 * cost;
   // Columns in global free order need every coordinate in the Jacobian: an
   // assembly with held coordinates (SubsetManifold) has fewer columns.
   int ambient = 0;
-  for (double* block : a.blocks)
+  for (double* block : a.blocks) {
     ambient += a.problem->ParameterBlockSize(block);
-  CHECK_EQ(crs.num_cols, ambient)
-      << "Information() needs an assembly without held coordinates";
+  }
+  CHECK_EQ(jacobian->num_cols, ambient)
+      << "EvaluateJacobian() needs an assembly without held coordinates";
+  return true;
+}
+
+void NormalEquations(const ceres::CRSMatrix& crs,
+                     const std::vector<double>& residuals,
+                     Eigen::MatrixXd* jtj,
+                     double* ressum,
+                     Eigen::VectorXd* jtr) {
   // J^T J and J^T r row by row from the CRS form: no second copy of a
   // Jacobian that has 3 rows per sample.
   const int k = crs.num_cols;
   jtj->setZero(k, k);
   if (jtr != nullptr) jtr->setZero(k);
+  *ressum = 0.0;
   for (int r = 0; r < crs.num_rows; ++r) {
+    *ressum += residuals[r] * residuals[r];
     const int begin = crs.rows[r], end = crs.rows[r + 1];
     for (int a = begin; a < end; ++a) {
       const double va = crs.values[a];
@@ -120,6 +126,16 @@ bool Information(const Assembly& a,
   }
   const Eigen::MatrixXd upper = *jtj;
   *jtj = upper.selfadjointView<Eigen::Upper>();
+}
+
+bool Information(const Assembly& a,
+                 Eigen::MatrixXd* jtj,
+                 double* ressum,
+                 Eigen::VectorXd* jtr) {
+  ceres::CRSMatrix crs;
+  std::vector<double> residuals;
+  if (!EvaluateJacobian(a, &crs, &residuals)) return false;
+  NormalEquations(crs, residuals, jtj, ressum, jtr);
   return true;
 }
 

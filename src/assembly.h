@@ -44,6 +44,21 @@ std::vector<double> FreeValues(const Assembly& a,
 // The full parameter vector segment `s` sees in the assembly.
 std::vector<double> SegmentFullValues(const Assembly& a, size_t s);
 
+// The Jacobian of the weighted residuals (rows: each segment's samples in
+// order, phi, theta, psi per sample; columns in global free order, in the
+// assembly's scaled coordinates) and the residuals; false if the motion
+// cannot be integrated. The assembly must not hold any coordinate.
+bool EvaluateJacobian(const Assembly& a,
+                      ceres::CRSMatrix* jacobian,
+                      std::vector<double>* residuals);
+
+// J^T J, the residual sum of squares and, if asked, J^T r of a Jacobian.
+void NormalEquations(const ceres::CRSMatrix& jacobian,
+                     const std::vector<double>& residuals,
+                     Eigen::MatrixXd* jtj,
+                     double* ressum,
+                     Eigen::VectorXd* jtr = nullptr);
+
 // J^T J of the weighted residuals (columns in global free order, in the
 // assembly's scaled coordinates), the residual sum of squares and, if asked,
 // J^T r; false if the motion cannot be integrated. The assembly must not

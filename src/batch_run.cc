@@ -48,7 +48,8 @@ RunResult FromFit(const FitResult& fit) {
   r.probable_error = fit.probable_error;
   r.model = ModelName(fit.model);
   for (const ParameterEstimate& e : fit.parameters) {
-    const RunParameter parameter{e.name, e.value, e.rms_error};
+    const RunParameter parameter{e.name, e.value, e.rms_error,
+                                 e.standard_error};
     r.values.push_back(parameter);
     if (e.free) r.free.push_back(parameter);
   }
@@ -68,8 +69,9 @@ RunResult FromReport(const json& report) {
   r.probable_error = FromJson(report["probable_error"]);
   r.model = report.value("model", "");
   for (const auto& [name, p] : report["parameters"].items()) {
-    const RunParameter parameter{
-        name, FromJson(p["value"]), FromJson(p["rms_error"])};
+    const RunParameter parameter{name, FromJson(p["value"]),
+                                 FromJson(p["rms_error"]),
+                                 FromJson(p["standard_error"])};
     r.values.push_back(parameter);
     if (p.value("free", false)) r.free.push_back(parameter);
   }

@@ -97,7 +97,10 @@ void WriteSummary(const std::string& dir, const BatchSummary& summary) {
     }
   }
   std::string csv = "name,status,reason,iterations,probable_error";
-  for (const std::string& c : columns) csv += "," + c + "," + c + "_rms";
+  // The standard error (the one to quote) leads; Eq. 27's RMS error beside.
+  for (const std::string& c : columns) {
+    csv += "," + c + "," + c + "_se," + c + "_rms";
+  }
   csv += "\n";
   json runs = json::array();
   int converged = 0, not_converged = 0, failed = 0;
@@ -116,14 +119,16 @@ void WriteSummary(const std::string& dir, const BatchSummary& summary) {
     for (const std::string& c : columns) {
       const auto it = by_name.find(c);
       if (it == by_name.end()) {
-        csv += ",,";
+        csv += ",,,";
         continue;
       }
-      csv += "," + CsvNumber(it->second->value) + "," +
-             CsvNumber(it->second->rms_error);
+      const RunParameter& p = *it->second;
+      csv += "," + CsvNumber(p.value) + "," + CsvNumber(p.standard_error) +
+             "," + CsvNumber(p.rms_error);
       parameters[c] = {
-          {"value", JsonNumber(Round12(it->second->value))},
-          {"rms_error", JsonNumber(Round12(it->second->rms_error))}};
+          {"value", JsonNumber(Round12(p.value))},
+          {"standard_error", JsonNumber(Round12(p.standard_error))},
+          {"rms_error", JsonNumber(Round12(p.rms_error))}};
     }
     csv += "\n";
     runs.push_back({{"name", r.name},
@@ -169,7 +174,8 @@ BatchSummary ReadSummary(const std::string& dir) {
     r.probable_error = FromJson(run["probable_error"]);
     r.model = run.value("model", "");
     for (const auto& [name, p] : run["parameters"].items()) {
-      r.free.push_back({name, FromJson(p["value"]), FromJson(p["rms_error"])});
+      r.free.push_back({name, FromJson(p["value"]), FromJson(p["rms_error"]),
+                        FromJson(p["standard_error"])});
     }
     summary.runs.push_back(r);
   }

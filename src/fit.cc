@@ -163,7 +163,7 @@ void Judge(const Case& c, const PipelineOutcome& outcome, FitResult* result) {
 std::vector<ParameterEstimate> Estimates(const Case& c,
                                          const FitProblem& problem,
                                          const std::vector<double>& values,
-                                         const std::vector<double>& rms) {
+                                         const Uncertainty& u) {
   const FreeLayout& free = problem.free;
   const auto& table = ParameterTable(c.model);
   std::vector<double> final_values = c.Values();
@@ -182,11 +182,13 @@ std::vector<ParameterEstimate> Estimates(const Case& c,
     e.value = IsInitialCondition(c.model, i) ? problem.segments[0].base[i]
                                              : final_values[i];
     e.rms_error = kNaN;
+    e.standard_error = kNaN;
     for (int g = 0; g < free.size(); ++g) {
       if (free.position[g] == i && free.segment[g] <= 0) {
         e.free = true;
         e.value = values[g];
-        e.rms_error = rms[g];
+        e.rms_error = u.rms[g];
+        e.standard_error = u.standard_error[g];
       }
     }
     estimates.push_back(e);
@@ -229,6 +231,16 @@ void FitSegments(const Case& c,
     const double n = p.data.size();
     fit.rms_residual_deg = {
         std::sqrt(seg2[0] / n), std::sqrt(seg2[1] / n), std::sqrt(seg2[2] / n)};
+    for (int ch = 0; ch < 3; ++ch) {
+      const SeriesCorrelation& series = u.series[3 * s + ch];
+      ResidualStatistics& stats = fit.channels[ch];
+      // The maximum-likelihood noise level of the channel: its RMS
+      // residual.
+      stats.noise_sigma_deg = std::sqrt(seg2[ch] / n);
+      stats.autocorrelation = series.normalized;
+      stats.lag_window = series.lag_window;
+      stats.white = series.white;
+    }
     for (int g = 0; g < free.size() && problem.segments.size() > 1; ++g) {
       if (free.segment[g] != static_cast<int>(s)) continue;
       ParameterEstimate e;
@@ -238,6 +250,7 @@ void FitSegments(const Case& c,
       e.units = ParameterTable(c.model)[free.position[g]].units;
       e.value = values[g];
       e.rms_error = rms[g];
+      e.standard_error = u.standard_error[g];
       e.free = true;
       result->parameters.push_back(e);
     }
@@ -246,6 +259,33 @@ void FitSegments(const Case& c,
   const double n = problem.points;
   result->rms_residual_deg = {
       std::sqrt(sum2[0] / n), std::sqrt(sum2[1] / n), std::sqrt(sum2[2] / n)};
+}
+
+// Whether the residuals look like noise (FitResult::adequacy); a warning
+// when they do not.
+void JudgeAdequacy(const Case& c, FitResult* result) {
+  std::string structured;
+  for (const SegmentFit& s : result->segments) {
+    for (int ch = 0; ch < 3; ++ch) {
+      const ResidualStatistics& stats = s.channels[ch];
+      if (stats.white) continue;
+      structured += (structured.empty() ? "" : ", ") +
+                    FormatNumber("%.2f", stats.autocorrelation.empty()
+                                             ? 0.0
+                                             : stats.autocorrelation[0]) +
+                    " in " + ChannelName(ch);
+      if (result->segments.size() > 1) structured += " ('" + s.name + "')";
+    }
+  }
+  if (structured.empty()) {
+    result->adequacy = "white";
+    return;
+  }
+  result->adequacy = "structured: lag-1 autocorrelation " + structured;
+  result->warnings.push_back(
+      "the residuals are not white noise (" + result->adequacy.substr(12) +
+      "): the standard errors allow for it; fit3dof diagnose " + c.source +
+      " looks for a missing effect");
 }
 
 // The fit of the given samples of each segment (the whole of Fit but the
@@ -275,8 +315,9 @@ FitResult FitData(const Case& c, const std::vector<TimeHistory>& data) {
   result.warnings = u.warnings;
   result.correlation_names = problem.names;
   result.correlation = u.correlation;
-  result.parameters = Estimates(c, problem, values, u.rms);
+  result.parameters = Estimates(c, problem, values, u);
   FitSegments(c, problem, values, u, &result);
+  JudgeAdequacy(c, &result);
   result.seconds = std::chrono::duration<double>(
                        std::chrono::steady_clock::now() - start_time)
                        .count();

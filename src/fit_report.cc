@@ -11,6 +11,7 @@
 
 #include "csv_field.h"
 #include "fit3dof/atomic_file.h"
+#include "format.h"
 #include "json_values.h"
 #include "report_json.h"
 
@@ -18,6 +19,25 @@ namespace fit3dof {
 
 using nlohmann::json;
 using nlohmann::ordered_json;
+
+namespace {
+
+// Each channel's residual autocorrelation (lags 1..10), the lag window the
+// standard errors used and the whiteness verdict.
+json ResidualsJson(const SegmentFit& s) {
+  json out;
+  for (int ch = 0; ch < 3; ++ch) {
+    const ResidualStatistics& c = s.channels[ch];
+    json lags = json::array();
+    for (double rho : c.autocorrelation) lags.push_back(JsonNumber(rho));
+    out[ChannelName(ch)] = {{"autocorrelation", lags},
+                            {"lag_window", c.lag_window},
+                            {"white", c.white}};
+  }
+  return out;
+}
+
+}  // namespace
 
 ordered_json ReportObject(const FitResult& r) {
   ordered_json report;
@@ -31,10 +51,13 @@ ordered_json ReportObject(const FitResult& r) {
   report["probable_error"] = JsonNumber(r.probable_error);
   report["sum_of_residuals"] = JsonNumber(r.sum_of_residuals);
   report["rms_residual_deg"] = JsonChannels(r.rms_residual_deg);
+  report["noise_sigma_deg"] = JsonChannels(r.rms_residual_deg);
+  report["adequacy"] = r.adequacy;
   ordered_json parameters = ordered_json::object();
   for (const ParameterEstimate& e : r.parameters) {
     parameters[e.name] = {
         {"value", JsonNumber(e.value)},
+        {"standard_error", e.free ? JsonNumber(e.standard_error) : json()},
         {"rms_error", e.free ? JsonNumber(e.rms_error) : json()},
         {"free", e.free},
         {"units", e.units}};
@@ -73,7 +96,12 @@ ordered_json ReportObject(const FitResult& r) {
          {"t_start", s.data.t.front()},
          {"t_end", s.data.t.back()},
          {"initial_conditions", s.initial_from_data ? "from_data" : "given"},
-         {"rms_residual_deg", JsonChannels(s.rms_residual_deg)}});
+         {"rms_residual_deg", JsonChannels(s.rms_residual_deg)},
+         {"noise_sigma_deg",
+          JsonChannels({s.channels[0].noise_sigma_deg,
+                        s.channels[1].noise_sigma_deg,
+                        s.channels[2].noise_sigma_deg})},
+         {"residuals", ResidualsJson(s)}});
   }
   report["segments"] = segments;
   json stages = json::array();
@@ -118,6 +146,17 @@ std::string FitComparisonCsv(const FitResult& r) {
   return out;
 }
 
+namespace {
+
+// An error bar as the table prints it.
+std::string ErrorText(const ParameterEstimate& e, double error) {
+  if (!e.free) return "(frozen)";
+  if (!std::isfinite(error)) return "undetermined";
+  return FormatNumber("%.3g", error);
+}
+
+}  // namespace
+
 std::string FormatFitTable(const FitResult& r) {
   std::string out;
   char line[256];
@@ -146,30 +185,29 @@ std::string FormatFitTable(const FitResult& r) {
   out += line;
   std::snprintf(line,
                 sizeof(line),
-                "  %-26s %15s %12s  %s\n",
+                "  %-26s %15s %12s %12s  %s\n",
                 "parameter",
                 "value",
+                "std error",
                 "rms error",
                 "units");
   out += line;
   for (const ParameterEstimate& e : r.parameters) {
     if (!e.free && e.value == 0.0) continue;
-    char error[32];
-    if (!e.free) {
-      std::snprintf(error, sizeof(error), "(frozen)");
-    } else if (std::isfinite(e.rms_error)) {
-      std::snprintf(error, sizeof(error), "%.3g", e.rms_error);
-    } else {
-      std::snprintf(error, sizeof(error), "undetermined");
-    }
+    const std::string standard = ErrorText(e, e.standard_error);
+    const std::string rms = ErrorText(e, e.rms_error);
     std::snprintf(line,
                   sizeof(line),
-                  "  %-26s %15.7g %12s  %s\n",
+                  "  %-26s %15.7g %12s %12s  %s\n",
                   e.name.c_str(),
                   e.value,
-                  error,
+                  standard.c_str(),
+                  e.free ? rms.c_str() : "",
                   e.units.c_str());
     out += line;
+  }
+  if (!r.adequacy.empty() && r.adequacy != "white") {
+    out += "residuals: " + r.adequacy + "\n";
   }
   for (const std::string& w : r.warnings) out += "warning: " + w + "\n";
   return out;

@@ -5,13 +5,17 @@
 
 #include "uncertainty.h"
 
+#include <glog/logging.h>
+
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <utility>
 
 #include "assembly.h"
+#include "colored_covariance.h"
 #include "ceres/ceres.h"
 #include "fit3dof/input_error.h"
 #include "format.h"
@@ -62,6 +66,8 @@ std::string NoEffect(const std::string& name) {
 // the assembly that holds the coordinates the data cannot see at all.
 struct SolutionInformation {
   Assembly assembly;
+  ceres::CRSMatrix jacobian;  // before any coordinate is held
+  std::vector<double> residuals;
   Eigen::MatrixXd jtj;
   double ressum = 0.0;
   std::vector<double> scale;       // physical value = scale * u
@@ -88,7 +94,8 @@ SolutionInformation InformationAtSolution(const FitProblem& p,
   // The information matrix in global coordinates first: once a block holds
   // some of its coordinates (a SubsetManifold), Evaluate returns only the
   // tangent-space columns.
-  Information(info.assembly, &info.jtj, &info.ressum);
+  EvaluateJacobian(info.assembly, &info.jacobian, &info.residuals);
+  NormalEquations(info.jacobian, info.residuals, &info.jtj, &info.ressum);
   HoldCoordinates(info.null_columns, &info.assembly);
   return info;
 }
@@ -249,6 +256,59 @@ void NameGroups(const std::vector<std::string>& names, Uncertainty* u) {
   }
 }
 
+// Each segment's channels as residual series: the Jacobian rows and the
+// weighted residuals of phi, theta, psi in time order.
+std::vector<ResidualSeries> SeriesOf(const FitProblem& problem,
+                                     const SolutionInformation& info) {
+  const ceres::CRSMatrix& crs = info.jacobian;
+  std::vector<ResidualSeries> series;
+  int row = 0;
+  for (const PreparedSegment& segment : problem.segments) {
+    const int n = segment.data.size();
+    for (int channel = 0; channel < 3; ++channel) {
+      ResidualSeries s{Eigen::MatrixXd::Zero(n, crs.num_cols),
+                       Eigen::VectorXd(n)};
+      for (int i = 0; i < n; ++i) {
+        const int r = row + 3 * i + channel;
+        s.residual(i) = info.residuals[r];
+        for (int a = crs.rows[r]; a < crs.rows[r + 1]; ++a) {
+          s.jacobian(i, crs.cols[a]) = crs.values[a];
+        }
+      }
+      series.push_back(std::move(s));
+    }
+    row += 3 * n;
+  }
+  CHECK_EQ(row, crs.num_rows);
+  return series;
+}
+
+// The standard errors with the residuals' own correlation
+// (colored_covariance.h), and each series' statistics.
+void CorrectForCorrelation(const FitProblem& problem,
+                           const SolutionInformation& info,
+                           const Eigen::MatrixXd& cov_u,
+                           const std::vector<bool>& determined,
+                           int undetermined,
+                           Uncertainty* u) {
+  const int k = problem.free.size();
+  std::vector<SeriesCorrelation> stats;
+  const Eigen::MatrixXd bracket =
+      ColoredInformation(SeriesOf(problem, info), &stats);
+  const Eigen::MatrixXd colored = SandwichCovariance(cov_u, bracket);
+  // The residual variances are sums over N samples of residuals that have
+  // spent N_free degrees of freedom (as E does, Eq. 26).
+  const double n = 3.0 * problem.points;
+  const double dof = n / std::max(1.0, n - (k - undetermined));
+  u->standard_error.assign(k, kNaN);
+  for (int g = 0; g < k; ++g) {
+    if (determined[g]) {
+      u->standard_error[g] = info.scale[g] * std::sqrt(dof * colored(g, g));
+    }
+  }
+  u->series = std::move(stats);
+}
+
 }  // namespace
 
 Uncertainty EstimateUncertainty(const FitProblem& problem,
@@ -298,6 +358,7 @@ Uncertainty EstimateUncertainty(const FitProblem& problem,
     }
   }
   u.scale = info.scale;
+  CorrectForCorrelation(problem, info, cov_u, determined, undetermined, &u);
   NamePairs(cov, names, values, &u);
   NameGroups(names, &u);
   return u;

@@ -6,6 +6,14 @@
 //   probable error    E = sqrt(S^2 / (3 N - N_free))               Eq. 26
 //   RMS error         E sqrt(B_i), B = (J^T J)^-1                   Eq. 27
 //
+// Beside them the standard error, which stays honest when the residuals
+// are not white noise (colored_covariance.h):
+//
+//   Cov = B [sum_i sum_j J_i^T rho(i - j) J_j] B,
+//
+// with rho each channel's (and segment's) own residual autocorrelation;
+// for white residuals it is Eq. 27 with a variance per channel.
+//
 // B comes from ceres::Covariance with the free coordinates scaled to unit
 // Jacobian columns, so that its conditioning test measures correlation, not
 // units. What the data cannot determine is named instead of given a number:
@@ -20,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "colored_covariance.h"
 #include "fit_problem.h"
 
 namespace fit3dof {
@@ -31,6 +40,12 @@ struct Uncertainty {
   double probable_error = 0.0;
   std::vector<double> rms;      // Eq. 27, global free order; NaN where not
                                 // determined
+  // The standard errors to quote: the covariance with each channel's own
+  // residual variance and autocorrelation (colored_covariance.h), global
+  // free order; NaN where not determined.
+  std::vector<double> standard_error;
+  // Each segment's phi, theta, psi residual statistics (segment-major).
+  std::vector<SeriesCorrelation> series;
   Eigen::MatrixXd correlation;  // NaN rows and columns where not determined
   // The coordinates u = value / scale in which J^T J has unit diagonal
   // (assembly.h); the fitted motion is computed in them, as the solver did.

@@ -133,7 +133,7 @@ TEST(Batch, HundredRunsThreeBrokenTheRestFinish) {
   // The summary CSV: a row per run, value and RMS columns per parameter.
   const std::string csv = testing::ReadText(dir + "/out/summary.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), kRuns + 1);
-  EXPECT_NE(csv.find(",Cm_alpha,Cm_alpha_rms,"), std::string::npos);
+  EXPECT_NE(csv.find(",Cm_alpha,Cm_alpha_se,Cm_alpha_rms,"), std::string::npos);
   // The coefficients are right.
   EXPECT_NEAR(
       RunIn(summary, "r000")["parameters"]["Cm_alpha"]["value"].get<double>(),

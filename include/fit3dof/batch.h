@@ -42,7 +42,8 @@ struct BatchOptions {
 struct RunParameter {
   std::string name;
   double value = 0.0;
-  double rms_error = 0.0;  // NaN when not determined
+  double rms_error = 0.0;       // Eq. 27; NaN when not determined
+  double standard_error = 0.0;  // the one to quote (fit.h); NaN likewise
 };
 
 // How a run of a batch ended.

@@ -44,8 +44,21 @@ struct ParameterEstimate {
   int position = 0;     // in ParameterTable(model)
   double value = 0.0;
   double rms_error = 0.0;  // Eq. 27; NaN when frozen or not determined
+  // The error bar to quote: with each channel's own noise level and
+  // residual autocorrelation (colored residuals, Morelli and Klein 1995);
+  // equal to rms_error for white residuals at the configured sigma. NaN
+  // when frozen or not determined.
+  double standard_error = 0.0;
   bool free = false;
   std::string units;
+};
+
+// One channel's residuals at the solution.
+struct ResidualStatistics {
+  double noise_sigma_deg = 0.0;  // the channel's noise level, estimated
+  std::vector<double> autocorrelation;  // lags 1..10
+  int lag_window = 0;  // lags the standard errors take into account
+  bool white = true;   // Ljung-Box test over 20 lags at 1%
 };
 
 struct SegmentFit {
@@ -53,6 +66,7 @@ struct SegmentFit {
   TimeHistory data;              // the samples fitted (after selection, noise)
   std::vector<double> computed;  // phi, theta, psi per sample (deg)
   ChannelValues rms_residual_deg;
+  std::array<ResidualStatistics, 3> channels;  // phi, theta, psi
   std::array<double, 6> initial;  // the fitted initial conditions
   bool initial_from_data = false;
 };
@@ -91,6 +105,10 @@ struct FitResult {
   std::vector<std::string> correlation_names;  // free coordinates
   Eigen::MatrixXd correlation;                 // empty if not computable
   std::vector<std::string> warnings;
+  // Whether the residuals look like measurement noise: "white", or how they
+  // do not ("structured: lag-1 autocorrelation 0.81 in theta ..."). A fit
+  // can converge (its iteration met the rule) and still not be adequate.
+  std::string adequacy;
   // Every wild point found, in the order found; each is also a warning
   // (the first few) and a line of report.json's "outliers".
   std::vector<Outlier> outliers;
