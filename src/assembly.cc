@@ -15,7 +15,6 @@ namespace fit3dof {
 Assembly Assemble(const std::vector<PreparedSegment>& segments,
                   const FreeLayout& free,
                   const std::shared_ptr<const MotionModel>& model,
-                  const ChannelValues& sigma,
                   const std::vector<double>& values,
                   const std::vector<double>& scale) {
   Assembly a;
@@ -48,7 +47,7 @@ Assembly Assemble(const std::vector<PreparedSegment>& segments,
       segment_scale.push_back(scale[free.own_offset[s] + j]);
     }
     auto* cost = new SegmentCostFunction(
-        model, base, positions, ks, segment_scale, p.data, sigma);
+        model, base, positions, ks, segment_scale, p.data, p.sigma);
     std::vector<double*> blocks;
     if (ks > 0) blocks.push_back(a.shared_u.data());
     if (!a.own_u[s].empty()) blocks.push_back(a.own_u[s].data());

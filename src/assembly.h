@@ -32,7 +32,6 @@ struct Assembly {
 Assembly Assemble(const std::vector<PreparedSegment>& segments,
                   const FreeLayout& free,
                   const std::shared_ptr<const MotionModel>& model,
-                  const ChannelValues& sigma,
                   const std::vector<double>& values,
                   const std::vector<double>& scale);
 

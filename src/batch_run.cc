@@ -44,12 +44,13 @@ RunResult FromFit(const FitResult& fit) {
   r.name = fit.name;
   r.status = fit.converged ? RunStatus::kConverged : RunStatus::kNotConverged;
   r.reason = fit.converged ? "" : fit.termination;
+  r.adequacy = fit.adequacy;
   r.iterations = fit.iterations;
   r.probable_error = fit.probable_error;
   r.model = ModelName(fit.model);
   for (const ParameterEstimate& e : fit.parameters) {
-    const RunParameter parameter{e.name, e.value, e.rms_error,
-                                 e.standard_error};
+    const RunParameter parameter{
+        e.name, e.value, e.rms_error, e.standard_error};
     r.values.push_back(parameter);
     if (e.free) r.free.push_back(parameter);
   }
@@ -65,11 +66,13 @@ RunResult FromReport(const json& report) {
   r.status = converged ? RunStatus::kConverged : RunStatus::kNotConverged;
   r.reason = converged ? "" : report.value("termination", "");
   if (report.contains("diagnosis")) r.reason = report["diagnosis"];
+  r.adequacy = report.value("adequacy", "");
   r.iterations = report.value("iterations", 0);
   r.probable_error = FromJson(report["probable_error"]);
   r.model = report.value("model", "");
   for (const auto& [name, p] : report["parameters"].items()) {
-    const RunParameter parameter{name, FromJson(p["value"]),
+    const RunParameter parameter{name,
+                                 FromJson(p["value"]),
                                  FromJson(p["rms_error"]),
                                  FromJson(p["standard_error"])};
     r.values.push_back(parameter);

@@ -96,7 +96,7 @@ void WriteSummary(const std::string& dir, const BatchSummary& summary) {
       if (seen.insert(p.name).second) columns.push_back(p.name);
     }
   }
-  std::string csv = "name,status,reason,iterations,probable_error";
+  std::string csv = "name,status,adequacy,reason,iterations,probable_error";
   // The standard error (the one to quote) leads; Eq. 27's RMS error beside.
   for (const std::string& c : columns) {
     csv += "," + c + "," + c + "_se," + c + "_rms";
@@ -112,7 +112,8 @@ void WriteSummary(const std::string& dir, const BatchSummary& summary) {
     for (const RunParameter& p : r.free) by_name[p.name] = &p;
     const char* status = RunStatusToString(r.status);
     csv +=
-        CsvField(r.name) + "," + status + "," + CsvField(r.reason) + "," +
+        CsvField(r.name) + "," + status + "," + CsvField(r.adequacy) + "," +
+        CsvField(r.reason) + "," +
         (r.status == RunStatus::kFailed ? "" : std::to_string(r.iterations)) +
         "," + CsvNumber(r.probable_error);
     json parameters = json::object();
@@ -133,6 +134,7 @@ void WriteSummary(const std::string& dir, const BatchSummary& summary) {
     csv += "\n";
     runs.push_back({{"name", r.name},
                     {"status", status},
+                    {"adequacy", r.adequacy},
                     {"reason", r.reason},
                     {"iterations", r.iterations},
                     {"probable_error", JsonNumber(Round12(r.probable_error))},
@@ -170,11 +172,14 @@ BatchSummary ReadSummary(const std::string& dir) {
                        status + "'");
     }
     r.reason = run.value("reason", "");
+    r.adequacy = run.value("adequacy", "");
     r.iterations = run.value("iterations", 0);
     r.probable_error = FromJson(run["probable_error"]);
     r.model = run.value("model", "");
     for (const auto& [name, p] : run["parameters"].items()) {
-      r.free.push_back({name, FromJson(p["value"]), FromJson(p["rms_error"]),
+      r.free.push_back({name,
+                        FromJson(p["value"]),
+                        FromJson(p["rms_error"]),
                         FromJson(p["standard_error"])});
     }
     summary.runs.push_back(r);

@@ -134,6 +134,7 @@ bool operator==(const Case& a, const Case& b) {
                   a.parameters,
                   a.segments,
                   a.sigma,
+                  a.sigma_auto,
                   a.noise,
                   a.solver,
                   a.simulate) == std::tie(b.name,
@@ -142,6 +143,7 @@ bool operator==(const Case& a, const Case& b) {
                                           b.parameters,
                                           b.segments,
                                           b.sigma,
+                                          b.sigma_auto,
                                           b.noise,
                                           b.solver,
                                           b.simulate) &&

@@ -57,6 +57,8 @@ class ConfigReader : public NodeReader {
                                              const std::string& key) const;
   void ReadSegments(const YAML::Node& root, Case* c) const;
   void ReadNoise(const YAML::Node& node, Case* c) const;
+  // sigma: {phi, theta, psi} in deg, any of them `auto`, or `sigma: auto`.
+  void ReadSigma(const YAML::Node& node, Case* c) const;
   void ReadSolver(const YAML::Node& node, Case* c) const;
   void ReadSimulate(const YAML::Node& node, Case* c) const;
   void CheckPhysics(const YAML::Node& root, const Case& c) const;
@@ -116,12 +118,7 @@ Case ConfigReader::Read(const YAML::Node& root) {
   if (root["parameters"] && !root["parameters"].IsNull()) {
     ReadParameters(root["parameters"], &c);
   }
-  if (root["sigma"]) {
-    c.sigma = ReadChannels(root["sigma"], "sigma", true, 1.0);
-    if (!(c.sigma.phi > 0 && c.sigma.theta > 0 && c.sigma.psi > 0)) {
-      Fail(root["sigma"], "sigma", "every sigma must be positive (deg)");
-    }
-  }
+  if (root["sigma"]) ReadSigma(root["sigma"], &c);
   ReadSegments(root, &c);
   if (root["noise"]) ReadNoise(root["noise"], &c);
   if (root["solver"]) ReadSolver(root["solver"], &c);
@@ -415,6 +412,35 @@ void ConfigReader::ReadSegments(const YAML::Node& root, Case* c) const {
       }
     }
     c->segments.push_back(s);
+  }
+}
+
+void ConfigReader::ReadSigma(const YAML::Node& node, Case* c) const {
+  auto is_auto = [](const YAML::Node& n) {
+    return n.IsDefined() && n.IsScalar() && n.Scalar() == "auto";
+  };
+  if (is_auto(node)) {
+    c->sigma_auto = {{true, true, true}};
+    return;
+  }
+  if (!node.IsMap()) {
+    Fail(node, "sigma", "expected {phi, theta, psi} in deg, or auto");
+  }
+  CheckKeys(node, "sigma", {"phi", "theta", "psi"});
+  const char* channels[3] = {"phi", "theta", "psi"};
+  double* values[3] = {&c->sigma.phi, &c->sigma.theta, &c->sigma.psi};
+  for (int ch = 0; ch < 3; ++ch) {
+    const YAML::Node n = node[channels[ch]];
+    const std::string key = Join("sigma", channels[ch]);
+    if (!n.IsDefined()) Fail(node, key, "missing (required)");
+    if (is_auto(n)) {
+      c->sigma_auto[ch] = true;
+      continue;
+    }
+    *values[ch] = Number(n, key);
+    if (!(*values[ch] > 0.0)) {
+      Fail(n, key, "must be positive (deg) or auto, got " + n.Scalar());
+    }
   }
 }
 

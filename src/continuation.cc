@@ -75,7 +75,6 @@ PipelineOutcome RunPipeline(const Case& c,
     const std::vector<PreparedSegment> stage =
         last ? segments : Window(segments, windows[w]);
     StageSettings settings;
-    settings.sigma = c.sigma;
     // Shorter windows only bring the values near: a looser rule.
     settings.tolerance = last ? c.solver.tolerance : 0.0;
     settings.relative_tolerance = last ? 0.0 : 1e-4;

@@ -25,6 +25,7 @@
 #include "fit_problem.h"
 #include "format.h"
 #include "multi_start.h"
+#include "noise_relaxation.h"
 #include "uncertainty.h"
 
 namespace fit3dof {
@@ -138,13 +139,19 @@ PipelineOutcome Solve(const Case& c,
   return outcome;
 }
 
-// Converged only by the solver's rule and at the noise level: a fit that
-// does not reach it is never called converged.
+// Converged by the solver's rule. A fit that ends above the noise level
+// (probable error over solver.max_probable_error) may sit in a local
+// minimum: it is called converged only when the restarts confirm its
+// minimum (two or more starts reached it); residuals that are merely not
+// white noise are the adequacy's business (JudgeAdequacy), not this.
 void Judge(const Case& c, const PipelineOutcome& outcome, FitResult* result) {
   const double limit = c.solver.max_probable_error;
   result->converged = outcome.converged;
   result->termination = outcome.termination;
-  if (limit > 0.0 && outcome.probable_error > limit) {
+  const bool above = limit > 0.0 && outcome.probable_error > limit;
+  const bool confirmed =
+      result->starts_tried > 0 && result->starts_reached_best >= 2;
+  if (above && !confirmed) {
     result->converged = false;
     result->termination =
         "the fit did not reach the noise level: probable error " +
@@ -152,6 +159,15 @@ void Judge(const Case& c, const PipelineOutcome& outcome, FitResult* result) {
         FormatNumber("%g", limit) +
         " (a local minimum, a missing effect, or sigma smaller than the "
         "noise)";
+  } else if (above) {
+    result->termination +=
+        "; the fit did not reach the noise level (probable error " +
+        FormatNumber("%.3g", outcome.probable_error) + " > " +
+        FormatNumber("%g", limit) + ") at the minimum " +
+        std::to_string(result->starts_reached_best) + " of " +
+        std::to_string(result->starts_tried) +
+        " starts reached: not a local minimum; the residuals exceed sigma "
+        "(see adequacy)";
   }
   if (!result->converged) {
     LOG(WARNING) << c.name << ": " << result->termination;
@@ -206,7 +222,7 @@ void FitSegments(const Case& c,
   const FreeLayout& free = problem.free;
   const std::vector<double>& rms = u.rms;
   const Assembly assembly =
-      Assemble(problem.segments, free, problem.model, c.sigma, values, u.scale);
+      Assemble(problem.segments, free, problem.model, values, u.scale);
   const int first = Layout(c.model).first_initial;
   double sum2[3] = {0, 0, 0};
   for (size_t s = 0; s < problem.segments.size(); ++s) {
@@ -216,6 +232,7 @@ void FitSegments(const Case& c,
     fit.name = p.name;
     fit.data = p.data;
     fit.initial_from_data = p.from_data;
+    fit.sigma_deg = p.sigma;
     assembly.costs[s]->ComputeAngles(full, &fit.computed, nullptr);
     for (int j = 0; j < 6; ++j) fit.initial[j] = full[first + j];
     double seg2[3] = {0, 0, 0};
@@ -269,11 +286,12 @@ void JudgeAdequacy(const Case& c, FitResult* result) {
     for (int ch = 0; ch < 3; ++ch) {
       const ResidualStatistics& stats = s.channels[ch];
       if (stats.white) continue;
-      structured += (structured.empty() ? "" : ", ") +
-                    FormatNumber("%.2f", stats.autocorrelation.empty()
-                                             ? 0.0
-                                             : stats.autocorrelation[0]) +
-                    " in " + ChannelName(ch);
+      structured +=
+          (structured.empty() ? "" : ", ") +
+          FormatNumber(
+              "%.2f",
+              stats.autocorrelation.empty() ? 0.0 : stats.autocorrelation[0]) +
+          " in " + ChannelName(ch);
       if (result->segments.size() > 1) structured += " ('" + s.name + "')";
     }
   }
@@ -309,7 +327,12 @@ FitResult FitData(const Case& c, const std::vector<TimeHistory>& data) {
   }
   std::vector<double> values;
   Judge(c, Solve(c, problem, &values, &result), &result);
-  const Uncertainty u = EstimateUncertainty(problem, c.sigma, values, c.source);
+  const RelaxationOutcome relaxed = RelaxNoiseWeights(c, &problem, &values);
+  if (relaxed.rounds > 0) {
+    result.iterations += relaxed.iterations;
+    result.pipeline.push_back(relaxed.summary);
+  }
+  const Uncertainty u = EstimateUncertainty(problem, values, c.source);
   result.sum_of_residuals = u.sum_of_residuals;
   result.probable_error = u.probable_error;
   result.warnings = u.warnings;
@@ -361,7 +384,9 @@ void ReportWildPoints(const Case& c,
         " more wild points (all in report.json's outliers)");
   }
   const int kept = static_cast<int>(outliers.size()) - dropped;
-  if (kept > 0 && !result->converged) {
+  const double limit = c.solver.max_probable_error;
+  const bool above = limit > 0.0 && result->probable_error > limit;
+  if (kept > 0 && (!result->converged || above)) {
     // Point at the data as well as at the model.
     result->termination += "; the data hold " + std::to_string(kept) +
                            " wild point" + (kept == 1 ? "" : "s") +
@@ -407,7 +432,6 @@ bool Linearize(const Case& c,
   Assembly a = Assemble(p.segments,
                         p.free,
                         p.model,
-                        c.sigma,
                         p.values,
                         std::vector<double>(p.free.size(), 1.0));
   out->names = p.names;

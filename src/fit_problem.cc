@@ -61,6 +61,7 @@ PreparedSegment PrepareSegment(const Case& c,
   p.base = c.Values();
   const ParameterLayout& layout = Layout(c.model);
   p.from_data = s.initial_conditions == InitialConditionMode::kFromData;
+  p.sigma = c.sigma;
   std::array<double, 6> initial;
   for (int j = 0; j < 6; ++j) initial[j] = s.initial[j].value;
   bool any_auto = false;

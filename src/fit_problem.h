@@ -25,6 +25,9 @@ struct PreparedSegment {
   std::vector<double> base;  // frozen values and this segment's ICs
   std::vector<int> own;      // positions of its free initial conditions
   bool from_data = false;    // initial conditions estimated from the data
+  // Residual weights (deg): the config's sigma, or the segment's own noise
+  // levels once estimated (sigma: auto).
+  ChannelValues sigma;
 };
 
 // The free coordinates of the whole fit: shared ones, then each segment's

@@ -97,6 +97,7 @@ ordered_json ReportObject(const FitResult& r) {
          {"t_end", s.data.t.back()},
          {"initial_conditions", s.initial_from_data ? "from_data" : "given"},
          {"rms_residual_deg", JsonChannels(s.rms_residual_deg)},
+         {"sigma_deg", JsonChannels(s.sigma_deg)},
          {"noise_sigma_deg",
           JsonChannels({s.channels[0].noise_sigma_deg,
                         s.channels[1].noise_sigma_deg,

@@ -101,7 +101,6 @@ StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
                         const std::vector<std::string>& names,
                         const StageSettings& settings,
                         std::vector<double>* values) {
-  const ChannelValues& sigma = settings.sigma;
   const double tolerance = settings.tolerance;
   const double relative_tolerance = settings.relative_tolerance;
   StageOutcome outcome;
@@ -111,7 +110,7 @@ StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
   std::vector<bool> null_columns;
   {
     // Scale the free coordinates by the Jacobian at the start.
-    Assembly probe = Assemble(segments, free, model, sigma, *values, scale);
+    Assembly probe = Assemble(segments, free, model, *values, scale);
     Eigen::MatrixXd jtj;
     double ressum;
     if (!Information(probe, &jtj, &ressum)) {
@@ -133,7 +132,7 @@ StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
     scale = ColumnScales(jtj, scale);
     null_columns = NullColumns(jtj);
   }
-  Assembly assembly = Assemble(segments, free, model, sigma, *values, scale);
+  Assembly assembly = Assemble(segments, free, model, *values, scale);
   // A coordinate without any effect on the residuals would let
   // Levenberg-Marquardt step without bound along it (the cost never
   // objects); hold it where it is. The covariance names it afterwards.
@@ -187,7 +186,6 @@ StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
                               const std::shared_ptr<const MotionModel>& model,
                               const StageSettings& settings,
                               std::vector<double>* values) {
-  const ChannelValues& sigma = settings.sigma;
   const double tolerance = settings.tolerance;
   const int max_iterations = settings.max_iterations;
   StageOutcome outcome;
@@ -198,7 +196,7 @@ StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
   double old_e = -1.0;
   std::vector<double> last_good = *values;
   for (int iteration = 0; !StopRequested(); ++iteration) {
-    Assembly a = Assemble(segments, free, model, sigma, *values, scale);
+    Assembly a = Assemble(segments, free, model, *values, scale);
     Eigen::MatrixXd jtj;
     Eigen::VectorXd jtr;
     double ressum;
@@ -217,7 +215,7 @@ StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
     if (iteration == 0) {
       // Unit columns, as for Levenberg-Marquardt; then re-evaluate.
       scale = ColumnScales(jtj, scale);
-      a = Assemble(segments, free, model, sigma, *values, scale);
+      a = Assemble(segments, free, model, *values, scale);
       Information(a, &jtj, &ressum, &jtr);
     }
     outcome.ressum = ressum;

@@ -29,7 +29,6 @@ struct StageOutcome {
 
 // What a stage solve needs besides the segments and the values.
 struct StageSettings {
-  ChannelValues sigma;
   double tolerance = 0.0;           // absolute, on the probable error
   double relative_tolerance = 0.0;  // times the probable error
   int max_iterations = 50;

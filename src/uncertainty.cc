@@ -75,14 +75,13 @@ struct SolutionInformation {
 };
 
 SolutionInformation InformationAtSolution(const FitProblem& p,
-                                          const ChannelValues& sigma,
                                           const std::vector<double>& values,
                                           const std::string& source) {
   const int k = p.free.size();
   SolutionInformation info;
   info.scale.assign(k, 1.0);
   info.assembly =
-      Assemble(p.segments, p.free, p.model, sigma, values, info.scale);
+      Assemble(p.segments, p.free, p.model, values, info.scale);
   if (!Information(info.assembly, &info.jtj, &info.ressum)) {
     throw InputError(source +
                      ": the motion cannot be integrated at the solution");
@@ -90,7 +89,7 @@ SolutionInformation InformationAtSolution(const FitProblem& p,
   info.null_columns = NullColumns(info.jtj);
   info.scale = ColumnScales(info.jtj, info.scale);
   info.assembly =
-      Assemble(p.segments, p.free, p.model, sigma, values, info.scale);
+      Assemble(p.segments, p.free, p.model, values, info.scale);
   // The information matrix in global coordinates first: once a block holds
   // some of its coordinates (a SubsetManifold), Evaluate returns only the
   // tangent-space columns.
@@ -312,13 +311,12 @@ void CorrectForCorrelation(const FitProblem& problem,
 }  // namespace
 
 Uncertainty EstimateUncertainty(const FitProblem& problem,
-                                const ChannelValues& sigma,
                                 const std::vector<double>& values,
                                 const std::string& source) {
   const int k = problem.free.size();
   const std::vector<std::string>& names = problem.names;
   SolutionInformation info =
-      InformationAtSolution(problem, sigma, values, source);
+      InformationAtSolution(problem, values, source);
   Uncertainty u;
   u.sum_of_residuals = std::sqrt(info.ressum);
   int undetermined = 0;

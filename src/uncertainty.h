@@ -57,7 +57,6 @@ struct Uncertainty {
 // order). `source` names the config if the motion cannot be integrated
 // there (InputError).
 Uncertainty EstimateUncertainty(const FitProblem& problem,
-                                const ChannelValues& sigma,
                                 const std::vector<double>& values,
                                 const std::string& source);
 

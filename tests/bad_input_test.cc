@@ -144,7 +144,7 @@ std::vector<BadInput> Catalog() {
   config("zero sigma",
          "phi: 0.01, theta: 0.01, psi: 0.01}",
          "phi: 0.0, theta: 0.01, psi: 0.01}",
-         "sigma: every sigma must be positive");
+         "sigma.phi: must be positive (deg) or auto");
   config("NUL byte in a comment (fuzzer finding: yaml-cpp never returned)",
          "name: catalog",
          std::string("name: catalog\n# a comment\0\0 with NUL", 36),

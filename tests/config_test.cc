@@ -198,7 +198,7 @@ INSTANTIATE_TEST_SUITE_P(
             "name: table6", "name: table6\nsigmas: 1", "sigmas: unknown key"},
         BadCase{"sigma: {phi: 1.0, theta: 0.05, psi: 0.05}",
                 "sigma: {phi: 1.0, theta: 0.0, psi: 0.05}",
-                "sigma: every sigma must be positive"},
+                "sigma.theta: must be positive (deg) or auto"},
         BadCase{"sigma: {phi: 1.0, theta: 0.05, psi: 0.05}",
                 "sigma: {phi: 1.0, theta: 0.05}",
                 "sigma.psi: missing"},
@@ -294,6 +294,28 @@ TEST(Config, ReportConfigsLoad) {
         LoadConfig(testing::SourcePath(std::string("configs/report/") + name)))
         << name;
   }
+}
+
+// sigma: auto for every channel or some: those weights are estimated.
+TEST(Config, SigmaAutoForAllChannelsOrSome) {
+  const std::string dir = testing::ScratchDirectory("config_sigma_auto");
+  std::string text = testing::ReadText(
+      testing::SourcePath("configs/report/table6_sigma0.01.yaml"));
+  const size_t at = text.find("sigma: {");
+  ASSERT_NE(at, std::string::npos);
+  const std::string line = text.substr(at, text.find('\n', at) - at);
+  auto with = [&](const std::string& sigma) {
+    std::string t = text;
+    t.replace(at, line.size(), sigma);
+    return ParseConfig(t, "s.yaml", testing::SourcePath("configs/report"));
+  };
+  const Case all = with("sigma: auto");
+  EXPECT_EQ(all.sigma_auto, (std::array<bool, 3>{{true, true, true}}));
+  const Case some = with("sigma: {phi: auto, theta: 0.02, psi: 0.03}");
+  EXPECT_EQ(some.sigma_auto, (std::array<bool, 3>{{true, false, false}}));
+  EXPECT_DOUBLE_EQ(some.sigma.theta, 0.02);
+  EXPECT_THROW(with("sigma: automatic"), InputError);
+  EXPECT_THROW(with("sigma: {phi: auto, theta: 0.02}"), InputError);
 }
 
 }  // namespace

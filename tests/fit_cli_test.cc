@@ -147,7 +147,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "Cm_alpha?)"},
         BadInput{"sigma: {phi: 0.01,",
                  "sigma: {phi: -0.01,",
-                 "sigma: every sigma must be positive"},
+                 "sigma.phi: must be positive (deg) or auto"},
         BadInput{
             "data: {file:", "data: {t_end: 0.07, file:", "too few points"}));
 

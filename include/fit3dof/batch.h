@@ -64,6 +64,7 @@ struct RunResult {
   std::string name;
   RunStatus status = RunStatus::kFailed;
   std::string reason;  // why it failed or did not converge
+  std::string adequacy;  // of the fit's residuals (fit.h); empty if failed
   int iterations = 0;
   double probable_error = 0.0;       // NaN for a failed run
   std::vector<RunParameter> free;    // the free parameters

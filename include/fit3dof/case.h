@@ -118,7 +118,12 @@ struct Case {
   // entries are the defaults that segments start from.
   std::vector<ParameterSetting> parameters;
   std::vector<Segment> segments;
+  // Residual weights, deg (SIGPHI, SIGTHA, SIGPSI).
   ChannelValues sigma{1.0, 1.0, 1.0};
+  // sigma: auto (all channels or some): the weights of those channels are
+  // each segment's own noise levels, estimated at the solution by
+  // relaxation (fit.h); `sigma` holds their starting values (1 deg).
+  std::array<bool, 3> sigma_auto{{false, false, false}};
   NoiseOptions noise;
   SolverOptions solver;
   SimulateOptions simulate;

@@ -66,6 +66,8 @@ struct SegmentFit {
   TimeHistory data;              // the samples fitted (after selection, noise)
   std::vector<double> computed;  // phi, theta, psi per sample (deg)
   ChannelValues rms_residual_deg;
+  ChannelValues sigma_deg;  // the residual weights used (sigma, or the
+                            // estimated noise levels with sigma: auto)
   std::array<ResidualStatistics, 3> channels;  // phi, theta, psi
   std::array<double, 6> initial;  // the fitted initial conditions
   bool initial_from_data = false;

@@ -1,0 +1,130 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Per-channel noise levels by relaxation (noise_relaxation.h).
+
+#include "noise_relaxation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "assembly.h"
+#include "fit3dof/input_error.h"
+#include "format.h"
+#include "stage_solver.h"
+
+namespace fit3dof {
+namespace {
+
+constexpr int kMaxRounds = 10;
+constexpr double kSettled = 0.01;  // relative change of every weight
+// A floor for an estimated noise level (deg): a channel that fits exactly
+// (a simulated record without noise) must not get an infinite weight.
+constexpr double kFloorDeg = 1e-9;
+
+// Each segment's RMS residual per channel (deg) at `values`.
+std::vector<ChannelValues> ResidualRms(const FitProblem& p,
+                                       const std::vector<double>& values,
+                                       const std::string& source) {
+  const Assembly a = Assemble(p.segments,
+                              p.free,
+                              p.model,
+                              values,
+                              std::vector<double>(p.free.size(), 1.0));
+  std::vector<double> residuals;
+  double cost = 0.0;
+  if (!a.problem->Evaluate(ceres::Problem::EvaluateOptions(),
+                           &cost,
+                           &residuals,
+                           nullptr,
+                           nullptr)) {
+    throw InputError(source +
+                     ": the motion cannot be integrated at the solution");
+  }
+  std::vector<ChannelValues> rms;
+  size_t row = 0;
+  for (const PreparedSegment& s : p.segments) {
+    const double sigma[3] = {s.sigma.phi, s.sigma.theta, s.sigma.psi};
+    double sum[3] = {0.0, 0.0, 0.0};
+    const int n = s.data.size();
+    for (int i = 0; i < n; ++i) {
+      for (int ch = 0; ch < 3; ++ch) {
+        const double r = residuals[row++] * sigma[ch];
+        sum[ch] += r * r;
+      }
+    }
+    rms.push_back(
+        {std::sqrt(sum[0] / n), std::sqrt(sum[1] / n), std::sqrt(sum[2] / n)});
+  }
+  return rms;
+}
+
+// Sets the auto channels' weights to `rms`; the largest relative change.
+double Reweight(const std::array<bool, 3>& automatic,
+                const std::vector<ChannelValues>& rms,
+                std::vector<PreparedSegment>* segments) {
+  double change = 0.0;
+  for (size_t s = 0; s < segments->size(); ++s) {
+    ChannelValues& sigma = (*segments)[s].sigma;
+    double* weights[3] = {&sigma.phi, &sigma.theta, &sigma.psi};
+    const double estimates[3] = {rms[s].phi, rms[s].theta, rms[s].psi};
+    for (int ch = 0; ch < 3; ++ch) {
+      if (!automatic[ch]) continue;
+      const double updated = std::max(estimates[ch], kFloorDeg);
+      change = std::max(change, std::abs(updated - *weights[ch]) / updated);
+      *weights[ch] = updated;
+    }
+  }
+  return change;
+}
+
+std::string Summary(const FitProblem& p, const RelaxationOutcome& r) {
+  std::string text = "sigma: auto: " + std::to_string(r.rounds) +
+                     (r.rounds == 1 ? " round" : " rounds") +
+                     (r.settled ? "" : " (not settled)") + ", weights (deg)";
+  for (const PreparedSegment& s : p.segments) {
+    if (p.segments.size() > 1) text += " '" + s.name + "'";
+    text += " phi " + FormatNumber("%.3g", s.sigma.phi) + " theta " +
+            FormatNumber("%.3g", s.sigma.theta) + " psi " +
+            FormatNumber("%.3g", s.sigma.psi);
+  }
+  return text;
+}
+
+}  // namespace
+
+RelaxationOutcome RelaxNoiseWeights(const Case& c,
+                                    FitProblem* problem,
+                                    std::vector<double>* values) {
+  RelaxationOutcome outcome;
+  if (std::none_of(
+          c.sigma_auto.begin(), c.sigma_auto.end(), [](bool a) { return a; })) {
+    return outcome;
+  }
+  StageSettings settings;
+  settings.tolerance = c.solver.tolerance;
+  settings.max_iterations = c.solver.max_iterations;
+  while (outcome.rounds < kMaxRounds) {
+    const double change = Reweight(c.sigma_auto,
+                                   ResidualRms(*problem, *values, c.source),
+                                   &problem->segments);
+    ++outcome.rounds;
+    if (change < kSettled) {
+      outcome.settled = true;
+      break;
+    }
+    std::vector<double> trial = *values;
+    const StageOutcome stage = SolveStage(problem->segments,
+                                          problem->free,
+                                          problem->model,
+                                          problem->names,
+                                          settings,
+                                          &trial);
+    if (!stage.integrable) break;  // keep the last solution and weights
+    outcome.iterations += stage.iterations;
+    *values = trial;
+  }
+  outcome.summary = Summary(*problem, outcome);
+  return outcome;
+}
+
+}  // namespace fit3dof
