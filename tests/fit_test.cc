@@ -95,7 +95,43 @@ TEST(Fit, Table6ErrorBarsMatchTheCramerRaoBound) {
                 expected,
                 rms / expected);
     EXPECT_NEAR(rms / expected, 1.0, 0.10) << name;
+    // White residuals: the standard error is Eq. 27's RMS error.
+    EXPECT_NEAR(Find(r, name).standard_error / expected, 1.0, 0.10) << name;
+    EXPECT_NEAR(Find(r, name).standard_error / rms, 1.0, 0.05) << name;
   }
+  EXPECT_EQ(r.adequacy, "white");
+}
+
+// sigma: auto finds each channel's own noise level (0.5 deg in roll, 0.01
+// and 0.03 deg in pitch and yaw) and weights by it: the values and the
+// standard errors agree with a fit given the right sigmas, not with one
+// given a single sigma for all three.
+TEST(Fit, SigmaAutoEstimatesEachChannelsNoise) {
+  Case c = Load("table6_sigma0.01.yaml");
+  c.noise.sigma = {0.5, 0.01, 0.03};
+  c.sigma = c.noise.sigma;
+  const FitResult known = Fit(c);
+  c.sigma = {1.0, 1.0, 1.0};
+  c.sigma_auto = {{true, true, true}};
+  const FitResult automatic = Fit(c);
+  ASSERT_EQ(automatic.segments.size(), 1u);
+  const ChannelValues& w = automatic.segments[0].sigma_deg;
+  EXPECT_NEAR(w.phi / 0.5, 1.0, 0.1);
+  EXPECT_NEAR(w.theta / 0.01, 1.0, 0.1);
+  EXPECT_NEAR(w.psi / 0.03, 1.0, 0.1);
+  EXPECT_NEAR(automatic.probable_error, 1.0, 0.1);
+  for (const char* name : {"Cm_alpha", "Cm_q", "Cm_alpha_delta2"}) {
+    const ParameterEstimate& a = Find(automatic, name);
+    const ParameterEstimate& k = Find(known, name);
+    EXPECT_NEAR(a.value, k.value, 0.2 * k.standard_error) << name;
+    EXPECT_NEAR(a.standard_error / k.standard_error, 1.0, 0.1) << name;
+  }
+  bool relaxed = false;
+  for (const std::string& step : automatic.pipeline) {
+    relaxed |= step.rfind("sigma: auto: ", 0) == 0 &&
+               step.find("not settled") == std::string::npos;
+  }
+  EXPECT_TRUE(relaxed);
 }
 
 // Over 50 noise seeds the scatter of each coefficient matches its mean
