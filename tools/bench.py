@@ -85,6 +85,7 @@ def main():
     result["evaluation"] = {"forward_ms": forward, "jacobian": rows,
                             "four_over_all": four_vs_all}
 
+    colored_ms = times.get("BM_ColoredCovariance")
     print("== Whole process: fit3dof fit (median of 5)")
     with tempfile.TemporaryDirectory() as tmp:
         table6 = variant(root, tmp, "table6", [])
@@ -93,6 +94,11 @@ def main():
               f"{report['iterations']} iterations, converged="
               f"{report['converged']}")
         result["table6_seconds"] = seconds
+        if colored_ms is not None:
+            share = colored_ms / 1000.0 / seconds
+            print(f"  of which the colored-residual covariance: "
+                  f"{colored_ms:.2f} ms = {share:.1%} of the fit")
+            result["colored_share"] = share
         by_samples = []
         for every in (4, 2, 1):
             cfg = variant(root, tmp, f"every{every}",
