@@ -114,35 +114,35 @@ void BM_Forward(benchmark::State& state) {
   }
 }
 
-void BM_Jacobian(benchmark::State& state) {
-  const int k = static_cast<int>(state.range(0));
-  Block b = MakeBlock(k);
-  std::vector<double> residuals(b.cost->num_residuals());
-  std::vector<double> jacobian(b.cost->num_residuals() * k);
-  const double* blocks[1] = {b.u.data()};
-  double* jacobians[1] = {jacobian.data()};
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        b.cost->Evaluate(blocks, residuals.data(), jacobians));
-  }
-}
-
-template <int kStride>
-void BM_DynamicJacobian(benchmark::State& state) {
-  const int k = static_cast<int>(state.range(0));
-  Block b = MakeBlock(k);
-  ceres::DynamicAutoDiffCostFunction<DynamicSegmentResiduals, kStride> cost(
-      new DynamicSegmentResiduals{&b});
-  cost.AddParameterBlock(k);
-  cost.SetNumResiduals(b.cost->num_residuals());
-  std::vector<double> residuals(b.cost->num_residuals());
-  std::vector<double> jacobian(b.cost->num_residuals() * k);
+// Times Jacobian evaluations of `cost` at the block's values.
+void TimeJacobians(benchmark::State& state,
+                   const Block& b,
+                   const ceres::CostFunction& cost) {
+  const int k = static_cast<int>(b.u.size());
+  std::vector<double> residuals(cost.num_residuals());
+  std::vector<double> jacobian(cost.num_residuals() * k);
   const double* blocks[1] = {b.u.data()};
   double* jacobians[1] = {jacobian.data()};
   for (auto _ : state) {
     benchmark::DoNotOptimize(
         cost.Evaluate(blocks, residuals.data(), jacobians));
   }
+}
+
+void BM_Jacobian(benchmark::State& state) {
+  const Block b = MakeBlock(static_cast<int>(state.range(0)));
+  TimeJacobians(state, b, *b.cost);
+}
+
+template <int kStride>
+void BM_DynamicJacobian(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  const Block b = MakeBlock(k);
+  ceres::DynamicAutoDiffCostFunction<DynamicSegmentResiduals, kStride> cost(
+      new DynamicSegmentResiduals{&b});
+  cost.AddParameterBlock(k);
+  cost.SetNumResiduals(b.cost->num_residuals());
+  TimeJacobians(state, b, cost);
 }
 
 // The colored-residual covariance of a Table 6 fit (three channels of 800
