@@ -26,6 +26,7 @@
 #include "format.h"
 #include "multi_start.h"
 #include "noise_relaxation.h"
+#include "spectral_lines.h"
 #include "uncertainty.h"
 
 namespace fit3dof {
@@ -257,6 +258,15 @@ void FitSegments(const Case& c,
       stats.autocorrelation = series.normalized;
       stats.lag_window = series.lag_window;
       stats.white = series.white;
+      std::vector<double> residual(p.data.size());
+      for (int i = 0; i < p.data.size(); ++i) {
+        residual[i] = fit.computed[3 * i + ch] - measured[ch][i];
+      }
+      const double dt =
+          (p.data.t.back() - p.data.t.front()) / std::max(1, p.data.size() - 1);
+      for (const SpectralLine& line : SpectralLines(residual, dt)) {
+        stats.spectral_lines_hz.push_back(line.frequency_hz);
+      }
     }
     for (int g = 0; g < free.size() && problem.segments.size() > 1; ++g) {
       if (free.segment[g] != static_cast<int>(s)) continue;
@@ -278,21 +288,56 @@ void FitSegments(const Case& c,
       std::sqrt(sum2[0] / n), std::sqrt(sum2[1] / n), std::sqrt(sum2[2] / n)};
 }
 
+// A spectral line's frequency, named after the spin rate when it is one of
+// its first harmonics (within 3%).
+std::string LineName(double hz, double spin_hz) {
+  std::string name = FormatNumber("%.3g", hz) + " Hz";
+  for (int h = 1; h <= 3 && spin_hz > 0.0; ++h) {
+    if (std::abs(hz - h * spin_hz) <= 0.03 * h * spin_hz) {
+      return name +
+             (h == 1 ? " = spin" : " = " + std::to_string(h) + " x spin");
+    }
+  }
+  return name;
+}
+
+// The spin rate (Hz) of a segment's fitted motion.
+double SpinHz(const SegmentFit& s) {
+  const int n = s.data.size();
+  const double duration = s.data.t.back() - s.data.t.front();
+  if (n < 2 || !(duration > 0.0)) return 0.0;
+  return std::abs(s.computed[3 * (n - 1)] - s.computed[0]) / 360.0 / duration;
+}
+
+// How one segment's channel is not white: "0.81 in theta (lines at 1.72 Hz
+// = spin, ...)".
+std::string Structure(const SegmentFit& s, int ch, bool several) {
+  const ResidualStatistics& stats = s.channels[ch];
+  std::string text =
+      FormatNumber(
+          "%.2f",
+          stats.autocorrelation.empty() ? 0.0 : stats.autocorrelation[0]) +
+      " in " + ChannelName(ch);
+  if (several) text += " ('" + s.name + "')";
+  if (!stats.spectral_lines_hz.empty()) {
+    text += " (spectral lines at ";
+    for (size_t i = 0; i < stats.spectral_lines_hz.size(); ++i) {
+      text += (i ? ", " : "") + LineName(stats.spectral_lines_hz[i], SpinHz(s));
+    }
+    text += ")";
+  }
+  return text;
+}
+
 // Whether the residuals look like noise (FitResult::adequacy); a warning
 // when they do not.
 void JudgeAdequacy(const Case& c, FitResult* result) {
   std::string structured;
   for (const SegmentFit& s : result->segments) {
     for (int ch = 0; ch < 3; ++ch) {
-      const ResidualStatistics& stats = s.channels[ch];
-      if (stats.white) continue;
-      structured +=
-          (structured.empty() ? "" : ", ") +
-          FormatNumber(
-              "%.2f",
-              stats.autocorrelation.empty() ? 0.0 : stats.autocorrelation[0]) +
-          " in " + ChannelName(ch);
-      if (result->segments.size() > 1) structured += " ('" + s.name + "')";
+      if (s.channels[ch].white) continue;
+      structured += (structured.empty() ? "" : ", ") +
+                    Structure(s, ch, result->segments.size() > 1);
     }
   }
   if (structured.empty()) {

@@ -30,9 +30,12 @@ json ResidualsJson(const SegmentFit& s) {
     const ResidualStatistics& c = s.channels[ch];
     json lags = json::array();
     for (double rho : c.autocorrelation) lags.push_back(JsonNumber(rho));
+    json lines = json::array();
+    for (double hz : c.spectral_lines_hz) lines.push_back(JsonNumber(hz));
     out[ChannelName(ch)] = {{"autocorrelation", lags},
                             {"lag_window", c.lag_window},
-                            {"white", c.white}};
+                            {"white", c.white},
+                            {"spectral_lines_hz", lines}};
   }
   return out;
 }

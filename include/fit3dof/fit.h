@@ -59,6 +59,7 @@ struct ResidualStatistics {
   std::vector<double> autocorrelation;  // lags 1..10
   int lag_window = 0;  // lags the standard errors take into account
   bool white = true;   // Ljung-Box test over 20 lags at 1%
+  std::vector<double> spectral_lines_hz;  // strongest first (at most 3)
 };
 
 struct SegmentFit {

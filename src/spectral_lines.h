@@ -1,0 +1,31 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Lines in the spectrum of a residual series: the frequencies whose
+// periodogram power stands above `factor` ln(N) times the mean power (white
+// noise reaches that only by chance: its largest of N/2 powers is about
+// ln(N) times the mean). A reading error that follows roll shows lines at
+// the spin rate and its harmonics, a missing aerodynamic term near the
+// motion's own frequencies.
+
+#ifndef FIT3DOF_SRC_SPECTRAL_LINES_H_
+#define FIT3DOF_SRC_SPECTRAL_LINES_H_
+
+#include <vector>
+
+namespace fit3dof {
+
+struct SpectralLine {
+  double frequency_hz = 0.0;
+  double power_ratio = 0.0;  // over the mean power
+};
+
+// The strongest lines (at most `most`, strongest first) of `x` sampled
+// every `dt` seconds; none for fewer than 16 samples.
+std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
+                                        double dt,
+                                        double factor = 4.0,
+                                        int most = 3);
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_SRC_SPECTRAL_LINES_H_

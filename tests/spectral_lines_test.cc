@@ -1,0 +1,50 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Spectral lines: a reading error at the spin rate and twice it is found at
+// the right frequencies; white noise shows no line.
+
+#include "spectral_lines.h"
+
+#include <cmath>
+#include <random>
+
+#include "gtest/gtest.h"
+
+namespace fit3dof {
+namespace {
+
+std::vector<double> Noise(int n, double sigma, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, sigma);
+  std::vector<double> x(n);
+  for (double& v : x) v = normal(rng);
+  return x;
+}
+
+TEST(SpectralLines, FindsTheSpinAndItsHarmonic) {
+  const double dt = 0.01, spin = 1.72;
+  std::vector<double> x = Noise(800, 0.01, 1);
+  for (int i = 0; i < 800; ++i) {
+    const double t = i * dt;
+    x[i] += 0.04 * std::cos(2 * M_PI * spin * t + 0.3) +
+            0.02 * std::cos(4 * M_PI * spin * t + 1.1);
+  }
+  const std::vector<SpectralLine> lines = SpectralLines(x, dt);
+  ASSERT_GE(lines.size(), 2u);
+  const double resolution = 1.0 / (800 * dt);
+  EXPECT_NEAR(lines[0].frequency_hz, spin, resolution);
+  EXPECT_NEAR(lines[1].frequency_hz, 2 * spin, resolution);
+  EXPECT_GT(lines[0].power_ratio, lines[1].power_ratio);
+}
+
+TEST(SpectralLines, WhiteNoiseHasNone) {
+  int quiet = 0;
+  for (std::uint64_t seed = 1; seed <= 50; ++seed) {
+    quiet += SpectralLines(Noise(800, 0.01, seed), 0.01).empty();
+  }
+  EXPECT_GE(quiet, 48);
+  EXPECT_TRUE(SpectralLines(std::vector<double>(10, 1.0), 0.01).empty());
+}
+
+}  // namespace
+}  // namespace fit3dof
