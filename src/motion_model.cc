@@ -33,7 +33,30 @@ void CheckIntegrationSteps(double steps,
 MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
     : spec_(spec),
       active_(active),
-      scale_(InternalScaleFactors(spec.model, spec.body, spec.flow)) {}
+      scale_(InternalScaleFactors(spec.model, spec.body, spec.flow)) {
+  symmetric_.ratio = spec_.body.Ix / spec_.body.Iy;
+  symmetric_.incidence = spec_.incidence;
+  asymmetric_.Ix = spec_.body.Ix;
+  asymmetric_.Iy = spec_.body.Iy;
+  asymmetric_.Iz = spec_.body.Iz;
+  asymmetric_.incidence = spec_.incidence;
+  layout_ = Layout(spec_.model);
+  if (spec_.model == ModelKind::kSymmetric) {
+    state_index_ = {kSymPhi, kSymTheta, kSymPsi};
+  } else {
+    state_index_ = {kAsymPhi, kAsymTheta, kAsymPsi};
+  }
+  const int ri = layout_.roll_interaction;
+  roll_interaction_ =
+      active_[ri] || active_[ri + 1] || active_[ri + 2] || active_[ri + 3];
+}
+
+StateGuard MotionModel::Guard() const {
+  StateGuard guard;
+  guard.theta_index =
+      spec_.model == ModelKind::kSymmetric ? int{kSymTheta} : int{kAsymTheta};
+  return guard;
+}
 
 ActiveSet ActiveParameters(const std::vector<double>& values,
                            const std::vector<bool>& free) {

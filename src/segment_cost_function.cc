@@ -88,6 +88,57 @@ bool SegmentCostFunction::EvaluatePass(const double* u,
   return EvaluateLanes<12>(u, lanes, count, residuals, jacobians);
 }
 
+bool SegmentCostFunction::EvaluateSensitivities(const double* u,
+                                                const std::vector<int>& lanes,
+                                                double* residuals,
+                                                double** jacobians) const {
+  std::vector<double> full = base_;
+  for (size_t j = 0; j < free_.size(); ++j) full[free_[j]] = scale_[j] * u[j];
+  const int n = data_.size();
+  const int m = static_cast<int>(lanes.size());
+  std::vector<int> wrt(m), block(m), column(m);
+  for (int l = 0; l < m; ++l) {
+    wrt[l] = free_[lanes[l]];
+    Locate(lanes[l], &block[l], &column[l]);
+  }
+  std::vector<double> angles(3 * n), derivatives(3 * n * m);
+  if (!model_->EvaluateWithSensitivities(full.data(),
+                                         wrt.data(),
+                                         m,
+                                         data_.t.data(),
+                                         n,
+                                         angles.data(),
+                                         derivatives.data(),
+                                         nullptr)) {
+    return false;
+  }
+  const double inv_sigma[3] = {
+      1.0 / sigma_.phi, 1.0 / sigma_.theta, 1.0 / sigma_.psi};
+  const double* measured[3] = {
+      data_.phi.data(), data_.theta.data(), data_.psi.data()};
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const int row = 3 * i + c;
+      double offset = 0.0;
+      if (c == 0) {
+        offset = 360.0 * std::round((angles[row] - measured[0][i]) / 360.0);
+      }
+      const double r = (angles[row] - offset - measured[c][i]) * inv_sigma[c];
+      if (!std::isfinite(r)) return false;
+      residuals[row] = r;
+      for (int l = 0; l < m; ++l) {
+        // d/du = scale d/dvalue (value = scale u).
+        const double d =
+            derivatives[row * m + l] * scale_[lanes[l]] * inv_sigma[c];
+        if (!std::isfinite(d)) return false;
+        const int b = block[l];
+        jacobians[b][row * parameter_block_sizes()[b] + column[l]] = d;
+      }
+    }
+  }
+  return true;
+}
+
 bool SegmentCostFunction::Evaluate(double const* const* parameters,
                                    double* residuals,
                                    double** jacobians) const {
@@ -126,6 +177,13 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
       }
     }
     return true;
+  }
+  const int columns = static_cast<int>(lanes.size());
+  const bool sensitivities =
+      method_ == JacobianMethod::kSensitivities ||
+      (method_ == JacobianMethod::kAuto && columns >= kMinSensitivityColumns);
+  if (sensitivities) {
+    return EvaluateSensitivities(u.data(), lanes, residuals, jacobians);
   }
   // Passes of 12 lanes, the last of 4 when at most 4 remain (the header
   // says why).

@@ -24,11 +24,13 @@ struct Block {
 Block Make(ModelKind model,
            const std::vector<int>& shared,
            const std::vector<int>& own,
-           std::vector<double> scale = {}) {
+           std::vector<double> scale = {},
+           Incidence incidence = Incidence::kVelocityRatio) {
   Case c = LoadConfig(testing::SourcePath(
       model == ModelKind::kSymmetric ? "configs/report/table6_motion.yaml"
                                      : "configs/report/check_case_1.yaml"));
   c.solver.step = 0.01;
+  c.incidence = incidence;
   std::vector<double> values = c.Values();
   if (model == ModelKind::kAsymmetric) {
     // Every aerodynamic term a little non-zero.
@@ -124,6 +126,87 @@ TEST(SegmentCostFunction, JacobianMatchesNumericDifferencesAtEveryWidth) {
   {  // only initial conditions free: a single "own" block.
     Block s = Make(ModelKind::kSymmetric, {}, {26, 29});
     CheckGradient(s);
+  }
+}
+
+// Evaluates s's residuals and Jacobian (one vector per block) by `method`.
+void EvaluateBy(Block& s,
+                SegmentCostFunction::JacobianMethod method,
+                std::vector<double>* residuals,
+                std::vector<std::vector<double>>* jacobian) {
+  s.cost->set_jacobian_method(method);
+  std::vector<const double*> blocks;
+  std::vector<double*> jacobians;
+  residuals->assign(s.cost->num_residuals(), 0.0);
+  jacobian->clear();
+  for (auto& b : s.blocks) {
+    jacobian->emplace_back(s.cost->num_residuals() * b.size(), 0.0);
+  }
+  for (size_t b = 0; b < s.blocks.size(); ++b) {
+    blocks.push_back(s.blocks[b].data());
+    jacobians.push_back((*jacobian)[b].data());
+  }
+  ASSERT_TRUE(s.cost->Evaluate(blocks.data(), residuals->data(),
+                               jacobians.data()));
+}
+
+// The forward sensitivities give the Jet lanes' residuals exactly and their
+// derivatives to rounding, for every kind of parameter: coefficients of
+// both programs, tunnel terms, the product of inertia, the measurement
+// model (offsets, roll interaction) and initial conditions, with both
+// incidence definitions.
+TEST(SegmentCostFunction, SensitivitiesEqualJetLanes) {
+  std::vector<int> symmetric;
+  for (int i = 0; i < 23; ++i) symmetric.push_back(i);  // + theta_T
+  for (int i = 30; i < 34; ++i) symmetric.push_back(i);  // roll interaction
+  std::vector<int> asymmetric;
+  for (int i = 0; i < 65; ++i) asymmetric.push_back(i);
+  for (int i = 72; i < 76; ++i) asymmetric.push_back(i);
+  const std::vector<int> symmetric_initial = {24, 25, 26, 27, 28, 29};
+  const std::vector<int> asymmetric_initial = {66, 67, 68, 69, 70, 71};
+  std::vector<Block> blocks;
+  blocks.push_back(Make(ModelKind::kSymmetric, symmetric, symmetric_initial));
+  blocks.push_back(Make(ModelKind::kSymmetric,
+                        symmetric,
+                        symmetric_initial,
+                        {},
+                        Incidence::kAngleOfAttack));
+  blocks.push_back(
+      Make(ModelKind::kAsymmetric, asymmetric, asymmetric_initial));
+  blocks.push_back(Make(ModelKind::kAsymmetric,
+                        asymmetric,
+                        asymmetric_initial,
+                        {},
+                        Incidence::kAngleOfAttack));
+  blocks.push_back(Make(ModelKind::kSymmetric,
+                        {0, 1, 4, 5},
+                        symmetric_initial,
+                        {0.01, 0.1, 1.0, 10.0, 0.5, 2.0, 0.5, 1.0, 0.5, 1.0}));
+  for (size_t t = 0; t < blocks.size(); ++t) {
+    Block& s = blocks[t];
+    std::vector<double> r_jet, r_sens;
+    std::vector<std::vector<double>> j_jet, j_sens;
+    EvaluateBy(s, SegmentCostFunction::JacobianMethod::kJetLanes, &r_jet,
+               &j_jet);
+    EvaluateBy(s, SegmentCostFunction::JacobianMethod::kSensitivities,
+               &r_sens, &j_sens);
+    ASSERT_EQ(r_jet, r_sens) << "case " << t;
+    for (size_t b = 0; b < j_jet.size(); ++b) {
+      const int size = static_cast<int>(s.blocks[b].size());
+      const int rows = s.cost->num_residuals();
+      for (int col = 0; col < size; ++col) {
+        double scale = 0.0;
+        for (int r = 0; r < rows; ++r) {
+          scale = std::max(scale, std::abs(j_jet[b][r * size + col]));
+        }
+        for (int r = 0; r < rows; ++r) {
+          ASSERT_NEAR(j_sens[b][r * size + col], j_jet[b][r * size + col],
+                      1e-11 * scale)
+              << "case " << t << " block " << b << " column " << col
+              << " residual " << r;
+        }
+      }
+    }
   }
 }
 

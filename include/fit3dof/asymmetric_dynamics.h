@@ -60,41 +60,42 @@ struct AsymmetricTrig {
 
 // Moments divided by the inertia of their axis, body axes:
 // mx = M_x/I_x, my = M_y/I_y, mz = M_z/I_z (the listing's MXOI, MYOI, MZOI).
-template <typename T>
-void AsymmetricMoments(const CoefficientView<T>& k,
+// Tx is the state's scalar, Tk the coefficients' (coefficients.h).
+template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
+void AsymmetricMoments(const CoefficientView<Tk>& k,
                        const AsymmetricConstants& constants,
-                       const T* x,
-                       const AsymmetricTrig<T>& trig,
+                       const Tx* x,
+                       const AsymmetricTrig<Tx>& trig,
                        T* mx,
                        T* my,
                        T* mz) {
   using std::abs;
   using std::atan;
-  const T& theta = x[kAsymTheta];
-  const T& psi = x[kAsymPsi];
-  const T& p = x[kAsymP];
-  const T& q = x[kAsymQ];
-  const T& r = x[kAsymR];
-  const T& sf = trig.sf;
-  const T& cf = trig.cf;
-  const T& st = trig.st;
-  const T& ct = trig.ct;
-  const T& sp = trig.sp;
-  const T& cp = trig.cp;
+  const Tx& theta = x[kAsymTheta];
+  const Tx& psi = x[kAsymPsi];
+  const Tx& p = x[kAsymP];
+  const Tx& q = x[kAsymQ];
+  const Tx& r = x[kAsymR];
+  const Tx& sf = trig.sf;
+  const Tx& cf = trig.cf;
+  const Tx& st = trig.st;
+  const Tx& ct = trig.ct;
+  const Tx& sp = trig.sp;
+  const Tx& cp = trig.cp;
 
   // Eq. A-4 (TEMP): the free-stream direction in body axes.
-  T a = sp * sf + cp * st * cf;
-  T b = -sp * cf + cp * st * sf;
+  Tx a = sp * sf + cp * st * cf;
+  Tx b = -sp * cf + cp * st * sf;
   if (constants.incidence == Incidence::kAngleOfAttack) {
-    const T gamma = cp * ct;
+    const Tx gamma = cp * ct;
     a = atan(a / gamma);
     b = atan(b / gamma);
   }
-  const T a2 = a * a;
-  const T b2 = b * b;
-  const T aa = abs(a);
-  const T ab = abs(b);
-  const T aab = abs(a * b);
+  const Tx a2 = a * a;
+  const Tx b2 = b * b;
+  const Tx aa = abs(a);
+  const Tx ab = abs(b);
+  const Tx aab = abs(a * b);
 
   // Rolling moment.
   T roll(0.0);
@@ -191,24 +192,29 @@ void AsymmetricMoments(const CoefficientView<T>& k,
 
 // Appendix A (the listing's FCT): 3-2-1 kinematics and Euler's equations
 // with the product of inertia I_zx = k(60) (slug ft^2, not scaled).
-template <typename T>
-void AsymmetricDerivative(const CoefficientView<T>& k,
+template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
+void AsymmetricDerivative(const CoefficientView<Tk>& k,
                           const AsymmetricConstants& constants,
-                          const T* x,
+                          const Tx* x,
                           T* dx) {
-  const AsymmetricTrig<T> trig(x);
+  const AsymmetricTrig<Tx> trig(x);
   T mx, my, mz;
   AsymmetricMoments(k, constants, x, trig, &mx, &my, &mz);
-  const T& p = x[kAsymP];
-  const T& q = x[kAsymQ];
-  const T& r = x[kAsymR];
-  const T& sf = trig.sf;
-  const T& cf = trig.cf;
-  const T& st = trig.st;
-  const T& ct = trig.ct;
+  const Tx& p = x[kAsymP];
+  const Tx& q = x[kAsymQ];
+  const Tx& r = x[kAsymR];
+  const Tx& sf = trig.sf;
+  const Tx& cf = trig.cf;
+  const Tx& st = trig.st;
+  const Tx& ct = trig.ct;
 
+  Tx euler_rates[3];
   BodyToEulerRates(
-      sf, cf, st, ct, p, q, r, &dx[kAsymPhi], &dx[kAsymTheta], &dx[kAsymPsi]);
+      sf, cf, st, ct, p, q, r, &euler_rates[0], &euler_rates[1],
+      &euler_rates[2]);
+  dx[kAsymPhi] = T(euler_rates[0]);
+  dx[kAsymTheta] = T(euler_rates[1]);
+  dx[kAsymPsi] = T(euler_rates[2]);
 
   // Ix' = (I_z - I_y)/I_x etc.; J = I_zx / I. With h_x = I_x p - I_zx r and
   // h_z = I_z r - I_zx p, solving the x and z equations of
@@ -217,10 +223,10 @@ void AsymmetricDerivative(const CoefficientView<T>& k,
   const double iyp = (constants.Ix - constants.Iz) / constants.Iy;
   const double izp = (constants.Iy - constants.Ix) / constants.Iz;
   if (k.on(60)) {
-    const T jx = k(60) / constants.Ix;
-    const T jy = k(60) / constants.Iy;
-    const T jz = k(60) / constants.Iz;
-    const T rj = 1.0 - jx * jz;
+    const Tk jx = k(60) / constants.Ix;
+    const Tk jy = k(60) / constants.Iy;
+    const Tk jz = k(60) / constants.Iz;
+    const Tk rj = 1.0 - jx * jz;
     dx[kAsymP] =
         (mx + mz * jx - q * r * (jz * jx + ixp) + p * q * (1.0 - izp) * jx) /
         rj;

@@ -14,6 +14,7 @@
 #define FIT3DOF_COEFFICIENTS_H_
 
 #include <bitset>
+#include <utility>
 
 #include "fit3dof/parameters.h"
 
@@ -35,6 +36,15 @@ class CoefficientView {
   const T* internal_;
   const ActiveSet& active_;
 };
+
+// The scalar of an expression that mixes a state scalar Tx with a
+// coefficient scalar Tk. The equations of motion are templated on both so
+// that one definition serves every use: double/double (simulation),
+// Jet/Jet (derivatives by forward Jets), Jet/double (the state Jacobian of
+// the right-hand side) and double/Jet (its coefficient Jacobian; only the
+// operations that involve coefficients then carry derivative lanes).
+template <typename Tx, typename Tk>
+using Promoted = decltype(std::declval<Tx>() * std::declval<Tk>());
 
 }  // namespace fit3dof
 

@@ -78,7 +78,34 @@ class MotionModel {
                       T* states,
                       IntegrationFailure* failure) const;
 
+  // Evaluate's angles and their derivatives with respect to the m
+  // parameters values[wrt[0..m)]: `jacobian` gets 3 n rows of m entries
+  // (row 3 i + c is angle c of sample i). The derivatives come from the
+  // forward sensitivity equations, dS/dt = F_x S + F_p, stepped by the
+  // same RK4 formula as the motion, with F_x and F_p from Jets through the
+  // same equations (motion_sensitivity.cc): they equal Evaluate's with
+  // ceres::Jet up to rounding, the angles equal Evaluate's exactly, and the
+  // cost grows with m far more slowly than Jet lanes do.
+  bool EvaluateWithSensitivities(const double* values,
+                                 const int* wrt,
+                                 int m,
+                                 const double* times,
+                                 int n,
+                                 double* angles,
+                                 double* jacobian,
+                                 IntegrationFailure* failure) const;
+
  private:
+  // dx/dt of the chosen program; Tx the state's scalar, Tk the
+  // coefficients' (coefficients.h).
+  template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
+  void Derivative(const CoefficientView<Tk>& k, const Tx* x, T* dx) const;
+
+  // The measurement model: the three measured angles (deg) of state x, with
+  // `internal` the parameters in internal units.
+  template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
+  void Measure(const Tx* x, const Tk* internal, T* angles) const;
+
   template <typename T, typename Observe>
   bool Integrate(const T* values,
                  const double* times,
@@ -87,9 +114,18 @@ class MotionModel {
                  const Observe& observe,
                  IntegrationFailure* failure) const;
 
+  StateGuard Guard() const;
+
   ModelSpec spec_;
   ActiveSet active_;
   std::vector<double> scale_;
+  SymmetricConstants symmetric_;
+  AsymmetricConstants asymmetric_;
+  ParameterLayout layout_;
+  // Positions of phi, theta and psi in the state.
+  std::array<int, 3> state_index_;
+  // Whether any roll-interaction parameter is active (Measure).
+  bool roll_interaction_ = false;
 };
 
 // The terms that matter: every free parameter and every non-zero one.
@@ -98,6 +134,40 @@ ActiveSet ActiveParameters(const std::vector<double>& values,
 
 // ---------------------------------------------------------------------------
 // Implementation.
+
+template <typename Tx, typename Tk, typename T>
+void MotionModel::Derivative(const CoefficientView<Tk>& k,
+                             const Tx* x,
+                             T* dx) const {
+  if (spec_.model == ModelKind::kSymmetric) {
+    SymmetricDerivative(k, symmetric_, x, dx);
+  } else {
+    AsymmetricDerivative(k, asymmetric_, x, dx);
+  }
+}
+
+template <typename Tx, typename Tk, typename T>
+void MotionModel::Measure(const Tx* x, const Tk* internal, T* angles) const {
+  using std::cos;
+  using std::sin;
+  const ParameterLayout& layout = layout_;
+  const Tx& phi = x[state_index_[0]];
+  // Measurement model (INTGRL): theta_m = theta + theta_T,
+  // psi_m = psi + psi_T; plus the roll-interaction reading error of Section
+  // 5.2 (first harmonics in phi), when any of its parameters is active.
+  T theta = x[state_index_[1]] + internal[layout.theta_offset];
+  T psi = x[state_index_[2]] + internal[layout.psi_offset];
+  if (roll_interaction_) {
+    const int ri = layout.roll_interaction;
+    const Tx c = cos(phi);
+    const Tx s = sin(phi);
+    theta += internal[ri] * c + internal[ri + 1] * s;
+    psi += internal[ri + 2] * c + internal[ri + 3] * s;
+  }
+  angles[0] = T(phi * kDegreesPerRadian);
+  angles[1] = theta * kDegreesPerRadian;
+  angles[2] = psi * kDegreesPerRadian;
+}
 
 template <typename T, typename Observe>
 bool MotionModel::Integrate(const T* values,
@@ -110,35 +180,15 @@ bool MotionModel::Integrate(const T* values,
   for (int i = 0; i < np; ++i) (*internal)[i] = values[i] * scale_[i];
   for (int i = np; i < kMaxParameters; ++i) (*internal)[i] = T(0.0);
   const CoefficientView<T> k(internal->data(), active_);
-  const ParameterLayout& layout = Layout(spec_.model);
   // Both programs order their six initial-condition parameters as their
   // state vector: (phi, phidot, theta, thetadot, psi, psidot) and
   // (phi, theta, psi, p, q, r).
+  const int first_initial = Layout(spec_.model).first_initial;
   T x[6];
-  for (int j = 0; j < 6; ++j) x[j] = (*internal)[layout.first_initial + j];
-  StateGuard guard;
-  if (spec_.model == ModelKind::kSymmetric) {
-    SymmetricConstants constants;
-    constants.ratio = spec_.body.Ix / spec_.body.Iy;
-    constants.incidence = spec_.incidence;
-    guard.theta_index = kSymTheta;
-    auto rhs = [&](const T* s, T* ds) {
-      SymmetricDerivative(k, constants, s, ds);
-    };
-    return IntegrateSamples<T, 6>(
-        rhs, times, n, spec_.max_step, guard, x, observe, failure);
-  }
-  AsymmetricConstants constants;
-  constants.Ix = spec_.body.Ix;
-  constants.Iy = spec_.body.Iy;
-  constants.Iz = spec_.body.Iz;
-  constants.incidence = spec_.incidence;
-  guard.theta_index = kAsymTheta;
-  auto rhs = [&](const T* s, T* ds) {
-    AsymmetricDerivative(k, constants, s, ds);
-  };
+  for (int j = 0; j < 6; ++j) x[j] = (*internal)[first_initial + j];
+  auto rhs = [&](const T* s, T* ds) { Derivative(k, s, ds); };
   return IntegrateSamples<T, 6>(
-      rhs, times, n, spec_.max_step, guard, x, observe, failure);
+      rhs, times, n, spec_.max_step, Guard(), x, observe, failure);
 }
 
 template <typename T>
@@ -148,31 +198,8 @@ bool MotionModel::Evaluate(const T* values,
                            T* angles,
                            IntegrationFailure* failure) const {
   std::array<T, kMaxParameters> internal;
-  const ParameterLayout& layout = Layout(spec_.model);
-  const bool symmetric = spec_.model == ModelKind::kSymmetric;
-  const int phi_index = symmetric ? int{kSymPhi} : int{kAsymPhi};
-  const int theta_index = symmetric ? int{kSymTheta} : int{kAsymTheta};
-  const int psi_index = symmetric ? int{kSymPsi} : int{kAsymPsi};
-  // Measurement model (INTGRL): theta_m = theta + theta_T,
-  // psi_m = psi + psi_T; plus the roll-interaction reading error of Section
-  // 5.2 (first harmonics in phi), when any of its parameters is active.
-  const int ri = layout.roll_interaction;
-  const bool roll_interaction =
-      active_[ri] || active_[ri + 1] || active_[ri + 2] || active_[ri + 3];
   auto observe = [&](int i, const T* x) {
-    using std::cos;
-    using std::sin;
-    T theta = x[theta_index] + internal[layout.theta_offset];
-    T psi = x[psi_index] + internal[layout.psi_offset];
-    if (roll_interaction) {
-      const T c = cos(x[phi_index]);
-      const T s = sin(x[phi_index]);
-      theta += internal[ri] * c + internal[ri + 1] * s;
-      psi += internal[ri + 2] * c + internal[ri + 3] * s;
-    }
-    angles[3 * i + 0] = x[phi_index] * kDegreesPerRadian;
-    angles[3 * i + 1] = theta * kDegreesPerRadian;
-    angles[3 * i + 2] = psi * kDegreesPerRadian;
+    Measure(x, internal.data(), angles + 3 * i);
   };
   return Integrate(values, times, n, &internal, observe, failure);
 }

@@ -22,26 +22,47 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "ceres/jet.h"
 #include "fit3dof/angles.h"
 
 namespace fit3dof {
 
-// One RK4 step of size h, in place.
+// One RK4 step of size h, in place, for a system of `dim` states (an int,
+// or a std::integral_constant when the size is known at compile time),
+// with k1..k4 and y as scratch of dim values each (none of them x). The
+// forward sensitivities (MotionModel::EvaluateWithSensitivities) step the
+// motion and its derivatives with this same formula, so that their
+// derivatives are those of this scheme.
+template <typename T, typename Rhs, typename Dim>
+void RungeKutta4Step(const Rhs& f,
+                     double h,
+                     Dim dim,
+                     T* __restrict x,
+                     T* __restrict k1,
+                     T* __restrict k2,
+                     T* __restrict k3,
+                     T* __restrict k4,
+                     T* __restrict y) {
+  f(x, k1);
+  for (int i = 0; i < dim; ++i) y[i] = x[i] + (0.5 * h) * k1[i];
+  f(y, k2);
+  for (int i = 0; i < dim; ++i) y[i] = x[i] + (0.5 * h) * k2[i];
+  f(y, k3);
+  for (int i = 0; i < dim; ++i) y[i] = x[i] + h * k3[i];
+  f(y, k4);
+  for (int i = 0; i < dim; ++i) {
+    x[i] += (h / 6.0) * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+  }
+}
+
+// The same step for a system whose size is known at compile time.
 template <typename T, int kDim, typename Rhs>
 void RungeKutta4Step(const Rhs& f, double h, T* x) {
   T k1[kDim], k2[kDim], k3[kDim], k4[kDim], y[kDim];
-  f(x, k1);
-  for (int i = 0; i < kDim; ++i) y[i] = x[i] + (0.5 * h) * k1[i];
-  f(y, k2);
-  for (int i = 0; i < kDim; ++i) y[i] = x[i] + (0.5 * h) * k2[i];
-  f(y, k3);
-  for (int i = 0; i < kDim; ++i) y[i] = x[i] + h * k3[i];
-  f(y, k4);
-  for (int i = 0; i < kDim; ++i) {
-    x[i] += (h / 6.0) * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
-  }
+  RungeKutta4Step(
+      f, h, std::integral_constant<int, kDim>(), x, k1, k2, k3, k4, y);
 }
 
 // RK4 steps to integrate through n sample times with substeps of at most
@@ -84,17 +105,19 @@ struct StateGuard {
 };
 
 // Integrates from times[0] (x holds the state there) through times[n-1],
-// calling observe(i, x) at every sample, the first included. Returns false
-// and fills `failure` if the guard trips.
-template <typename T, int kDim, typename Rhs, typename Observe>
-bool IntegrateSamples(const Rhs& f,
-                      const double* times,
-                      int n,
-                      double max_step,
-                      const StateGuard& guard,
-                      T* x,
-                      const Observe& observe,
-                      IntegrationFailure* failure) {
+// calling observe(i, x) at every sample, the first included: step(h)
+// advances the system by one RK4 step of size h, its first kDim values
+// being the motion's state x, which the guard checks. Returns false and
+// fills `failure` if the guard trips.
+template <typename T, int kDim, typename Step, typename Observe>
+bool IntegrateSamplesWith(const Step& step,
+                          const double* times,
+                          int n,
+                          double max_step,
+                          const StateGuard& guard,
+                          const T* x,
+                          const Observe& observe,
+                          IntegrationFailure* failure) {
   auto check = [&](double t) {
     for (int j = 0; j < kDim; ++j) {
       if (!std::isfinite(ScalarPart(x[j]))) {
@@ -120,18 +143,31 @@ bool IntegrateSamples(const Rhs& f,
   };
   if (n <= 0) return true;
   if (!check(times[0])) return false;
-  observe(0, static_cast<const T*>(x));
+  observe(0, x);
   for (int i = 1; i < n; ++i) {
     const double interval = times[i] - times[i - 1];
     const int substeps = NumSubsteps(interval, max_step);
     const double h = interval / substeps;
-    for (int s = 0; s < substeps; ++s) {
-      RungeKutta4Step<T, kDim>(f, h, x);
-    }
+    for (int s = 0; s < substeps; ++s) step(h);
     if (!check(times[i])) return false;
-    observe(i, static_cast<const T*>(x));
+    observe(i, x);
   }
   return true;
+}
+
+// IntegrateSamplesWith for the system dx/dt = f(x) of kDim states.
+template <typename T, int kDim, typename Rhs, typename Observe>
+bool IntegrateSamples(const Rhs& f,
+                      const double* times,
+                      int n,
+                      double max_step,
+                      const StateGuard& guard,
+                      T* x,
+                      const Observe& observe,
+                      IntegrationFailure* failure) {
+  auto step = [&](double h) { RungeKutta4Step<T, kDim>(f, h, x); };
+  return IntegrateSamplesWith<T, kDim>(
+      step, times, n, max_step, guard, x, observe, failure);
 }
 
 }  // namespace fit3dof

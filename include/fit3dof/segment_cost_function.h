@@ -12,31 +12,41 @@
 //
 // Derivatives come from automatic differentiation: ceres::Jet carries them
 // through the equations of motion, the moment models and the integrator. No
-// sensitivity equations are written by hand.
+// derivative is written by hand: even the sensitivity equations below take
+// their F_x and F_p from Jets through the same templated equations.
 //
 // Frozen parameters cost nothing. Only free coordinates get a derivative
-// lane: they live in their own parameter blocks (the shared aerodynamic
+// column: they live in their own parameter blocks (the shared aerodynamic
 // block, then the segment's initial-condition block) while frozen values
-// reach the equations as constants. The Jacobian is built in passes of 12
-// lanes (ceres::Jet<double, 12>), the last pass 4 wide when at most 4
-// remain. Measured with bench/evaluation_benchmark (Table 6 record, 800
-// samples; one forward integration 0.95 ms; more free parameters also
-// switch on more terms of the model): Jacobian time over forward time,
-// divided by k + 1,
+// reach the equations as constants. Two ways to the Jacobian:
 //
-//   free k                                   4     10     20     27
-//   widths 4, 8, 12, 16, 24, 32, one pass  0.83   0.62   0.94   1.14
-//   passes of 12 (or 4), this class        0.47   0.56   0.75   0.86
-//   DynamicAutoDiffCostFunction, stride 4  0.49   0.64   0.74   0.81
-//   DynamicAutoDiffCostFunction, stride 8  0.76   0.72   0.63   0.84
+// - Jet lanes: the motion integrated with ceres::Jet<double, 12> (the last
+//   pass 4 wide when at most 4 remain), one pass per 12 columns;
+// - forward sensitivities (MotionModel::EvaluateWithSensitivities): the
+//   motion and dx/dp stepped together, with a 6-lane Jet over the state and
+//   12-lane Jets over the coefficients at each right-hand side; no padding
+//   to whole passes, and the per-column work is a 6 x 6 product instead of
+//   every operation of the equations.
 //
-// (the Dynamic rows are the same residuals as a functor, all free
-// coordinates in one block, built with the same inlining flags). Neither is
-// faster across the board; this class is at 4 and 10 free, and it keeps the
-// roll branch, the scaling and the count of failed evaluations in one
-// place. Wider Jets cost more per lane than Jet<12> (their operations
-// spill out of registers and L1), and GCC left Jet<8>'s Eigen loops out of
-// line in this unit. The target of 0.5 (k + 1) is met only up to k = 4.
+// Both give the same residuals exactly and the same derivatives to rounding
+// (segment_cost_function_test). Measured with bench/evaluation_benchmark
+// (Table 6 record, 800 samples, step 0.01 s; more free parameters also
+// switch on more terms of the model), Jacobian time over forward time,
+// divided by k + 1, medians of 5 interleaved runs on 2026-11-22:
+//
+//   free k                     4     10     16     20     24     27
+//   Jet lanes                0.55   0.62   0.86   1.09   1.13   1.06
+//   forward sensitivities     -      -     0.83   0.87   0.98   0.87
+//
+// (k = 4 and 10 from an earlier run; instruction counts, which callgrind
+// makes repeatable, put the sensitivities 40% above Jet lanes at k = 10.)
+// Jet lanes are used up to 16 columns (one pass of 12 and one of 4), the
+// sensitivities from 17 on, where Jets would need 24 lanes or more. Ceres'
+// DynamicAutoDiffCostFunction measured 0.49/0.64/0.74/0.81 at k = 4, 10,
+// 20, 27 (stride 4) in an earlier run: no better. The target of 0.5 (k + 1)
+// is not met beyond k = 4: a Jet lane costs about half a forward pass on
+// this baseline x86-64 (SSE2) build, and the sensitivities' 6 x 6 product
+// and coefficient Jets cost about as much per column.
 //
 // Free coordinates are optimized in scaled units u = value / scale so that
 // the Jacobian columns are of similar size; the covariance is unscaled
@@ -95,6 +105,13 @@ class SegmentCostFunction : public ceres::CostFunction {
   // coordinates take several passes.
   static constexpr int kMaxLanes = 12;
 
+  // How Jacobians are computed: Jet lanes through the whole integration,
+  // or forward sensitivities (MotionModel::EvaluateWithSensitivities);
+  // kAuto takes the sensitivities from kMinSensitivityColumns columns on.
+  enum class JacobianMethod { kAuto, kJetLanes, kSensitivities };
+  static constexpr int kMinSensitivityColumns = 17;
+  void set_jacobian_method(JacobianMethod method) { method_ = method; }
+
  private:
   // Evaluates with Jets whose lanes carry the derivatives with respect to
   // free coordinates lanes[0..count).
@@ -107,6 +124,10 @@ class SegmentCostFunction : public ceres::CostFunction {
   bool EvaluateOrFail(double const* const* parameters,
                       double* residuals,
                       double** jacobians) const;
+  bool EvaluateSensitivities(const double* u,
+                             const std::vector<int>& lanes,
+                             double* residuals,
+                             double** jacobians) const;
   bool EvaluatePass(const double* u,
                     const int* lanes,
                     int count,
@@ -123,6 +144,7 @@ class SegmentCostFunction : public ceres::CostFunction {
   std::vector<double> scale_;
   TimeHistory data_;
   ChannelValues sigma_;
+  JacobianMethod method_ = JacobianMethod::kAuto;
   mutable std::atomic<int> failures_{0};
 };
 

@@ -57,11 +57,12 @@ struct SymmetricTrig {
 
 // Moments divided by inertia in aeroballistic axes: mx = M_x/I_x,
 // my = M_y/I, mz = M_z/I (the listing's MXOIX, MYOI, MZOI).
-template <typename T>
-void SymmetricMoments(const CoefficientView<T>& k,
+// Tx is the state's scalar, Tk the coefficients' (coefficients.h).
+template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
+void SymmetricMoments(const CoefficientView<Tk>& k,
                       const SymmetricConstants& constants,
-                      const T* x,
-                      const SymmetricTrig<T>& trig,
+                      const Tx* x,
+                      const SymmetricTrig<Tx>& trig,
                       T* mx,
                       T* my,
                       T* mz) {
@@ -69,24 +70,24 @@ void SymmetricMoments(const CoefficientView<T>& k,
   using std::cos;
   using std::sqrt;
   using std::tan;
-  const T& theta = x[kSymTheta];
-  const T& psi = x[kSymPsi];
-  const T& phidot = x[kSymPhiDot];
-  const T& thetadot = x[kSymThetaDot];
-  const T& psidot = x[kSymPsiDot];
-  const T& st = trig.st;
-  const T& ct = trig.ct;
-  const T& sp = trig.sp;
-  const T& cp = trig.cp;
+  const Tx& theta = x[kSymTheta];
+  const Tx& psi = x[kSymPsi];
+  const Tx& phidot = x[kSymPhiDot];
+  const Tx& thetadot = x[kSymThetaDot];
+  const Tx& psidot = x[kSymPsiDot];
+  const Tx& st = trig.st;
+  const Tx& ct = trig.ct;
+  const Tx& sp = trig.sp;
+  const Tx& cp = trig.cp;
 
   // Eq. 4: body rates in the aeroballistic frame.
-  const T p = phidot - psidot * st;
-  const T& q = thetadot;
-  const T r = psidot * ct;
+  const Tx p = phidot - psidot * st;
+  const Tx& q = thetadot;
+  const Tx r = psidot * ct;
 
   // Incidence (TEMP). Velocity ratios, Eq. 9, or angle of attack and
   // sideslip, Eq. 34 written in the Euler angles.
-  T alpha, beta;
+  Tx alpha, beta;
   if (constants.incidence == Incidence::kVelocityRatio) {
     alpha = cp * st;
     beta = -sp;
@@ -94,11 +95,11 @@ void SymmetricMoments(const CoefficientView<T>& k,
     alpha = theta;
     beta = atan(-tan(psi) / ct);
   }
-  const T delta2 = alpha * alpha + beta * beta;
+  const Tx delta2 = alpha * alpha + beta * beta;
   // delta = sqrt(delta2) has an infinite derivative at zero incidence; it is
   // only needed by the |delta| terms and then only away from the origin.
-  T delta(0.0);
-  if ((k.on(3) || k.on(9) || k.on(11)) && delta2 > T(0.0)) {
+  Tx delta(0.0);
+  if ((k.on(3) || k.on(9) || k.on(11)) && delta2 > Tx(0.0)) {
     delta = sqrt(delta2);
   }
 
@@ -132,13 +133,13 @@ void SymmetricMoments(const CoefficientView<T>& k,
   // M_y/I += C15 alphadot, M_z/I -= C15 betadot, rates from Eq. 10 (or the
   // derivative of Eq. 34, as TEMP computes it for IANGLE != 0).
   if (k.on(15)) {
-    T alphadot, betadot;
+    Tx alphadot, betadot;
     if (constants.incidence == Incidence::kVelocityRatio) {
       alphadot = -psidot * sp * st + thetadot * cp * ct;
       betadot = -psidot * cp;
     } else {
       alphadot = thetadot;
-      const T cb = cos(beta);
+      const Tx cb = cos(beta);
       betadot = -(psidot / (cp * cp) + tan(psi) * (st / ct) * thetadot) *
                 (cb * cb) / ct;
     }
@@ -173,30 +174,30 @@ void SymmetricMoments(const CoefficientView<T>& k,
 // dh/dt + omega_frame x h = M with h = (I_x p, I q, I r) in the non-rolling
 // frame, whose angular velocity is (-psidot sin(theta), thetadot,
 // psidot cos(theta)).
-template <typename T>
-void SymmetricDerivative(const CoefficientView<T>& k,
+template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
+void SymmetricDerivative(const CoefficientView<Tk>& k,
                          const SymmetricConstants& constants,
-                         const T* x,
+                         const Tx* x,
                          T* dx) {
-  const SymmetricTrig<T> trig(x);
+  const SymmetricTrig<Tx> trig(x);
   T mx, my, mz;
   SymmetricMoments(k, constants, x, trig, &mx, &my, &mz);
   const double ratio = constants.ratio;
-  const T& phidot = x[kSymPhiDot];
-  const T& thetadot = x[kSymThetaDot];
-  const T& psidot = x[kSymPsiDot];
-  const T& st = trig.st;
-  const T& ct = trig.ct;
-  const T sec = 1.0 / ct;
-  const T tt = st * sec;
-  dx[kSymPhi] = phidot;
+  const Tx& phidot = x[kSymPhiDot];
+  const Tx& thetadot = x[kSymThetaDot];
+  const Tx& psidot = x[kSymPsiDot];
+  const Tx& st = trig.st;
+  const Tx& ct = trig.ct;
+  const Tx sec = 1.0 / ct;
+  const Tx tt = st * sec;
+  dx[kSymPhi] = T(phidot);
   dx[kSymPhiDot] = mx + psidot * thetadot * ct + mz * tt +
                    (2.0 - ratio) * psidot * thetadot * tt * st +
                    ratio * phidot * thetadot * tt;
-  dx[kSymTheta] = thetadot;
+  dx[kSymTheta] = T(thetadot);
   dx[kSymThetaDot] = my - (1.0 - ratio) * psidot * psidot * st * ct -
                      ratio * phidot * psidot * ct;
-  dx[kSymPsi] = psidot;
+  dx[kSymPsi] = T(psidot);
   dx[kSymPsiDot] = mz * sec + (2.0 - ratio) * psidot * thetadot * tt +
                    ratio * phidot * thetadot * sec;
 }
