@@ -129,8 +129,23 @@ void TimeJacobians(benchmark::State& state,
   }
 }
 
+// The cost function as fits use it (JacobianMethod::kAuto).
 void BM_Jacobian(benchmark::State& state) {
   const Block b = MakeBlock(static_cast<int>(state.range(0)));
+  TimeJacobians(state, b, *b.cost);
+}
+
+// Each of its two methods alone.
+void BM_JetLaneJacobian(benchmark::State& state) {
+  Block b = MakeBlock(static_cast<int>(state.range(0)));
+  b.cost->set_jacobian_method(SegmentCostFunction::JacobianMethod::kJetLanes);
+  TimeJacobians(state, b, *b.cost);
+}
+
+void BM_SensitivityJacobian(benchmark::State& state) {
+  Block b = MakeBlock(static_cast<int>(state.range(0)));
+  b.cost->set_jacobian_method(
+      SegmentCostFunction::JacobianMethod::kSensitivities);
   TimeJacobians(state, b, *b.cost);
 }
 
@@ -162,6 +177,7 @@ void BM_ColoredCovariance(benchmark::State& state) {
   for (int ch = 0; ch < 3; ++ch) {
     series[ch].jacobian.resize(n, k);
     series[ch].residual.resize(n);
+    series[ch].times = Eigen::VectorXd::LinSpaced(n, 0.0, 0.06 * (n - 1));
     for (int i = 0; i < n; ++i) {
       // Noise-like residuals: the truth's are zero.
       series[ch].residual(i) = std::sin(1e3 * (3 * i + ch));
@@ -175,7 +191,8 @@ void BM_ColoredCovariance(benchmark::State& state) {
   for (auto _ : state) {
     std::vector<SeriesCorrelation> stats;
     benchmark::DoNotOptimize(
-        SandwichCovariance(b_matrix, ColoredInformation(series, &stats)));
+        SandwichCovariance(b_matrix,
+                           ColoredInformation(series, b_matrix, &stats)));
   }
 }
 BENCHMARK(BM_ColoredCovariance)->Unit(benchmark::kMillisecond);
@@ -191,6 +208,28 @@ BENCHMARK(BM_Jacobian)
     ->Arg(20)
     ->Arg(24)
     ->Arg(25)
+    ->Arg(27)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_JetLaneJacobian)
+    ->Arg(1)
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(10)
+    ->Arg(12)
+    ->Arg(16)
+    ->Arg(20)
+    ->Arg(24)
+    ->Arg(27)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SensitivityJacobian)
+    ->Arg(1)
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(10)
+    ->Arg(12)
+    ->Arg(16)
+    ->Arg(20)
+    ->Arg(24)
     ->Arg(27)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_DynamicJacobian, 4)

@@ -24,6 +24,22 @@
 // a roll-angle reading error, whose autocorrelation never decays, is kept
 // until the band (which widens with every significant lag) covers it. The
 // bracket is made positive semidefinite by dropping negative eigenvalues.
+//
+// Spectral lines (a reading error that follows roll, at the spin rate and
+// its harmonics) need more: where such a line lies near the motion's own
+// frequencies the fit absorbs much of it, so the residuals keep only a part
+// and their autocorrelation understates what the error does to the
+// estimates. Each line that stands above its neighbourhood of the residual
+// periodogram (a 0.1% chance per series for noise) is fitted, frequency
+// refined, as the fit would leave it: K = (I - H) [cos sin], H = J B J^T,
+// r ~ K alpha. Then |alpha| estimates the error's own amplitude a (less the
+// noise's share of it), the line with its echo near the motion's
+// frequencies leaves the residual, and the line comes back whole: for a
+// sinusoid of random phase, with c = J^T (cos + i sin), its exact share of
+// the bracket is (a^2 / 2) Re(c c^H). A line with kept share (smallest
+// eigenvalue of K^T K over n / 2) below kMinKeptShare is one the fit
+// could absorb whole; nothing measures it, and it stays in the
+// autocorrelation part.
 
 #ifndef FIT3DOF_SRC_COLORED_COVARIANCE_H_
 #define FIT3DOF_SRC_COLORED_COVARIANCE_H_
@@ -33,12 +49,24 @@
 
 namespace fit3dof {
 
-// One series: Jacobian rows (one per sample, in time order, k columns) and
-// the weighted residuals.
+// One series: Jacobian rows (one per sample, in time order, k columns),
+// the weighted residuals and the sample times (s).
 struct ResidualSeries {
   Eigen::MatrixXd jacobian;
   Eigen::VectorXd residual;
+  Eigen::VectorXd times;
 };
+
+// A spectral line of a series' residual and what the fit absorbed of it.
+struct ResidualLine {
+  double frequency_hz = 0.0;
+  double residual_amplitude = 0.0;  // in the residual (weighted units)
+  double kept_share = 1.0;          // what the fit leaves of it, 0..1
+  double amplitude = 0.0;           // the error's, estimated
+};
+
+// Lines the fit leaves less of than this are not taken out.
+inline constexpr double kMinKeptShare = 0.05;
 
 // What the estimate found in one series.
 struct SeriesCorrelation {
@@ -48,15 +76,18 @@ struct SeriesCorrelation {
   double ljung_box = 0.0;          // Q over lags 1..20
   double ljung_box_limit = 0.0;    // its 1% critical value
   bool white = true;               // Q below the limit
+  std::vector<ResidualLine> lines;  // taken out and added back whole
 };
 
 // The autocorrelation statistics of one series of residuals.
 SeriesCorrelation CorrelationOf(const Eigen::VectorXd& residual);
 
 // The bracket sum_i sum_j J_i^T rho(i - j) J_j over every series (k x k),
-// positive semidefinite; `stats` (if given) receives each series'
-// statistics.
+// positive semidefinite, with the spectral lines added back whole; b is
+// (J^T J)^-1 of all series together. `stats` (if given) receives each
+// series' statistics (those of its whole residual) and lines.
 Eigen::MatrixXd ColoredInformation(const std::vector<ResidualSeries>& series,
+                                   const Eigen::MatrixXd& b,
                                    std::vector<SeriesCorrelation>* stats);
 
 // Cov = B M B for B = (J^T J)^-1 (or its pseudo-inverse) and the bracket M.

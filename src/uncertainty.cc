@@ -266,7 +266,9 @@ std::vector<ResidualSeries> SeriesOf(const FitProblem& problem,
     const int n = segment.data.size();
     for (int channel = 0; channel < 3; ++channel) {
       ResidualSeries s{Eigen::MatrixXd::Zero(n, crs.num_cols),
-                       Eigen::VectorXd(n)};
+                       Eigen::VectorXd(n),
+                       Eigen::Map<const Eigen::VectorXd>(
+                           segment.data.t.data(), n)};
       for (int i = 0; i < n; ++i) {
         const int r = row + 3 * i + channel;
         s.residual(i) = info.residuals[r];
@@ -293,7 +295,7 @@ void CorrectForCorrelation(const FitProblem& problem,
   const int k = problem.free.size();
   std::vector<SeriesCorrelation> stats;
   const Eigen::MatrixXd bracket =
-      ColoredInformation(SeriesOf(problem, info), &stats);
+      ColoredInformation(SeriesOf(problem, info), cov_u, &stats);
   const Eigen::MatrixXd colored = SandwichCovariance(cov_u, bracket);
   // The residual variances are sums over N samples of residuals that have
   // spent N_free degrees of freedom (as E does, Eq. 26).
