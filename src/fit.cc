@@ -258,6 +258,12 @@ void FitSegments(const Case& c,
       stats.autocorrelation = series.normalized;
       stats.lag_window = series.lag_window;
       stats.white = series.white;
+      const double weights[3] = {p.sigma.phi, p.sigma.theta, p.sigma.psi};
+      const double weight = weights[ch];
+      for (const ResidualLine& line : series.lines) {
+        stats.error_lines.push_back(
+            {line.frequency_hz, line.amplitude * weight, line.kept_share});
+      }
       std::vector<double> residual(p.data.size());
       for (int i = 0; i < p.data.size(); ++i) {
         residual[i] = fit.computed[3 * i + ch] - measured[ch][i];

@@ -32,10 +32,17 @@ json ResidualsJson(const SegmentFit& s) {
     for (double rho : c.autocorrelation) lags.push_back(JsonNumber(rho));
     json lines = json::array();
     for (double hz : c.spectral_lines_hz) lines.push_back(JsonNumber(hz));
+    json error_lines = json::array();
+    for (const ErrorLine& e : c.error_lines) {
+      error_lines.push_back({{"frequency_hz", JsonNumber(e.frequency_hz)},
+                             {"amplitude_deg", JsonNumber(e.amplitude_deg)},
+                             {"kept_share", JsonNumber(e.kept_share)}});
+    }
     out[ChannelName(ch)] = {{"autocorrelation", lags},
                             {"lag_window", c.lag_window},
                             {"white", c.white},
-                            {"spectral_lines_hz", lines}};
+                            {"spectral_lines_hz", lines},
+                            {"error_lines", error_lines}};
   }
   return out;
 }

@@ -53,6 +53,16 @@ struct ParameterEstimate {
   std::string units;
 };
 
+// A spectral line of a channel's error that the standard errors count
+// whole (colored covariance): its frequency, the error's amplitude as
+// estimated, and the share of it the fit left in the residual (0..1; the
+// rest it absorbed into the estimates).
+struct ErrorLine {
+  double frequency_hz = 0.0;
+  double amplitude_deg = 0.0;
+  double kept_share = 1.0;
+};
+
 // One channel's residuals at the solution.
 struct ResidualStatistics {
   double noise_sigma_deg = 0.0;  // the channel's noise level, estimated
@@ -60,6 +70,7 @@ struct ResidualStatistics {
   int lag_window = 0;  // lags the standard errors take into account
   bool white = true;   // Ljung-Box test over 20 lags at 1%
   std::vector<double> spectral_lines_hz;  // strongest first (at most 3)
+  std::vector<ErrorLine> error_lines;     // strongest first (at most 6)
 };
 
 struct SegmentFit {
