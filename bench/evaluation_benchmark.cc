@@ -136,17 +136,22 @@ void BM_Jacobian(benchmark::State& state) {
 }
 
 // Each of its two methods alone.
-void BM_JetLaneJacobian(benchmark::State& state) {
+template <SegmentCostFunction::JacobianMethod kMethod>
+void BM_JacobianBy(benchmark::State& state) {
   Block b = MakeBlock(static_cast<int>(state.range(0)));
-  b.cost->set_jacobian_method(SegmentCostFunction::JacobianMethod::kJetLanes);
+  b.cost->set_jacobian_method(kMethod);
   TimeJacobians(state, b, *b.cost);
 }
-
+void BM_JetLaneJacobian(benchmark::State& state) {
+  BM_JacobianBy<SegmentCostFunction::JacobianMethod::kJetLanes>(state);
+}
 void BM_SensitivityJacobian(benchmark::State& state) {
-  Block b = MakeBlock(static_cast<int>(state.range(0)));
-  b.cost->set_jacobian_method(
-      SegmentCostFunction::JacobianMethod::kSensitivities);
-  TimeJacobians(state, b, *b.cost);
+  BM_JacobianBy<SegmentCostFunction::JacobianMethod::kSensitivities>(state);
+}
+
+// The free-parameter counts both methods are timed at.
+void MethodArgs(benchmark::internal::Benchmark* b) {
+  for (int k : {1, 4, 8, 10, 12, 16, 20, 24, 27}) b->Arg(k);
 }
 
 template <int kStride>
@@ -211,26 +216,10 @@ BENCHMARK(BM_Jacobian)
     ->Arg(27)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_JetLaneJacobian)
-    ->Arg(1)
-    ->Arg(4)
-    ->Arg(8)
-    ->Arg(10)
-    ->Arg(12)
-    ->Arg(16)
-    ->Arg(20)
-    ->Arg(24)
-    ->Arg(27)
+    ->Apply(MethodArgs)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SensitivityJacobian)
-    ->Arg(1)
-    ->Arg(4)
-    ->Arg(8)
-    ->Arg(10)
-    ->Arg(12)
-    ->Arg(16)
-    ->Arg(20)
-    ->Arg(24)
-    ->Arg(27)
+    ->Apply(MethodArgs)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_DynamicJacobian, 4)
     ->Arg(4)

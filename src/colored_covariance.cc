@@ -8,9 +8,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <complex>
 
-#include <unsupported/Eigen/FFT>
+#include "spectral_lines.h"
 
 namespace fit3dof {
 namespace {
@@ -74,15 +73,9 @@ constexpr int kRefineSteps = 20;
 // when power > ln(bins / kFalseLineChance) / ln 2 times the median.
 std::vector<double> LineFrequencies(const Eigen::VectorXd& r, double dt) {
   const int n = static_cast<int>(r.size());
-  std::vector<double> centred(r.data(), r.data() + n);
-  const double mean = r.mean();
-  for (double& v : centred) v -= mean;
-  Eigen::FFT<double> fft;
-  std::vector<std::complex<double>> spectrum;
-  fft.fwd(spectrum, centred);
+  const std::vector<double> power =
+      Periodogram(std::vector<double>(r.data(), r.data() + n));
   const int half = n / 2;
-  std::vector<double> power(half + 1);
-  for (int k = 0; k <= half; ++k) power[k] = std::norm(spectrum[k]);
   const double factor = std::log(half / kFalseLineChance) / std::log(2.0);
   std::vector<std::pair<double, int>> peaks;
   for (int k = 1; k < half; ++k) {
@@ -116,13 +109,17 @@ Eigen::MatrixXd CosSin(const Eigen::VectorXd& t, double frequency_hz) {
   return u;
 }
 
-// [cos sin] at f as the fit leaves it: (I - J B J^T) [cos sin].
+// [cos sin] at f as the fit leaves it, (I - J B J^T) [cos sin]; jtu (if
+// given) receives J^T [cos sin].
 Eigen::MatrixXd Kept(const Eigen::MatrixXd& jacobian,
                      const Eigen::MatrixXd& b,
                      const Eigen::VectorXd& t,
-                     double frequency_hz) {
+                     double frequency_hz,
+                     Eigen::MatrixXd* jtu = nullptr) {
   const Eigen::MatrixXd u = CosSin(t, frequency_hz);
-  return u - jacobian * (b * (jacobian.transpose() * u));
+  const Eigen::MatrixXd ju = jacobian.transpose() * u;
+  if (jtu != nullptr) *jtu = ju;
+  return u - jacobian * (b * ju);
 }
 
 // The part of r that a kept sinusoid pair explains.
@@ -177,9 +174,8 @@ Eigen::MatrixXd LineBracket(const Eigen::MatrixXd& jacobian,
   for (double frequency : LineFrequencies(*r, dt)) {
     Found f;
     f.line.frequency_hz = RefineFrequency(jacobian, b, *r, t, frequency);
-    const Eigen::MatrixXd u = CosSin(t, f.line.frequency_hz);
-    f.jtu = jacobian.transpose() * u;
-    const Eigen::MatrixXd kept = u - jacobian * (b * f.jtu);
+    const Eigen::MatrixXd kept =
+        Kept(jacobian, b, t, f.line.frequency_hz, &f.jtu);
     const Eigen::Matrix2d ktk = kept.transpose() * kept;
     f.line.kept_share =
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(ktk).eigenvalues()(0) /
@@ -211,10 +207,11 @@ Eigen::MatrixXd LineBracket(const Eigen::MatrixXd& jacobian,
   return bracket;
 }
 
-// The lag-window bracket sum_i sum_j J_i^T w c(i - j) J_j of one series.
+// The lag-window bracket sum_i sum_j J_i^T w c(i - j) J_j of one series,
+// whose statistics are corr.
 Eigen::MatrixXd LagBracket(const Eigen::MatrixXd& jacobian,
-                           const Eigen::VectorXd& residual) {
-  const SeriesCorrelation corr = CorrelationOf(residual);
+                           const Eigen::VectorXd& residual,
+                           const SeriesCorrelation& corr) {
   const int n = static_cast<int>(residual.size());
   const int reach = std::min(n - 1, 2 * corr.lag_window);
   // Y = T J with T(i, j) = w(|i - j|) c(|i - j|): J^T T J costs N (2L+1) k
@@ -261,7 +258,11 @@ Eigen::MatrixXd ColoredInformation(const std::vector<ResidualSeries>& series,
     SeriesCorrelation corr = CorrelationOf(s.residual);
     Eigen::VectorXd rest = s.residual;
     bracket += LineBracket(s.jacobian, s.times, b, &rest, &corr.lines);
-    bracket += LagBracket(s.jacobian, rest);
+    // Without lines the rest is the whole residual, whose statistics are
+    // at hand.
+    bracket += LagBracket(s.jacobian,
+                          rest,
+                          corr.lines.empty() ? corr : CorrelationOf(rest));
     if (stats != nullptr) stats->push_back(std::move(corr));
   }
   // Symmetric and positive semidefinite: a truncated, tapered sum of

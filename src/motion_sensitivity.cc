@@ -58,10 +58,10 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
                                             double* jacobian,
                                             IntegrationFailure* failure) const {
   const int np = num_parameters();
-  std::array<double, kMaxParameters> internal{};
-  for (int i = 0; i < np; ++i) internal[i] = values[i] * scale_[i];
+  std::array<double, kMaxParameters> internal;
+  ToInternal(values, &internal);
   const CoefficientView<double> k(internal.data(), active_);
-  const int first_initial = Layout(spec_.model).first_initial;
+  const int first_initial = layout_.first_initial;
 
   // z = (x, S) with S column-major: S(j, l) = z[6 + 6 l + j].
   const int dim = 6 + 6 * m;

@@ -51,13 +51,28 @@ void SegmentCostFunction::GatherFree(double const* const* parameters,
   }
 }
 
+std::vector<double> SegmentCostFunction::FullFromFree(const double* u) const {
+  std::vector<double> full = base_;
+  for (size_t j = 0; j < free_.size(); ++j) full[free_[j]] = scale_[j] * u[j];
+  return full;
+}
+
 std::vector<double> SegmentCostFunction::FullValues(
     double const* const* parameters) const {
   std::vector<double> u(free_.size());
   GatherFree(parameters, u.data());
-  std::vector<double> full = base_;
-  for (size_t j = 0; j < free_.size(); ++j) full[free_[j]] = scale_[j] * u[j];
-  return full;
+  return FullFromFree(u.data());
+}
+
+double SegmentCostFunction::WeightedResidual(int i,
+                                             int c,
+                                             double computed,
+                                             double inv_sigma) const {
+  const double* measured[3] = {
+      data_.phi.data(), data_.theta.data(), data_.psi.data()};
+  double offset = 0.0;
+  if (c == 0) offset = 360.0 * std::round((computed - measured[0][i]) / 360.0);
+  return (computed - offset - measured[c][i]) * inv_sigma;
 }
 
 bool SegmentCostFunction::ComputeAngles(const std::vector<double>& full,
@@ -92,8 +107,7 @@ bool SegmentCostFunction::EvaluateSensitivities(const double* u,
                                                 const std::vector<int>& lanes,
                                                 double* residuals,
                                                 double** jacobians) const {
-  std::vector<double> full = base_;
-  for (size_t j = 0; j < free_.size(); ++j) full[free_[j]] = scale_[j] * u[j];
+  const std::vector<double> full = FullFromFree(u);
   const int n = data_.size();
   const int m = static_cast<int>(lanes.size());
   std::vector<int> wrt(m), block(m), column(m);
@@ -114,16 +128,10 @@ bool SegmentCostFunction::EvaluateSensitivities(const double* u,
   }
   const double inv_sigma[3] = {
       1.0 / sigma_.phi, 1.0 / sigma_.theta, 1.0 / sigma_.psi};
-  const double* measured[3] = {
-      data_.phi.data(), data_.theta.data(), data_.psi.data()};
   for (int i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) {
       const int row = 3 * i + c;
-      double offset = 0.0;
-      if (c == 0) {
-        offset = 360.0 * std::round((angles[row] - measured[0][i]) / 360.0);
-      }
-      const double r = (angles[row] - offset - measured[c][i]) * inv_sigma[c];
+      const double r = WeightedResidual(i, c, angles[row], inv_sigma[c]);
       if (!std::isfinite(r)) return false;
       residuals[row] = r;
       for (int l = 0; l < m; ++l) {
@@ -162,8 +170,7 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
     }
   }
   if (lanes.empty()) {
-    std::vector<double> full = base_;
-    for (int j = 0; j < k; ++j) full[free_[j]] = scale_[j] * u[j];
+    const std::vector<double> full = FullFromFree(u.data());
     std::vector<double> angles;
     if (!ComputeAngles(full, &angles, nullptr)) return false;
     const double* measured[3] = {

@@ -35,19 +35,13 @@ bool SegmentCostFunction::EvaluateLanes(const double* u,
   }
   const double inv_sigma[3] = {
       1.0 / sigma_.phi, 1.0 / sigma_.theta, 1.0 / sigma_.psi};
-  const double* measured[3] = {
-      data_.phi.data(), data_.theta.data(), data_.psi.data()};
   int block[N], column[N];
   for (int l = 0; l < count; ++l) Locate(lanes[l], &block[l], &column[l]);
   for (int i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) {
       const int row = 3 * i + c;
       const J& computed = angles[row];
-      double offset = 0.0;
-      if (c == 0) {
-        offset = 360.0 * std::round((computed.a - measured[0][i]) / 360.0);
-      }
-      const double r = (computed.a - offset - measured[c][i]) * inv_sigma[c];
+      const double r = WeightedResidual(i, c, computed.a, inv_sigma[c]);
       if (!std::isfinite(r)) return false;
       residuals[row] = r;
       for (int l = 0; l < count; ++l) {

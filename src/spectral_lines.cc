@@ -11,12 +11,8 @@
 
 namespace fit3dof {
 
-std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
-                                        double dt,
-                                        double factor,
-                                        int most) {
+std::vector<double> Periodogram(const std::vector<double>& x) {
   const int n = static_cast<int>(x.size());
-  if (n < 16 || !(dt > 0.0)) return {};
   double mean = 0.0;
   for (double v : x) mean += v / n;
   std::vector<double> centred(n);
@@ -26,11 +22,20 @@ std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
   fft.fwd(spectrum, centred);
   const int half = n / 2;
   std::vector<double> power(half + 1, 0.0);
+  for (int k = 1; k <= half; ++k) power[k] = std::norm(spectrum[k]);
+  return power;
+}
+
+std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
+                                        double dt,
+                                        double factor,
+                                        int most) {
+  const int n = static_cast<int>(x.size());
+  if (n < 16 || !(dt > 0.0)) return {};
+  const std::vector<double> power = Periodogram(x);
+  const int half = n / 2;
   double total = 0.0;
-  for (int k = 1; k <= half; ++k) {
-    power[k] = std::norm(spectrum[k]);
-    total += power[k];
-  }
+  for (int k = 1; k <= half; ++k) total += power[k];
   const double mean_power = total / half;
   if (!(mean_power > 0.0)) return {};
   const double limit = factor * std::log(static_cast<double>(n)) * mean_power;

@@ -19,6 +19,10 @@ struct SpectralLine {
   double power_ratio = 0.0;  // over the mean power
 };
 
+// The periodogram of x: |FFT(x - mean)|^2 at bins 0..N/2 (bin k is
+// k / (N dt) Hz); bin 0 is 0, the mean being removed.
+std::vector<double> Periodogram(const std::vector<double>& x);
+
 // The strongest lines (at most `most`, strongest first) of `x` sampled
 // every `dt` seconds; none for fewer than 16 samples.
 std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,

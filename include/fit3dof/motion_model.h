@@ -106,6 +106,12 @@ class MotionModel {
   template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
   void Measure(const Tx* x, const Tk* internal, T* angles) const;
 
+  // The parameters in internal units (REG): values times scale, zeros
+  // beyond the model's parameters.
+  template <typename T>
+  void ToInternal(const T* values,
+                  std::array<T, kMaxParameters>* internal) const;
+
   template <typename T, typename Observe>
   bool Integrate(const T* values,
                  const double* times,
@@ -150,15 +156,14 @@ template <typename Tx, typename Tk, typename T>
 void MotionModel::Measure(const Tx* x, const Tk* internal, T* angles) const {
   using std::cos;
   using std::sin;
-  const ParameterLayout& layout = layout_;
   const Tx& phi = x[state_index_[0]];
   // Measurement model (INTGRL): theta_m = theta + theta_T,
   // psi_m = psi + psi_T; plus the roll-interaction reading error of Section
   // 5.2 (first harmonics in phi), when any of its parameters is active.
-  T theta = x[state_index_[1]] + internal[layout.theta_offset];
-  T psi = x[state_index_[2]] + internal[layout.psi_offset];
+  T theta = x[state_index_[1]] + internal[layout_.theta_offset];
+  T psi = x[state_index_[2]] + internal[layout_.psi_offset];
   if (roll_interaction_) {
-    const int ri = layout.roll_interaction;
+    const int ri = layout_.roll_interaction;
     const Tx c = cos(phi);
     const Tx s = sin(phi);
     theta += internal[ri] * c + internal[ri + 1] * s;
@@ -169,6 +174,14 @@ void MotionModel::Measure(const Tx* x, const Tk* internal, T* angles) const {
   angles[2] = psi * kDegreesPerRadian;
 }
 
+template <typename T>
+void MotionModel::ToInternal(const T* values,
+                             std::array<T, kMaxParameters>* internal) const {
+  const int np = num_parameters();
+  for (int i = 0; i < np; ++i) (*internal)[i] = values[i] * scale_[i];
+  for (int i = np; i < kMaxParameters; ++i) (*internal)[i] = T(0.0);
+}
+
 template <typename T, typename Observe>
 bool MotionModel::Integrate(const T* values,
                             const double* times,
@@ -176,16 +189,13 @@ bool MotionModel::Integrate(const T* values,
                             std::array<T, kMaxParameters>* internal,
                             const Observe& observe,
                             IntegrationFailure* failure) const {
-  const int np = num_parameters();
-  for (int i = 0; i < np; ++i) (*internal)[i] = values[i] * scale_[i];
-  for (int i = np; i < kMaxParameters; ++i) (*internal)[i] = T(0.0);
+  ToInternal(values, internal);
   const CoefficientView<T> k(internal->data(), active_);
   // Both programs order their six initial-condition parameters as their
   // state vector: (phi, phidot, theta, thetadot, psi, psidot) and
   // (phi, theta, psi, p, q, r).
-  const int first_initial = Layout(spec_.model).first_initial;
   T x[6];
-  for (int j = 0; j < 6; ++j) x[j] = (*internal)[first_initial + j];
+  for (int j = 0; j < 6; ++j) x[j] = (*internal)[layout_.first_initial + j];
   auto rhs = [&](const T* s, T* ds) { Derivative(k, s, ds); };
   return IntegrateSamples<T, 6>(
       rhs, times, n, spec_.max_step, Guard(), x, observe, failure);

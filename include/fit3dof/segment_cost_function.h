@@ -134,6 +134,13 @@ class SegmentCostFunction : public ceres::CostFunction {
                     double* residuals,
                     double** jacobians) const;
   void GatherFree(double const* const* parameters, double* u) const;
+  // The full parameter vector for free coordinates u (value = scale u).
+  std::vector<double> FullFromFree(const double* u) const;
+  // The weighted residual of angle c (0 roll, 1 pitch, 2 yaw) at sample i
+  // computed as `computed` deg; roll on the branch nearest the
+  // measurement.
+  double WeightedResidual(int i, int c, double computed,
+                          double inv_sigma) const;
   // Block and column of free coordinate j.
   void Locate(int j, int* block, int* column) const;
 
