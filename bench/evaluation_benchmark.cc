@@ -195,9 +195,8 @@ void BM_ColoredCovariance(benchmark::State& state) {
   const Eigen::MatrixXd b_matrix = jtj.inverse();
   for (auto _ : state) {
     std::vector<SeriesCorrelation> stats;
-    benchmark::DoNotOptimize(
-        SandwichCovariance(b_matrix,
-                           ColoredInformation(series, b_matrix, &stats)));
+    benchmark::DoNotOptimize(SandwichCovariance(
+        b_matrix, ColoredInformation(series, b_matrix, &stats)));
   }
 }
 BENCHMARK(BM_ColoredCovariance)->Unit(benchmark::kMillisecond);
@@ -215,9 +214,7 @@ BENCHMARK(BM_Jacobian)
     ->Arg(25)
     ->Arg(27)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_JetLaneJacobian)
-    ->Apply(MethodArgs)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_JetLaneJacobian)->Apply(MethodArgs)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SensitivityJacobian)
     ->Apply(MethodArgs)
     ->Unit(benchmark::kMillisecond);

@@ -82,7 +82,8 @@ std::vector<double> LineFrequencies(const Eigen::VectorXd& r, double dt) {
     if (power[k] < power[k - 1] || power[k] < power[k + 1]) continue;
     std::vector<double> around;
     for (int j = k - kBackgroundBins; j <= k + kBackgroundBins; ++j) {
-      if (j >= 1 && j <= half && std::abs(j - k) > 2) around.push_back(power[j]);
+      if (j >= 1 && j <= half && std::abs(j - k) > 2)
+        around.push_back(power[j]);
     }
     if (around.size() < kBackgroundBins) continue;
     std::nth_element(
@@ -185,8 +186,8 @@ Eigen::MatrixXd LineBracket(const Eigen::MatrixXd& jacobian,
     if (f.line.kept_share < kMinKeptShare) continue;
     const Eigen::Vector2d alpha = ktk.ldlt().solve(kept.transpose() * *r);
     *r -= kept * alpha;
-    f.line.residual_amplitude = std::sqrt(
-        2.0 * (kept * alpha).squaredNorm() / n);
+    f.line.residual_amplitude =
+        std::sqrt(2.0 * (kept * alpha).squaredNorm() / n);
     f.line.amplitude = alpha.norm();
     found.push_back(f);
   }
@@ -260,9 +261,8 @@ Eigen::MatrixXd ColoredInformation(const std::vector<ResidualSeries>& series,
     bracket += LineBracket(s.jacobian, s.times, b, &rest, &corr.lines);
     // Without lines the rest is the whole residual, whose statistics are
     // at hand.
-    bracket += LagBracket(s.jacobian,
-                          rest,
-                          corr.lines.empty() ? corr : CorrelationOf(rest));
+    bracket += LagBracket(
+        s.jacobian, rest, corr.lines.empty() ? corr : CorrelationOf(rest));
     if (stats != nullptr) stats->push_back(std::move(corr));
   }
   // Symmetric and positive semidefinite: a truncated, tapered sum of

@@ -103,8 +103,7 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
     ds.noalias() = fx * s;
     for (const CoefficientPass& pass : passes) {
       CoefficientJet fp[6];
-      Derivative(CoefficientView<CoefficientJet>(pass.internal.data(),
-                                                 active_),
+      Derivative(CoefficientView<CoefficientJet>(pass.internal.data(), active_),
                  y,
                  fp);
       for (size_t lane = 0; lane < pass.columns.size(); ++lane) {

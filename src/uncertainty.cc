@@ -265,10 +265,10 @@ std::vector<ResidualSeries> SeriesOf(const FitProblem& problem,
   for (const PreparedSegment& segment : problem.segments) {
     const int n = segment.data.size();
     for (int channel = 0; channel < 3; ++channel) {
-      ResidualSeries s{Eigen::MatrixXd::Zero(n, crs.num_cols),
-                       Eigen::VectorXd(n),
-                       Eigen::Map<const Eigen::VectorXd>(
-                           segment.data.t.data(), n)};
+      ResidualSeries s{
+          Eigen::MatrixXd::Zero(n, crs.num_cols),
+          Eigen::VectorXd(n),
+          Eigen::Map<const Eigen::VectorXd>(segment.data.t.data(), n)};
       for (int i = 0; i < n; ++i) {
         const int r = row + 3 * i + channel;
         s.residual(i) = info.residuals[r];

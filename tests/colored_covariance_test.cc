@@ -127,8 +127,8 @@ TEST(ColoredCovariance, SeriesAddUpAndTheResultIsPositiveSemidefinite) {
   const ResidualSeries c = FitLinear(x, Ar1(n, -0.3, 8));
   const Eigen::MatrixXd b = (x.transpose() * x).inverse();
   const Eigen::MatrixXd both = ColoredInformation({a, c}, b, nullptr);
-  const Eigen::MatrixXd sum = ColoredInformation({a}, b, nullptr) +
-                              ColoredInformation({c}, b, nullptr);
+  const Eigen::MatrixXd sum =
+      ColoredInformation({a}, b, nullptr) + ColoredInformation({c}, b, nullptr);
   EXPECT_LT((both - sum).norm(), 1e-9 * both.norm());
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(both);
   EXPECT_GE(eigen.eigenvalues().minCoeff(), 0.0);
@@ -181,8 +181,8 @@ TEST(ColoredCovariance, LinesTheFitAbsorbsAreAddedBackWhole) {
     const double ratio = std::sqrt(scatter2 / mean_var(j));
     EXPECT_GT(ratio, 0.8) << "parameter " << j;
     EXPECT_LT(ratio, 1.25) << "parameter " << j;
-    EXPECT_GT(std::sqrt(scatter2 / mean_var_plain(j)), 1.5) << "parameter "
-                                                            << j;
+    EXPECT_GT(std::sqrt(scatter2 / mean_var_plain(j)), 1.5)
+        << "parameter " << j;
   }
 }
 

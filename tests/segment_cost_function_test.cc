@@ -146,8 +146,8 @@ void EvaluateBy(Block& s,
     blocks.push_back(s.blocks[b].data());
     jacobians.push_back((*jacobian)[b].data());
   }
-  ASSERT_TRUE(s.cost->Evaluate(blocks.data(), residuals->data(),
-                               jacobians.data()));
+  ASSERT_TRUE(
+      s.cost->Evaluate(blocks.data(), residuals->data(), jacobians.data()));
 }
 
 // The forward sensitivities give the Jet lanes' residuals exactly and their
@@ -157,7 +157,7 @@ void EvaluateBy(Block& s,
 // incidence definitions.
 TEST(SegmentCostFunction, SensitivitiesEqualJetLanes) {
   std::vector<int> symmetric;
-  for (int i = 0; i < 23; ++i) symmetric.push_back(i);  // + theta_T
+  for (int i = 0; i < 23; ++i) symmetric.push_back(i);   // + theta_T
   for (int i = 30; i < 34; ++i) symmetric.push_back(i);  // roll interaction
   std::vector<int> asymmetric;
   for (int i = 0; i < 65; ++i) asymmetric.push_back(i);
@@ -186,10 +186,12 @@ TEST(SegmentCostFunction, SensitivitiesEqualJetLanes) {
     Block& s = blocks[t];
     std::vector<double> r_jet, r_sens;
     std::vector<std::vector<double>> j_jet, j_sens;
-    EvaluateBy(s, SegmentCostFunction::JacobianMethod::kJetLanes, &r_jet,
-               &j_jet);
-    EvaluateBy(s, SegmentCostFunction::JacobianMethod::kSensitivities,
-               &r_sens, &j_sens);
+    EvaluateBy(
+        s, SegmentCostFunction::JacobianMethod::kJetLanes, &r_jet, &j_jet);
+    EvaluateBy(s,
+               SegmentCostFunction::JacobianMethod::kSensitivities,
+               &r_sens,
+               &j_sens);
     ASSERT_EQ(r_jet, r_sens) << "case " << t;
     for (size_t b = 0; b < j_jet.size(); ++b) {
       const int size = static_cast<int>(s.blocks[b].size());
@@ -200,7 +202,8 @@ TEST(SegmentCostFunction, SensitivitiesEqualJetLanes) {
           scale = std::max(scale, std::abs(j_jet[b][r * size + col]));
         }
         for (int r = 0; r < rows; ++r) {
-          ASSERT_NEAR(j_sens[b][r * size + col], j_jet[b][r * size + col],
+          ASSERT_NEAR(j_sens[b][r * size + col],
+                      j_jet[b][r * size + col],
                       1e-11 * scale)
               << "case " << t << " block " << b << " column " << col
               << " residual " << r;

@@ -209,9 +209,16 @@ void AsymmetricDerivative(const CoefficientView<Tk>& k,
   const Tx& ct = trig.ct;
 
   Tx euler_rates[3];
-  BodyToEulerRates(
-      sf, cf, st, ct, p, q, r, &euler_rates[0], &euler_rates[1],
-      &euler_rates[2]);
+  BodyToEulerRates(sf,
+                   cf,
+                   st,
+                   ct,
+                   p,
+                   q,
+                   r,
+                   &euler_rates[0],
+                   &euler_rates[1],
+                   &euler_rates[2]);
   dx[kAsymPhi] = T(euler_rates[0]);
   dx[kAsymTheta] = T(euler_rates[1]);
   dx[kAsymPsi] = T(euler_rates[2]);

@@ -139,7 +139,9 @@ class SegmentCostFunction : public ceres::CostFunction {
   // The weighted residual of angle c (0 roll, 1 pitch, 2 yaw) at sample i
   // computed as `computed` deg; roll on the branch nearest the
   // measurement.
-  double WeightedResidual(int i, int c, double computed,
+  double WeightedResidual(int i,
+                          int c,
+                          double computed,
                           double inv_sigma) const;
   // Block and column of free coordinate j.
   void Locate(int j, int* block, int* column) const;
