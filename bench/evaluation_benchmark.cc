@@ -183,6 +183,12 @@ void BM_ColoredCovariance(benchmark::State& state) {
     series[ch].jacobian.resize(n, k);
     series[ch].residual.resize(n);
     series[ch].times = Eigen::VectorXd::LinSpaced(n, 0.0, 0.06 * (n - 1));
+    // Roll at the Table 6 spin (the order spectrum's cost) and, in pitch
+    // and yaw, an angle of about 5 deg (the calibration terms').
+    series[ch].roll = 2.0 * M_PI * 1.78 * series[ch].times;
+    if (ch > 0) {
+      series[ch].angle = 0.09 * (2.0 * M_PI * 0.3 * series[ch].times).array().sin();
+    }
     for (int i = 0; i < n; ++i) {
       // Noise-like residuals: the truth's are zero.
       series[ch].residual(i) = std::sin(1e3 * (3 * i + ch));

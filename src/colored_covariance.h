@@ -40,6 +40,16 @@
 // eigenvalue of K^T K over n / 2) below kMinKeptShare is one the fit
 // could absorb whole; nothing measures it, and it stays in the
 // autocorrelation part.
+//
+// A reading error that follows roll is a function of the roll angle, not of
+// time: as the spin decays its harmonics sweep in frequency, and a
+// sinusoid of one frequency catches only part of them. When the series
+// carries the roll angle, its harmonics h = 1..kMaxRollOrder are tested
+// first as lines of phase h phi(t) (an order spectrum, regressors
+// cos h phi, sin h phi), against the periodogram around the band each
+// sweeps; those that stand out are fitted together over every series
+// (the fit couples the channels), taken out and added back the same way.
+// The search over time frequencies then runs on what they leave.
 
 #ifndef FIT3DOF_SRC_COLORED_COVARIANCE_H_
 #define FIT3DOF_SRC_COLORED_COVARIANCE_H_
@@ -50,20 +60,33 @@
 namespace fit3dof {
 
 // One series: Jacobian rows (one per sample, in time order, k columns),
-// the weighted residuals and the sample times (s).
+// the weighted residuals, the sample times (s) and, when roll-locked lines
+// are to be looked for, the roll angle (rad; else empty), and for
+// calibration terms the channel's own angle (rad; else empty). Series of
+// one segment share `segment`.
 struct ResidualSeries {
   Eigen::MatrixXd jacobian;
   Eigen::VectorXd residual;
   Eigen::VectorXd times;
+  Eigen::VectorXd roll;
+  Eigen::VectorXd angle;
+  int segment = 0;
 };
 
 // A spectral line of a series' residual and what the fit absorbed of it.
 struct ResidualLine {
   double frequency_hz = 0.0;
-  double residual_amplitude = 0.0;  // in the residual (weighted units)
   double kept_share = 1.0;          // what the fit leaves of it, 0..1
   double amplitude = 0.0;           // the error's, estimated
+  int roll_harmonic = 0;            // h for a line of phase h phi, else 0
+  int calibration_power = 0;        // p for a calibration term, else 0
 };
+
+// Harmonics (orders) of the roll angle tested as roll-locked lines: a
+// once-per-revolution reading error is order 1, a roll angle sensed in
+// steps of 2 deg has lines at orders 180, 360, ...; 720 reaches steps of
+// half a degree.
+inline constexpr int kMaxRollOrder = 720;
 
 // Lines the fit leaves less of than this are not taken out.
 inline constexpr double kMinKeptShare = 0.05;

@@ -36,7 +36,9 @@ json ResidualsJson(const SegmentFit& s) {
     for (const ErrorLine& e : c.error_lines) {
       error_lines.push_back({{"frequency_hz", JsonNumber(e.frequency_hz)},
                              {"amplitude_deg", JsonNumber(e.amplitude_deg)},
-                             {"kept_share", JsonNumber(e.kept_share)}});
+                             {"kept_share", JsonNumber(e.kept_share)},
+                             {"roll_harmonic", e.roll_harmonic},
+                             {"calibration_power", e.calibration_power}});
     }
     out[ChannelName(ch)] = {{"autocorrelation", lags},
                             {"lag_window", c.lag_window},

@@ -17,6 +17,7 @@
 #include "assembly.h"
 #include "colored_covariance.h"
 #include "ceres/ceres.h"
+#include "fit3dof/angles.h"
 #include "fit3dof/input_error.h"
 #include "format.h"
 
@@ -265,13 +266,28 @@ std::vector<ResidualSeries> SeriesOf(const FitProblem& problem,
   for (const PreparedSegment& segment : problem.segments) {
     const int n = segment.data.size();
     for (int channel = 0; channel < 3; ++channel) {
-      ResidualSeries s{
-          Eigen::MatrixXd::Zero(n, crs.num_cols),
-          Eigen::VectorXd(n),
-          Eigen::Map<const Eigen::VectorXd>(segment.data.t.data(), n)};
+      ResidualSeries s{Eigen::MatrixXd::Zero(n, crs.num_cols),
+                       Eigen::VectorXd(n),
+                       Eigen::Map<const Eigen::VectorXd>(segment.data.t.data(), n),
+                       Eigen::VectorXd(n),
+                       Eigen::VectorXd(channel == 0 ? 0 : n),
+                       static_cast<int>(&segment - problem.segments.data())};
+      const std::vector<double>* measured[3] = {
+          &segment.data.phi, &segment.data.theta, &segment.data.psi};
+      const double sigma[3] = {
+          segment.sigma.phi, segment.sigma.theta, segment.sigma.psi};
       for (int i = 0; i < n; ++i) {
         const int r = row + 3 * i + channel;
         s.residual(i) = info.residuals[r];
+        // The fitted angles, not the measured ones: a roll angle sensed in
+        // steps would hide its own steps' error from its harmonics. Roll
+        // for roll-locked lines; pitch and yaw for their calibration.
+        const auto fitted = [&](int c) {
+          return ((*measured[c])[i] + info.residuals[row + 3 * i + c] * sigma[c]) /
+                 kDegreesPerRadian;
+        };
+        s.roll(i) = fitted(0);
+        if (channel != 0) s.angle(i) = fitted(channel);
         for (int a = crs.rows[r]; a < crs.rows[r + 1]; ++a) {
           s.jacobian(i, crs.cols[a]) = crs.values[a];
         }

@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "gtest/gtest.h"
@@ -62,7 +63,7 @@ ResidualSeries FitLinear(const Eigen::MatrixXd& x, const Eigen::VectorXd& e) {
       (x.transpose() * x).ldlt().solve(x.transpose() * y);
   Eigen::VectorXd t(x.rows());
   for (int i = 0; i < x.rows(); ++i) t(i) = 0.01 * i;
-  return {x, y - x * beta, t};
+  return {x, y - x * beta, t, {}, {}};
 }
 
 // The corrected covariance is an estimate from one record: over 10 records
@@ -184,6 +185,121 @@ TEST(ColoredCovariance, LinesTheFitAbsorbsAreAddedBackWhole) {
     EXPECT_GT(std::sqrt(scatter2 / mean_var_plain(j)), 1.5)
         << "parameter " << j;
   }
+}
+
+// The scatter of estimates of parameters 1 and 2 over records, against the
+// mean variance reported with the reading-error terms and with the
+// autocorrelation alone (no roll, angle or times).
+struct Calibration {
+  Eigen::Vector2d with, without;
+};
+template <typename MakeRecord>
+Calibration StudyRecords(const Eigen::MatrixXd& x,
+                         int records,
+                         const MakeRecord& make) {
+  const Eigen::MatrixXd b = (x.transpose() * x).inverse();
+  Eigen::MatrixXd estimates(records, 4);
+  Eigen::Vector4d var = Eigen::Vector4d::Zero(), plain = var;
+  for (int rec = 0; rec < records; ++rec) {
+    Eigen::VectorXd e;
+    ResidualSeries s = make(rec, &e);
+    estimates.row(rec) =
+        (b * x.transpose() * (x * Eigen::Vector4d(1.0, 2.0, -0.5, 0.3) + e))
+            .transpose();
+    var += SandwichCovariance(b, ColoredInformation({s}, b, nullptr))
+               .diagonal() /
+           records;
+    s.roll.resize(0);
+    s.angle.resize(0);
+    s.times.resize(0);
+    plain += SandwichCovariance(b, ColoredInformation({s}, b, nullptr))
+                 .diagonal() /
+             records;
+  }
+  Calibration c;
+  const Eigen::RowVector4d centre = estimates.colwise().mean();
+  for (int j = 1; j < 3; ++j) {
+    const double scatter2 =
+        (estimates.col(j).array() - centre(j)).square().sum() / (records - 1);
+    c.with(j - 1) = std::sqrt(scatter2 / var(j));
+    c.without(j - 1) = std::sqrt(scatter2 / plain(j));
+  }
+  return c;
+}
+
+// A reading error locked to a decaying spin: its frequency sweeps from 1.2
+// to 0.88 Hz across the 1 Hz regressor, so no single frequency catches it.
+TEST(ColoredCovariance, RollLockedLinesFollowTheSpin) {
+  const int n = 800;
+  const Eigen::MatrixXd x = Regressors(n);
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> phase(0.0, 2.0 * M_PI);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::VectorXd roll(n);
+  for (int i = 0; i < n; ++i) {
+    const double t = 0.01 * i;
+    roll(i) = 2.0 * M_PI * (1.2 * t - 0.02 * t * t);
+  }
+  int found = 0;
+  const Calibration c =
+      StudyRecords(x, 200, [&](int, Eigen::VectorXd* e) {
+        const double p = phase(rng);
+        e->resize(n);
+        for (int i = 0; i < n; ++i)
+          (*e)(i) = 3.0 * std::cos(roll(i) + p) + normal(rng);
+        ResidualSeries s = FitLinear(x, *e);
+        s.roll = roll;
+        std::vector<SeriesCorrelation> stats;
+        const Eigen::MatrixXd b = (x.transpose() * x).inverse();
+        ColoredInformation({s}, b, &stats);
+        for (const ResidualLine& line : stats[0].lines)
+          found += line.roll_harmonic == 1;
+        return s;
+      });
+  EXPECT_EQ(found, 200);
+  std::printf("roll-locked: with %.2f %.2f, without %.2f %.2f\n",
+              c.with(0), c.with(1), c.without(0), c.without(1));
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_GT(c.with(j), 0.8) << "parameter " << j + 1;
+    EXPECT_LT(c.with(j), 1.25) << "parameter " << j + 1;
+    EXPECT_GT(c.without(j), 1.5) << "parameter " << j + 1;
+  }
+}
+
+// A calibration error growing as the angle cubed, of random sign: the fit
+// absorbs most of it into the oscillation's parameters (it decays three
+// times as fast), and the bars must count the bias that leaves.
+TEST(ColoredCovariance, CalibrationTermsAreCountedWhole) {
+  const int n = 800;
+  const Eigen::MatrixXd x = Regressors(n);
+  const Eigen::VectorXd angle = 0.09 * x.col(2);  // rad, about 5 deg
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  int found = 0;
+  const Calibration c = StudyRecords(x, 200, [&](int rec, Eigen::VectorXd* e) {
+    const double sign = rec % 2 ? 1.0 : -1.0;
+    e->resize(n);
+    for (int i = 0; i < n; ++i)
+      (*e)(i) = sign * 4.0 * std::pow(angle(i) / 0.09, 3) + normal(rng);
+    ResidualSeries s = FitLinear(x, *e);
+    s.angle = angle;
+    std::vector<SeriesCorrelation> stats;
+    const Eigen::MatrixXd b = (x.transpose() * x).inverse();
+    ColoredInformation({s}, b, &stats);
+    for (const ResidualLine& line : stats[0].lines)
+      found += line.calibration_power == 3;
+    return s;
+  });
+  EXPECT_GE(found, 190);
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_GT(c.with(j), 0.8) << "parameter " << j + 1;
+    EXPECT_LT(c.with(j), 1.25) << "parameter " << j + 1;
+  }
+  // The bias falls on the decaying oscillation (cos^3 is mostly cos); its
+  // autocorrelation alone misses it.
+  EXPECT_GT(c.without(1), 1.5);
+  std::printf("calibration: with %.2f %.2f, without %.2f %.2f\n",
+              c.with(0), c.with(1), c.without(0), c.without(1));
 }
 
 }  // namespace

@@ -56,11 +56,16 @@ struct ParameterEstimate {
 // A spectral line of a channel's error that the standard errors count
 // whole (colored covariance): its frequency, the error's amplitude as
 // estimated, and the share of it the fit left in the residual (0..1; the
-// rest it absorbed into the estimates).
+// rest it absorbed into the estimates). A line locked to roll (phase
+// h phi) gives its harmonic h and its mean frequency; a calibration term
+// (the error as the channel's angle to the power p) gives p, no frequency,
+// and as amplitude the error at the largest angle.
 struct ErrorLine {
   double frequency_hz = 0.0;
   double amplitude_deg = 0.0;
   double kept_share = 1.0;
+  int roll_harmonic = 0;      // h, or 0
+  int calibration_power = 0;  // p, or 0
 };
 
 // One channel's residuals at the solution.
