@@ -187,7 +187,8 @@ void BM_ColoredCovariance(benchmark::State& state) {
     // and yaw, an angle of about 5 deg (the calibration terms').
     series[ch].roll = 2.0 * M_PI * 1.78 * series[ch].times;
     if (ch > 0) {
-      series[ch].angle = 0.09 * (2.0 * M_PI * 0.3 * series[ch].times).array().sin();
+      series[ch].angle =
+          0.09 * (2.0 * M_PI * 0.3 * series[ch].times).array().sin();
     }
     for (int i = 0; i < n; ++i) {
       // Noise-like residuals: the truth's are zero.

@@ -8,25 +8,20 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <complex>
-#include <utility>
 
+#include "line_statistics.h"
+#include "reading_errors.h"
 #include "spectral_lines.h"
 
 namespace fit3dof {
 namespace {
 
 constexpr int kReportedLags = 10;
-constexpr int kQuietLags = 10;
 constexpr int kLjungBoxLags = 20;
 // 1% upper quantile of the standard normal: the Ljung-Box limit.
 constexpr double kZ99 = 2.3263478740408408;
-
-// Biased autocovariance c(k) = (1/N) sum_i r_i r_{i+k}.
-double Autocovariance(const Eigen::VectorXd& r, int k) {
-  const int n = static_cast<int>(r.size());
-  return r.head(n - k).dot(r.tail(n - k)) / n;
-}
+// The grid that refines each line's frequency within one bin either side.
+constexpr int kRefineSteps = 20;
 
 // Chi-square quantile by Wilson and Hilferty's cube-root approximation
 // (within 1% of the exact value for 20 degrees of freedom).
@@ -34,67 +29,6 @@ double ChiSquareQuantile(int dof, double z) {
   const double a = 2.0 / (9.0 * dof);
   return dof * std::pow(1.0 - a + z * std::sqrt(a), 3);
 }
-
-// The lag window (colored_covariance.h): the last lag whose
-// autocorrelation lies outside Bartlett's 3-sigma band, looked for until
-// kQuietLags lags in a row lie inside it (or N/2).
-int LagWindow(const Eigen::VectorXd& r, double c0) {
-  const int n = static_cast<int>(r.size());
-  if (!(c0 > 0.0)) return 0;
-  int last = 0;
-  double sum_rho2 = 0.0;
-  for (int k = 1; k <= n / 2 && k - last <= kQuietLags; ++k) {
-    const double rho = Autocovariance(r, k) / c0;
-    const double band = 3.0 * std::sqrt((1.0 + 2.0 * sum_rho2) / n);
-    if (std::abs(rho) > band) last = k;
-    sum_rho2 += rho * rho;
-  }
-  return last;
-}
-
-// Weight of lag k for window L: 1 up to L, falling linearly to 0 at 2L.
-double LagWeight(int k, int window) {
-  if (k <= window) return 1.0;
-  return std::max(0.0, 1.0 - static_cast<double>(k - window) / (window + 1));
-}
-
-// Lines looked for per series, the bins either side whose median power is
-// a line's background, the chance of a false line per series, and the grid
-// that refines each line's frequency within one bin either side.
-constexpr int kMostLines = 6;
-constexpr int kBackgroundBins = 32;
-constexpr double kFalseLineChance = 1e-4;
-constexpr int kRefineSteps = 20;
-// Roll-locked lines whose regressors correlate more than this are one
-// line seen at two aliased orders (RollHarmonics).
-constexpr double kMaxTwinCorrelation = 0.5;
-// Calibration terms tested: the channel's angle to the powers 2..3 (a
-// bent and an S-shaped calibration curve), each counted when its
-// projection exceeds 4.06 standard deviations (P(|Z| > 4.06) = 5e-5: the
-// chance kFalseLineChance per series over the two powers).
-constexpr int kCalibrationPowers[2] = {2, 3};
-constexpr double kCalibrationZ = 4.06;
-
-// The median power of the kBackgroundBins bins either side of bins
-// [lo, hi], two next to the band left out (where a line leaks); 0 when
-// too few bins remain.
-double BackgroundPower(const std::vector<double>& power, int lo, int hi) {
-  const int half = static_cast<int>(power.size()) - 1;
-  std::vector<double> around;
-  for (int j = lo - kBackgroundBins; j <= hi + kBackgroundBins; ++j) {
-    if (j >= 1 && j <= half && (j < lo - 2 || j > hi + 2))
-      around.push_back(power[j]);
-  }
-  if (around.size() < kBackgroundBins) return 0.0;
-  std::nth_element(
-      around.begin(), around.begin() + around.size() / 2, around.end());
-  return around[around.size() / 2];
-}
-
-// How far above its background a bin of noise rises with the given chance:
-// a bin's power is exponentially distributed, its median ln 2 times its
-// mean, so P(power > c median) = exp(-c ln 2).
-double LineFactor(double chance) { return std::log(1.0 / chance) / std::log(2.0); }
 
 // Frequencies (Hz) of the periodogram peaks that stand above their
 // background (BackgroundPower; kFalseLineChance over the half spectrum).
@@ -120,13 +54,6 @@ std::vector<double> LineFrequencies(const std::vector<double>& power,
   return frequencies;
 }
 
-// Cosine and sine of the phases (n x 2).
-Eigen::MatrixXd CosSin(const Eigen::VectorXd& phase) {
-  Eigen::MatrixXd u(phase.size(), 2);
-  u.col(0) = phase.array().cos();
-  u.col(1) = phase.array().sin();
-  return u;
-}
 Eigen::MatrixXd CosSinAt(const Eigen::VectorXd& t, double frequency_hz) {
   return CosSin(2.0 * M_PI * frequency_hz * t);
 }
@@ -140,13 +67,6 @@ Eigen::MatrixXd Kept(const Eigen::MatrixXd& jacobian,
   const Eigen::MatrixXd ju = jacobian.transpose() * u;
   if (jtu != nullptr) *jtu = ju;
   return u - jacobian * (b * ju);
-}
-
-// The part of r that a sinusoid pair explains.
-double Explained(const Eigen::MatrixXd& u, const Eigen::VectorXd& r) {
-  const Eigen::Vector2d utr = u.transpose() * r;
-  const Eigen::Matrix2d utu = u.transpose() * u;
-  return utr.dot(utu.ldlt().solve(utr));
 }
 
 // The frequency near `guess` (within one bin, 1 / span) at which a
@@ -197,306 +117,6 @@ bool TakeOut(const Eigen::MatrixXd& jacobian,
   *r -= kept * alpha;
   f->line.amplitude = alpha.norm();
   return true;
-}
-
-// The spin rate (Hz, signed) over samples [from, to] of the roll angle.
-double SpinHz(const Eigen::VectorXd& t,
-              const Eigen::VectorXd& roll,
-              int from,
-              int to) {
-  return (roll(to) - roll(from)) / (2.0 * M_PI * (t(to) - t(from)));
-}
-
-// The bins [lo, hi] a band of frequencies [f_lo, f_hi] (Hz) shows at in a
-// periodogram of n samples dt apart, aliases folded into 0..n/2.
-std::pair<int, int> FoldedBand(double f_lo, double f_hi, int n, double dt) {
-  const int half = n / 2;
-  const double lo = f_lo * n * dt, hi = f_hi * n * dt;  // in bins
-  const auto fold = [&](double bin) {
-    const int m = static_cast<int>(std::lround(bin)) % n;
-    return m <= half ? m : n - m;
-  };
-  // Each multiple of half the sampling rate folds the band back.
-  const int turn_lo = static_cast<int>(lo / half);
-  const int turn_hi = static_cast<int>(hi / half);
-  const int a = fold(lo), c = fold(hi);
-  if (turn_lo == turn_hi) return {std::min(a, c), std::max(a, c)};
-  if (turn_hi > turn_lo + 1) return {0, half};
-  // One fold: at an odd multiple the band reaches n/2, at an even one 0.
-  if (turn_hi % 2 == 1) return {std::min(a, c), half};
-  return {0, std::max(a, c)};
-}
-
-// The median power outside a band swept by a roll-locked line: its
-// kBackgroundBins neighbours either side (BackgroundPower), or, for a band
-// too wide for that, every bin outside it, or for one that covers nearly
-// all, every bin (the line's own power then raises the bar).
-double BandBackground(const std::vector<double>& power, int lo, int hi) {
-  const double near = BackgroundPower(power, lo, hi);
-  if (near > 0.0) return near;
-  const int half = static_cast<int>(power.size()) - 1;
-  std::vector<double> outside, all(power.begin() + 1, power.end());
-  for (int j = 1; j <= half; ++j) {
-    if (j < lo - 2 || j > hi + 2) outside.push_back(power[j]);
-  }
-  std::vector<double>& bins =
-      outside.size() >= kBackgroundBins ? outside : all;
-  if (bins.empty()) return 0.0;
-  std::nth_element(bins.begin(), bins.begin() + bins.size() / 2, bins.end());
-  return bins[bins.size() / 2];
-}
-
-// |sum_i r_i exp(-i h phi_i)|^2 for h = 1..kMaxRollOrder: the residual's
-// power at each harmonic (order) of roll, on the periodogram's scale.
-std::vector<double> OrderSpectrum(const Eigen::VectorXd& roll,
-                                  const Eigen::VectorXd& r) {
-  std::vector<std::complex<double>> sum(kMaxRollOrder + 1, 0.0);
-  for (int i = 0; i < r.size(); ++i) {
-    const std::complex<double> turn = std::polar(1.0, -roll(i));
-    std::complex<double> z = r(i);
-    for (int h = 1; h <= kMaxRollOrder; ++h) {
-      z *= turn;
-      sum[h] += z;
-    }
-  }
-  std::vector<double> power(kMaxRollOrder + 1, 0.0);
-  for (int h = 1; h <= kMaxRollOrder; ++h) power[h] = std::norm(sum[h]);
-  return power;
-}
-
-// The harmonics of roll that stand out in r (colored_covariance.h), at
-// most kMostLines, strongest first: order h when its power exceeds the
-// background of the band it sweeps by more than noise would with chance
-// kFalseLineChance over the kMaxRollOrder orders tested.
-std::vector<int> RollHarmonics(const Eigen::VectorXd& t,
-                               const Eigen::VectorXd& roll,
-                               const Eigen::VectorXd& r) {
-  const int n = static_cast<int>(r.size());
-  const double dt = (t(n - 1) - t(0)) / (n - 1);
-  const int eighth = std::max(1, n / 8);
-  const double early = std::abs(SpinHz(t, roll, 0, eighth));
-  const double late = std::abs(SpinHz(t, roll, n - 1 - eighth, n - 1));
-  const double factor = LineFactor(kFalseLineChance / kMaxRollOrder);
-  const std::vector<double> power =
-      Periodogram(std::vector<double>(r.data(), r.data() + n));
-  const std::vector<double> orders = OrderSpectrum(roll, r);
-  std::vector<std::pair<double, int>> found;  // (power / background, h)
-  for (int h = 1; h <= kMaxRollOrder; ++h) {
-    const auto [lo, hi] = FoldedBand(
-        h * std::min(early, late), h * std::max(early, late), n, dt);
-    // Within two bins of zero a harmonic of roll is a slow drift the
-    // initial conditions and offsets absorb, not a line.
-    if (lo < 2) continue;
-    const double background = BandBackground(power, lo, hi);
-    if (background > 0.0 && orders[h] > factor * background) {
-      found.push_back({orders[h] / background, h});
-    }
-  }
-  std::sort(found.rbegin(), found.rend());
-  // Sampled a few times per revolution, orders alias onto one another
-  // (order h and h + m look alike when m revolutions fit a whole number of
-  // samples, the spin's drift aside): of near twins only the strongest
-  // is kept; fitting both would trade huge amplitudes between them.
-  std::vector<int> harmonics;
-  std::vector<Eigen::MatrixXd> kept;
-  for (size_t i = 0; i < found.size() && harmonics.size() < kMostLines;
-       ++i) {
-    const Eigen::MatrixXd u = CosSin(found[i].second * roll);
-    bool twin = false;
-    for (const Eigen::MatrixXd& v : kept) {
-      const Eigen::Matrix2d cross = u.transpose() * v / (0.5 * n);
-      twin = twin || Eigen::JacobiSVD<Eigen::Matrix2d>(cross)
-                             .singularValues()(0) > kMaxTwinCorrelation;
-    }
-    if (twin) continue;
-    harmonics.push_back(found[i].second);
-    kept.push_back(u);
-  }
-  return harmonics;
-}
-
-// A reading error that is a function of what the instrument reads, as
-// columns of one series: a roll-locked line (cos h phi, sin h phi), of
-// random phase, or a calibration term (the channel's angle to a power),
-// of unknown sign.
-struct ReadingError {
-  int series = 0;
-  int roll_harmonic = 0;
-  int calibration_power = 0;
-  Eigen::MatrixXd u;
-};
-
-// The roll-locked lines of every series (RollHarmonics).
-std::vector<ReadingError> RollErrors(
-    const std::vector<ResidualSeries>& series,
-    const std::vector<Eigen::VectorXd>& rests) {
-  std::vector<ReadingError> found;
-  for (size_t s = 0; s < series.size(); ++s) {
-    const ResidualSeries& x = series[s];
-    const int n = static_cast<int>(x.residual.size());
-    if (n < 16 || x.roll.size() != n || x.times.size() != n ||
-        !(x.times(n - 1) > x.times(0))) {
-      continue;
-    }
-    for (int h : RollHarmonics(x.times, x.roll, rests[s])) {
-      found.push_back({static_cast<int>(s), h, 0, CosSin(h * x.roll)});
-    }
-  }
-  return found;
-}
-
-// The variance of v^T r for r of the autocovariance of `rest` (lags to
-// twice its window, weighted as LagBracket weights them).
-double ColoredVariance(const Eigen::VectorXd& v, const Eigen::VectorXd& rest) {
-  const int n = static_cast<int>(rest.size());
-  const int window = LagWindow(rest, Autocovariance(rest, 0));
-  const int reach = std::min(n - 1, 2 * window);
-  double var = Autocovariance(rest, 0) * v.squaredNorm();
-  for (int lag = 1; lag <= reach; ++lag) {
-    var += 2.0 * LagWeight(lag, window) * Autocovariance(rest, lag) *
-           v.head(n - lag).dot(v.tail(n - lag));
-  }
-  return var;
-}
-
-// The calibration terms of every series that carries its angle: power p of
-// the angle when the residual's projection on it, as the fit leaves it,
-// exceeds kCalibrationZ of its own standard deviation under the rest's
-// autocorrelation in that series or in another of its segment. Both
-// channels, because the fit couples them: a term left out of one would be
-// fitted into the other's.
-std::vector<ReadingError> CalibrationErrors(
-    const std::vector<ResidualSeries>& series,
-    const Eigen::MatrixXd& b,
-    const std::vector<Eigen::VectorXd>& rests) {
-  std::vector<ReadingError> candidates;
-  std::vector<std::pair<int, int>> stands_out;  // (segment, power)
-  for (size_t s = 0; s < series.size(); ++s) {
-    const ResidualSeries& x = series[s];
-    const int n = static_cast<int>(x.residual.size());
-    if (n < 16 || x.angle.size() != n) continue;
-    // Scaled to order one: the powers of radians are tiny.
-    const double scale = x.angle.cwiseAbs().maxCoeff();
-    if (!(scale > 0.0)) continue;
-    for (int p = kCalibrationPowers[0]; p <= kCalibrationPowers[1]; ++p) {
-      const Eigen::VectorXd u = (x.angle / scale).array().pow(p);
-      const Eigen::VectorXd v =
-          u - x.jacobian * (b * (x.jacobian.transpose() * u));
-      const double var = ColoredVariance(v, rests[s]);
-      const double projection = v.dot(rests[s]);
-      if (var > 0.0 && projection * projection > kCalibrationZ *
-                                                     kCalibrationZ * var) {
-        stands_out.push_back({x.segment, p});
-      }
-      candidates.push_back({static_cast<int>(s), 0, p, u});
-    }
-  }
-  std::vector<ReadingError> found;
-  for (ReadingError& c : candidates) {
-    const std::pair<int, int> key{series[c.series].segment,
-                                  c.calibration_power};
-    if (std::find(stands_out.begin(), stands_out.end(), key) !=
-        stands_out.end()) {
-      found.push_back(std::move(c));
-    }
-  }
-  return found;
-}
-
-// Reading errors of every series, fitted together and taken out of `rests`
-// (one residual per series); returns their share of the bracket and
-// appends each to its series' `lines`. Together, because the fit couples
-// the channels: what it absorbs of an error in theta shows in psi's
-// residual too (the channels are the two halves of one coning motion), and
-// an error fitted to one channel alone would be taken for part of the
-// echo. A line of random phase and amplitude a adds (a^2 / 2) Re(c c^H),
-// c = J^T (cos + i sin); a term of unknown sign and size a, a^2 c c^T.
-Eigen::MatrixXd JointBracket(const std::vector<ResidualSeries>& series,
-                             const Eigen::MatrixXd& b,
-                             std::vector<ReadingError> found,
-                             std::vector<Eigen::VectorXd>* rests,
-                             std::vector<std::vector<ResidualLine>>* lines) {
-  const int k = static_cast<int>(b.rows());
-  // Errors the fit could absorb whole leave nothing to measure them by:
-  // they stay in the residuals' autocorrelation. Dropped one at a time,
-  // the least kept first, as each changes what the others keep.
-  for (;;) {
-    const int m = static_cast<int>(found.size());
-    if (m == 0) return Eigen::MatrixXd::Zero(k, k);
-    std::vector<int> first(m + 1, 0);  // first column of each error
-    for (int l = 0; l < m; ++l) first[l + 1] = first[l] + found[l].u.cols();
-    const int cols = first[m];
-    // G = B J^T U: the fit's response to each column; K_s = U_s - J_s G.
-    Eigen::MatrixXd jtu(k, cols);
-    for (int l = 0; l < m; ++l) {
-      jtu.middleCols(first[l], found[l].u.cols()) =
-          series[found[l].series].jacobian.transpose() * found[l].u;
-    }
-    const Eigen::MatrixXd g = b * jtu;
-    std::vector<Eigen::MatrixXd> kept(series.size());
-    Eigen::MatrixXd ktk = Eigen::MatrixXd::Zero(cols, cols);
-    Eigen::VectorXd ktr = Eigen::VectorXd::Zero(cols);
-    for (size_t s = 0; s < series.size(); ++s) {
-      kept[s] = -series[s].jacobian * g;
-      for (int l = 0; l < m; ++l) {
-        if (found[l].series == static_cast<int>(s))
-          kept[s].middleCols(first[l], found[l].u.cols()) += found[l].u;
-      }
-      ktk += kept[s].transpose() * kept[s];
-      ktr += kept[s].transpose() * (*rests)[s];
-    }
-    // Kept share: the least of K^T K over U^T U, in any direction.
-    std::vector<double> share(m);
-    int worst = 0;
-    for (int l = 0; l < m; ++l) {
-      const int c = found[l].u.cols();
-      const Eigen::MatrixXd utu = found[l].u.transpose() * found[l].u;
-      share[l] = Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(
-                     ktk.block(first[l], first[l], c, c), utu)
-                     .eigenvalues()(0);
-      if (share[l] < share[worst]) worst = l;
-    }
-    if (share[worst] < kMinKeptShare) {
-      found.erase(found.begin() + worst);
-      continue;
-    }
-    const Eigen::LDLT<Eigen::MatrixXd> solve(ktk);
-    const Eigen::VectorXd alpha = solve.solve(ktr);
-    const Eigen::MatrixXd inverse =
-        solve.solve(Eigen::MatrixXd::Identity(cols, cols));
-    for (size_t s = 0; s < series.size(); ++s) {
-      (*rests)[s] -= kept[s] * alpha;
-    }
-    Eigen::MatrixXd bracket = Eigen::MatrixXd::Zero(k, k);
-    for (int l = 0; l < m; ++l) {
-      const ReadingError& f = found[l];
-      const int c = f.u.cols();
-      const Eigen::VectorXd& rest = (*rests)[f.series];
-      const int n = static_cast<int>(rest.size());
-      // The amplitude's share of the noise, var tr(block of (K^T K)^-1),
-      // taken off.
-      const double noise = rest.squaredNorm() / n *
-                           inverse.block(first[l], first[l], c, c).trace();
-      const double a2 = std::max(
-          0.0, alpha.segment(first[l], c).squaredNorm() - noise);
-      const Eigen::MatrixXd cj = jtu.middleCols(first[l], c);
-      bracket += a2 / c * (cj * cj.transpose());
-      ResidualLine line;
-      const ResidualSeries& x = series[f.series];
-      if (f.roll_harmonic > 0) {
-        line.frequency_hz =
-            f.roll_harmonic * std::abs(SpinHz(x.times, x.roll, 0, n - 1));
-      }
-      line.roll_harmonic = f.roll_harmonic;
-      line.calibration_power = f.calibration_power;
-      line.kept_share = share[l];
-      // A calibration term's coefficient multiplies (angle / largest)^p:
-      // it is the error at the largest angle.
-      line.amplitude = std::sqrt(a2);
-      (*lines)[f.series].push_back(line);
-    }
-    return bracket;
-  }
 }
 
 // Takes each significant line of fixed frequency out of `r` and returns
@@ -587,16 +207,10 @@ SeriesCorrelation CorrelationOf(const Eigen::VectorXd& residual) {
 Eigen::MatrixXd ColoredInformation(const std::vector<ResidualSeries>& series,
                                    const Eigen::MatrixXd& b,
                                    std::vector<SeriesCorrelation>* stats) {
-  const int k = series.empty() ? 0 : series[0].jacobian.cols();
   std::vector<Eigen::VectorXd> rests;
   for (const ResidualSeries& s : series) rests.push_back(s.residual);
   std::vector<std::vector<ResidualLine>> lines(series.size());
-  // Reading errors that follow roll first, then calibration terms in what
-  // they leave.
-  Eigen::MatrixXd bracket =
-      JointBracket(series, b, RollErrors(series, rests), &rests, &lines);
-  bracket += JointBracket(
-      series, b, CalibrationErrors(series, b, rests), &rests, &lines);
+  Eigen::MatrixXd bracket = ReadingErrorBracket(series, b, &rests, &lines);
   for (size_t i = 0; i < series.size(); ++i) {
     const ResidualSeries& s = series[i];
     SeriesCorrelation corr = CorrelationOf(s.residual);

@@ -41,15 +41,10 @@
 // could absorb whole; nothing measures it, and it stays in the
 // autocorrelation part.
 //
-// A reading error that follows roll is a function of the roll angle, not of
-// time: as the spin decays its harmonics sweep in frequency, and a
-// sinusoid of one frequency catches only part of them. When the series
-// carries the roll angle, its harmonics h = 1..kMaxRollOrder are tested
-// first as lines of phase h phi(t) (an order spectrum, regressors
-// cos h phi, sin h phi), against the periodogram around the band each
-// sweeps; those that stand out are fitted together over every series
-// (the fit couples the channels), taken out and added back the same way.
-// The search over time frequencies then runs on what they leave.
+// Reading errors, functions of what the instrument reads (a roll-locked
+// line, a calibration curve), are found first and counted whole the same
+// way (reading_errors.h); the search over time frequencies runs on what
+// they leave.
 
 #ifndef FIT3DOF_SRC_COLORED_COVARIANCE_H_
 #define FIT3DOF_SRC_COLORED_COVARIANCE_H_

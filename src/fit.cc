@@ -261,9 +261,11 @@ void FitSegments(const Case& c,
       const double weights[3] = {p.sigma.phi, p.sigma.theta, p.sigma.psi};
       const double weight = weights[ch];
       for (const ResidualLine& line : series.lines) {
-        stats.error_lines.push_back(
-            {line.frequency_hz, line.amplitude * weight, line.kept_share,
-             line.roll_harmonic, line.calibration_power});
+        stats.error_lines.push_back({line.frequency_hz,
+                                     line.amplitude * weight,
+                                     line.kept_share,
+                                     line.roll_harmonic,
+                                     line.calibration_power});
       }
       std::vector<double> residual(p.data.size());
       for (int i = 0; i < p.data.size(); ++i) {

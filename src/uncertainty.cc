@@ -15,8 +15,8 @@
 #include <utility>
 
 #include "assembly.h"
-#include "colored_covariance.h"
 #include "ceres/ceres.h"
+#include "colored_covariance.h"
 #include "fit3dof/angles.h"
 #include "fit3dof/input_error.h"
 #include "format.h"
@@ -266,12 +266,13 @@ std::vector<ResidualSeries> SeriesOf(const FitProblem& problem,
   for (const PreparedSegment& segment : problem.segments) {
     const int n = segment.data.size();
     for (int channel = 0; channel < 3; ++channel) {
-      ResidualSeries s{Eigen::MatrixXd::Zero(n, crs.num_cols),
-                       Eigen::VectorXd(n),
-                       Eigen::Map<const Eigen::VectorXd>(segment.data.t.data(), n),
-                       Eigen::VectorXd(n),
-                       Eigen::VectorXd(channel == 0 ? 0 : n),
-                       static_cast<int>(&segment - problem.segments.data())};
+      ResidualSeries s{
+          Eigen::MatrixXd::Zero(n, crs.num_cols),
+          Eigen::VectorXd(n),
+          Eigen::Map<const Eigen::VectorXd>(segment.data.t.data(), n),
+          Eigen::VectorXd(n),
+          Eigen::VectorXd(channel == 0 ? 0 : n),
+          static_cast<int>(&segment - problem.segments.data())};
       const std::vector<double>* measured[3] = {
           &segment.data.phi, &segment.data.theta, &segment.data.psi};
       const double sigma[3] = {
@@ -283,7 +284,8 @@ std::vector<ResidualSeries> SeriesOf(const FitProblem& problem,
         // steps would hide its own steps' error from its harmonics. Roll
         // for roll-locked lines; pitch and yaw for their calibration.
         const auto fitted = [&](int c) {
-          return ((*measured[c])[i] + info.residuals[row + 3 * i + c] * sigma[c]) /
+          return ((*measured[c])[i] +
+                  info.residuals[row + 3 * i + c] * sigma[c]) /
                  kDegreesPerRadian;
         };
         s.roll(i) = fitted(0);

@@ -206,15 +206,15 @@ Calibration StudyRecords(const Eigen::MatrixXd& x,
     estimates.row(rec) =
         (b * x.transpose() * (x * Eigen::Vector4d(1.0, 2.0, -0.5, 0.3) + e))
             .transpose();
-    var += SandwichCovariance(b, ColoredInformation({s}, b, nullptr))
-               .diagonal() /
-           records;
+    var +=
+        SandwichCovariance(b, ColoredInformation({s}, b, nullptr)).diagonal() /
+        records;
     s.roll.resize(0);
     s.angle.resize(0);
     s.times.resize(0);
-    plain += SandwichCovariance(b, ColoredInformation({s}, b, nullptr))
-                 .diagonal() /
-             records;
+    plain +=
+        SandwichCovariance(b, ColoredInformation({s}, b, nullptr)).diagonal() /
+        records;
   }
   Calibration c;
   const Eigen::RowVector4d centre = estimates.colwise().mean();
@@ -241,24 +241,26 @@ TEST(ColoredCovariance, RollLockedLinesFollowTheSpin) {
     roll(i) = 2.0 * M_PI * (1.2 * t - 0.02 * t * t);
   }
   int found = 0;
-  const Calibration c =
-      StudyRecords(x, 200, [&](int, Eigen::VectorXd* e) {
-        const double p = phase(rng);
-        e->resize(n);
-        for (int i = 0; i < n; ++i)
-          (*e)(i) = 3.0 * std::cos(roll(i) + p) + normal(rng);
-        ResidualSeries s = FitLinear(x, *e);
-        s.roll = roll;
-        std::vector<SeriesCorrelation> stats;
-        const Eigen::MatrixXd b = (x.transpose() * x).inverse();
-        ColoredInformation({s}, b, &stats);
-        for (const ResidualLine& line : stats[0].lines)
-          found += line.roll_harmonic == 1;
-        return s;
-      });
+  const Calibration c = StudyRecords(x, 200, [&](int, Eigen::VectorXd* e) {
+    const double p = phase(rng);
+    e->resize(n);
+    for (int i = 0; i < n; ++i)
+      (*e)(i) = 3.0 * std::cos(roll(i) + p) + normal(rng);
+    ResidualSeries s = FitLinear(x, *e);
+    s.roll = roll;
+    std::vector<SeriesCorrelation> stats;
+    const Eigen::MatrixXd b = (x.transpose() * x).inverse();
+    ColoredInformation({s}, b, &stats);
+    for (const ResidualLine& line : stats[0].lines)
+      found += line.roll_harmonic == 1;
+    return s;
+  });
   EXPECT_EQ(found, 200);
   std::printf("roll-locked: with %.2f %.2f, without %.2f %.2f\n",
-              c.with(0), c.with(1), c.without(0), c.without(1));
+              c.with(0),
+              c.with(1),
+              c.without(0),
+              c.without(1));
   for (int j = 0; j < 2; ++j) {
     EXPECT_GT(c.with(j), 0.8) << "parameter " << j + 1;
     EXPECT_LT(c.with(j), 1.25) << "parameter " << j + 1;
@@ -299,7 +301,10 @@ TEST(ColoredCovariance, CalibrationTermsAreCountedWhole) {
   // autocorrelation alone misses it.
   EXPECT_GT(c.without(1), 1.5);
   std::printf("calibration: with %.2f %.2f, without %.2f %.2f\n",
-              c.with(0), c.with(1), c.without(0), c.without(1));
+              c.with(0),
+              c.with(1),
+              c.without(0),
+              c.without(1));
 }
 
 }  // namespace
