@@ -69,25 +69,34 @@ Eigen::MatrixXd Kept(const Eigen::MatrixXd& jacobian,
   return u - jacobian * (b * ju);
 }
 
-// The frequency near `guess` (within one bin, 1 / span) at which a
-// sinusoid, as the fit leaves it, explains most of r.
+// The frequency near `guess` (within one bin, 1 / span, on a grid of
+// 1 / kRefineSteps of a bin) at which a sinusoid, as the fit leaves it,
+// explains most of r: every kCoarse-th grid point first, then the grid
+// around the best of them.
 double RefineFrequency(const Eigen::MatrixXd& jacobian,
                        const Eigen::MatrixXd& b,
                        const Eigen::VectorXd& r,
                        const Eigen::VectorXd& t,
                        double guess) {
+  constexpr int kCoarse = 4;
   const double bin = 1.0 / (t(t.size() - 1) - t(0));
-  double best = guess, best_power = -1.0;
-  for (int s = -kRefineSteps; s <= kRefineSteps; ++s) {
+  int best = 0;
+  double best_power = -1.0;
+  const auto consider = [&](int s) {
     const double f = guess + bin * s / kRefineSteps;
-    if (!(f > 0.0)) continue;
+    if (!(f > 0.0) || std::abs(s) > kRefineSteps) return;
     const double power = Explained(Kept(jacobian, b, CosSinAt(t, f)), r);
     if (power > best_power) {
       best_power = power;
-      best = f;
+      best = s;
     }
+  };
+  for (int s = -kRefineSteps; s <= kRefineSteps; s += kCoarse) consider(s);
+  const int centre = best;
+  for (int s = centre - kCoarse + 1; s < centre + kCoarse; ++s) {
+    if (s != centre) consider(s);
   }
-  return best;
+  return guess + bin * best / kRefineSteps;
 }
 
 // A line found in a series: what is reported, and J^T u for its bracket.

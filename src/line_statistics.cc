@@ -56,8 +56,10 @@ double LineFactor(double chance) {
 
 Eigen::MatrixXd CosSin(const Eigen::VectorXd& phase) {
   Eigen::MatrixXd u(phase.size(), 2);
-  u.col(0) = phase.array().cos();
-  u.col(1) = phase.array().sin();
+  for (int i = 0; i < phase.size(); ++i) {
+    u(i, 0) = std::cos(phase(i));
+    u(i, 1) = std::sin(phase(i));
+  }
   return u;
 }
 

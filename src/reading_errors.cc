@@ -8,7 +8,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <utility>
 
 #include "line_statistics.h"
@@ -77,17 +76,24 @@ double BandBackground(const std::vector<double>& power, int lo, int hi) {
 // power at each harmonic (order) of roll, on the periodogram's scale.
 std::vector<double> OrderSpectrum(const Eigen::VectorXd& roll,
                                   const Eigen::VectorXd& r) {
-  std::vector<std::complex<double>> sum(kMaxRollOrder + 1, 0.0);
+  // In real arithmetic: std::complex's product checks for infinities
+  // (__muldc3), which here costs most of the time.
+  std::vector<double> re(kMaxRollOrder + 1, 0.0), im(kMaxRollOrder + 1, 0.0);
   for (int i = 0; i < r.size(); ++i) {
-    const std::complex<double> turn = std::polar(1.0, -roll(i));
-    std::complex<double> z = r(i);
+    const double c = std::cos(roll(i)), s = -std::sin(roll(i));
+    double zr = r(i), zi = 0.0;
     for (int h = 1; h <= kMaxRollOrder; ++h) {
-      z *= turn;
-      sum[h] += z;
+      const double next_r = zr * c - zi * s;
+      zi = zr * s + zi * c;
+      zr = next_r;
+      re[h] += zr;
+      im[h] += zi;
     }
   }
   std::vector<double> power(kMaxRollOrder + 1, 0.0);
-  for (int h = 1; h <= kMaxRollOrder; ++h) power[h] = std::norm(sum[h]);
+  for (int h = 1; h <= kMaxRollOrder; ++h) {
+    power[h] = re[h] * re[h] + im[h] * im[h];
+  }
   return power;
 }
 
