@@ -177,13 +177,13 @@ Eigen::MatrixXd LagBracket(const Eigen::MatrixXd& jacobian,
                            const Eigen::VectorXd& residual,
                            const SeriesCorrelation& corr) {
   const int n = static_cast<int>(residual.size());
-  const int reach = std::min(n - 1, 2 * corr.lag_window);
+  const std::vector<double> wc =
+      WindowedAutocovariance(residual, corr.lag_window);
   // Y = T J with T(i, j) = w(|i - j|) c(|i - j|): J^T T J costs N (2L+1) k
   // for Y and N k^2 for the product, not N^2 k^2.
   Eigen::MatrixXd y = corr.variance * jacobian;
-  for (int lag = 1; lag <= reach; ++lag) {
-    const double t =
-        LagWeight(lag, corr.lag_window) * Autocovariance(residual, lag);
+  for (size_t lag = 1; lag < wc.size(); ++lag) {
+    const double t = wc[lag];
     if (t == 0.0) continue;
     y.topRows(n - lag) += t * jacobian.bottomRows(n - lag);
     y.bottomRows(n - lag) += t * jacobian.topRows(n - lag);

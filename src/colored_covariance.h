@@ -71,10 +71,10 @@ struct ResidualSeries {
 // A spectral line of a series' residual and what the fit absorbed of it.
 struct ResidualLine {
   double frequency_hz = 0.0;
-  double kept_share = 1.0;          // what the fit leaves of it, 0..1
-  double amplitude = 0.0;           // the error's, estimated
-  int roll_harmonic = 0;            // h for a line of phase h phi, else 0
-  int calibration_power = 0;        // p for a calibration term, else 0
+  double kept_share = 1.0;    // what the fit leaves of it, 0..1
+  double amplitude = 0.0;     // the error's, estimated
+  int roll_harmonic = 0;      // h for a line of phase h phi, else 0
+  int calibration_power = 0;  // p for a calibration term, else 0
 };
 
 // Harmonics (orders) of the roll angle tested as roll-locked lines: a
@@ -88,12 +88,12 @@ inline constexpr double kMinKeptShare = 0.05;
 
 // What the estimate found in one series.
 struct SeriesCorrelation {
-  double variance = 0.0;           // rho(0), mean square residual
-  int lag_window = 0;              // L (lags to 2L weighted)
-  std::vector<double> normalized;  // rho(k) / rho(0), k = 1..10
-  double ljung_box = 0.0;          // Q over lags 1..20
-  double ljung_box_limit = 0.0;    // its 1% critical value
-  bool white = true;               // Q below the limit
+  double variance = 0.0;            // rho(0), mean square residual
+  int lag_window = 0;               // L (lags to 2L weighted)
+  std::vector<double> normalized;   // rho(k) / rho(0), k = 1..10
+  double ljung_box = 0.0;           // Q over lags 1..20
+  double ljung_box_limit = 0.0;     // its 1% critical value
+  bool white = true;                // Q below the limit
   std::vector<ResidualLine> lines;  // taken out and added back whole
 };
 

@@ -10,7 +10,15 @@
 
 namespace fit3dof {
 namespace {
+
 constexpr int kQuietLags = 10;
+
+// Weight of lag k for window L: 1 up to L, falling linearly to 0 at 2L.
+double LagWeight(int k, int window) {
+  if (k <= window) return 1.0;
+  return std::max(0.0, 1.0 - static_cast<double>(k - window) / (window + 1));
+}
+
 }  // namespace
 
 double Autocovariance(const Eigen::VectorXd& r, int k) {
@@ -32,9 +40,16 @@ int LagWindow(const Eigen::VectorXd& r, double c0) {
   return last;
 }
 
-double LagWeight(int k, int window) {
-  if (k <= window) return 1.0;
-  return std::max(0.0, 1.0 - static_cast<double>(k - window) / (window + 1));
+std::vector<double> WindowedAutocovariance(const Eigen::VectorXd& r,
+                                           int window) {
+  const int n = static_cast<int>(r.size());
+  const int reach = std::min(n - 1, 2 * window);
+  std::vector<double> wc(std::max(reach, 0) + 1);
+  wc[0] = Autocovariance(r, 0);
+  for (int lag = 1; lag <= reach; ++lag) {
+    wc[lag] = LagWeight(lag, window) * Autocovariance(r, lag);
+  }
+  return wc;
 }
 
 double BackgroundPower(const std::vector<double>& power, int lo, int hi) {

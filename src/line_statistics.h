@@ -26,8 +26,11 @@ double Autocovariance(const Eigen::VectorXd& r, int k);
 // ten lags in a row lie inside it (or N/2); c0 = c(0).
 int LagWindow(const Eigen::VectorXd& r, double c0);
 
-// Weight of lag k for window L: 1 up to L, falling linearly to 0 at 2L.
-double LagWeight(int k, int window);
+// w(k) c(k) for k = 0..min(N - 1, 2L): the autocovariance of r as the
+// colored covariance counts it for lag window L, the weight w 1 up to L
+// and falling linearly to 0 at 2L.
+std::vector<double> WindowedAutocovariance(const Eigen::VectorXd& r,
+                                           int window);
 
 // The median power of the kBackgroundBins bins either side of bins
 // [lo, hi], two next to the band left out (where a line leaks); 0 when

@@ -97,56 +97,6 @@ std::vector<double> OrderSpectrum(const Eigen::VectorXd& roll,
   return power;
 }
 
-// The harmonics of roll that stand out in r (colored_covariance.h), at
-// most kMostLines, strongest first: order h when its power exceeds the
-// background of the band it sweeps by more than noise would with chance
-// kFalseLineChance over the kMaxRollOrder orders tested.
-std::vector<int> RollHarmonics(const Eigen::VectorXd& t,
-                               const Eigen::VectorXd& roll,
-                               const Eigen::VectorXd& r) {
-  const int n = static_cast<int>(r.size());
-  const double dt = (t(n - 1) - t(0)) / (n - 1);
-  const int eighth = std::max(1, n / 8);
-  const double early = std::abs(SpinHz(t, roll, 0, eighth));
-  const double late = std::abs(SpinHz(t, roll, n - 1 - eighth, n - 1));
-  const double factor = LineFactor(kFalseLineChance / kMaxRollOrder);
-  const std::vector<double> power =
-      Periodogram(std::vector<double>(r.data(), r.data() + n));
-  const std::vector<double> orders = OrderSpectrum(roll, r);
-  std::vector<std::pair<double, int>> found;  // (power / background, h)
-  for (int h = 1; h <= kMaxRollOrder; ++h) {
-    const auto [lo, hi] =
-        FoldedBand(h * std::min(early, late), h * std::max(early, late), n, dt);
-    // Within two bins of zero a harmonic of roll is a slow drift the
-    // initial conditions and offsets absorb, not a line.
-    if (lo < 2) continue;
-    const double background = BandBackground(power, lo, hi);
-    if (background > 0.0 && orders[h] > factor * background) {
-      found.push_back({orders[h] / background, h});
-    }
-  }
-  std::sort(found.rbegin(), found.rend());
-  // Sampled a few times per revolution, orders alias onto one another
-  // (order h and h + m look alike when m revolutions fit a whole number of
-  // samples, the spin's drift aside): of near twins only the strongest
-  // is kept; fitting both would trade huge amplitudes between them.
-  std::vector<int> harmonics;
-  std::vector<Eigen::MatrixXd> kept;
-  for (size_t i = 0; i < found.size() && harmonics.size() < kMostLines; ++i) {
-    const Eigen::MatrixXd u = CosSin(found[i].second * roll);
-    bool twin = false;
-    for (const Eigen::MatrixXd& v : kept) {
-      const Eigen::Matrix2d cross = u.transpose() * v / (0.5 * n);
-      twin = twin || Eigen::JacobiSVD<Eigen::Matrix2d>(cross).singularValues()(
-                         0) > kMaxTwinCorrelation;
-    }
-    if (twin) continue;
-    harmonics.push_back(found[i].second);
-    kept.push_back(u);
-  }
-  return harmonics;
-}
-
 // A reading error that is a function of what the instrument reads, as
 // columns of one series: a roll-locked line (cos h phi, sin h phi), of
 // random phase, or a calibration term (the channel's angle to a power),
@@ -157,6 +107,56 @@ struct ReadingError {
   int calibration_power = 0;
   Eigen::MatrixXd u;
 };
+
+// Appends the harmonics of roll that stand out in r, the rest of series
+// s, to `found` (at most kMostLines, strongest first): order h when its
+// power exceeds the background of the band it sweeps by more than noise
+// would with chance kFalseLineChance over the kMaxRollOrder orders tested.
+void RollHarmonics(int s,
+                   const Eigen::VectorXd& t,
+                   const Eigen::VectorXd& roll,
+                   const Eigen::VectorXd& r,
+                   std::vector<ReadingError>* found) {
+  const int n = static_cast<int>(r.size());
+  const double dt = (t(n - 1) - t(0)) / (n - 1);
+  const int eighth = std::max(1, n / 8);
+  const double early = std::abs(SpinHz(t, roll, 0, eighth));
+  const double late = std::abs(SpinHz(t, roll, n - 1 - eighth, n - 1));
+  const double factor = LineFactor(kFalseLineChance / kMaxRollOrder);
+  const std::vector<double> power =
+      Periodogram(std::vector<double>(r.data(), r.data() + n));
+  const std::vector<double> orders = OrderSpectrum(roll, r);
+  std::vector<std::pair<double, int>> strong;  // (power / background, h)
+  for (int h = 1; h <= kMaxRollOrder; ++h) {
+    const auto [lo, hi] =
+        FoldedBand(h * std::min(early, late), h * std::max(early, late), n, dt);
+    // Within two bins of zero a harmonic of roll is a slow drift the
+    // initial conditions and offsets absorb, not a line.
+    if (lo < 2) continue;
+    const double background = BandBackground(power, lo, hi);
+    if (background > 0.0 && orders[h] > factor * background) {
+      strong.push_back({orders[h] / background, h});
+    }
+  }
+  std::sort(strong.rbegin(), strong.rend());
+  // Sampled a few times per revolution, orders alias onto one another
+  // (order h and h + m look alike when m revolutions fit a whole number of
+  // samples, the spin's drift aside): of near twins only the strongest
+  // is kept; fitting both would trade huge amplitudes between them.
+  const size_t first = found->size();
+  for (size_t i = 0; i < strong.size() && found->size() - first < kMostLines;
+       ++i) {
+    const int h = strong[i].second;
+    Eigen::MatrixXd u = CosSin(h * roll);
+    bool twin = false;
+    for (size_t j = first; j < found->size(); ++j) {
+      const Eigen::Matrix2d cross = u.transpose() * (*found)[j].u / (0.5 * n);
+      twin = twin || Eigen::JacobiSVD<Eigen::Matrix2d>(cross).singularValues()(
+                         0) > kMaxTwinCorrelation;
+    }
+    if (!twin) found->push_back({s, h, 0, std::move(u)});
+  }
+}
 
 // The roll-locked lines of every series (RollHarmonics).
 std::vector<ReadingError> RollErrors(
@@ -170,23 +170,19 @@ std::vector<ReadingError> RollErrors(
         !(x.times(n - 1) > x.times(0))) {
       continue;
     }
-    for (int h : RollHarmonics(x.times, x.roll, rests[s])) {
-      found.push_back({static_cast<int>(s), h, 0, CosSin(h * x.roll)});
-    }
+    RollHarmonics(static_cast<int>(s), x.times, x.roll, rests[s], &found);
   }
   return found;
 }
 
-// The variance of v^T r for r of the autocovariance of `rest` (lags to
-// twice its window, weighted as LagBracket weights them).
-double ColoredVariance(const Eigen::VectorXd& v, const Eigen::VectorXd& rest) {
-  const int n = static_cast<int>(rest.size());
-  const int window = LagWindow(rest, Autocovariance(rest, 0));
-  const int reach = std::min(n - 1, 2 * window);
-  double var = Autocovariance(rest, 0) * v.squaredNorm();
-  for (int lag = 1; lag <= reach; ++lag) {
-    var += 2.0 * LagWeight(lag, window) * Autocovariance(rest, lag) *
-           v.head(n - lag).dot(v.tail(n - lag));
+// The variance of v^T r for r of the windowed autocovariance wc
+// (WindowedAutocovariance).
+double ColoredVariance(const Eigen::VectorXd& v,
+                       const std::vector<double>& wc) {
+  const int n = static_cast<int>(v.size());
+  double var = wc[0] * v.squaredNorm();
+  for (size_t lag = 1; lag < wc.size(); ++lag) {
+    var += 2.0 * wc[lag] * v.head(n - lag).dot(v.tail(n - lag));
   }
   return var;
 }
@@ -210,11 +206,13 @@ std::vector<ReadingError> CalibrationErrors(
     // Scaled to order one: the powers of radians are tiny.
     const double scale = x.angle.cwiseAbs().maxCoeff();
     if (!(scale > 0.0)) continue;
+    const std::vector<double> wc = WindowedAutocovariance(
+        rests[s], LagWindow(rests[s], Autocovariance(rests[s], 0)));
     for (int p = kCalibrationPowers[0]; p <= kCalibrationPowers[1]; ++p) {
       const Eigen::VectorXd u = (x.angle / scale).array().pow(p);
       const Eigen::VectorXd v =
           u - x.jacobian * (b * (x.jacobian.transpose() * u));
-      const double var = ColoredVariance(v, rests[s]);
+      const double var = ColoredVariance(v, wc);
       const double projection = v.dot(rests[s]);
       if (var > 0.0 &&
           projection * projection > kCalibrationZ * kCalibrationZ * var) {

@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -81,16 +82,14 @@ SolutionInformation InformationAtSolution(const FitProblem& p,
   const int k = p.free.size();
   SolutionInformation info;
   info.scale.assign(k, 1.0);
-  info.assembly =
-      Assemble(p.segments, p.free, p.model, values, info.scale);
+  info.assembly = Assemble(p.segments, p.free, p.model, values, info.scale);
   if (!Information(info.assembly, &info.jtj, &info.ressum)) {
     throw InputError(source +
                      ": the motion cannot be integrated at the solution");
   }
   info.null_columns = NullColumns(info.jtj);
   info.scale = ColumnScales(info.jtj, info.scale);
-  info.assembly =
-      Assemble(p.segments, p.free, p.model, values, info.scale);
+  info.assembly = Assemble(p.segments, p.free, p.model, values, info.scale);
   // The information matrix in global coordinates first: once a block holds
   // some of its coordinates (a SubsetManifold), Evaluate returns only the
   // tangent-space columns.
@@ -256,8 +255,34 @@ void NameGroups(const std::vector<std::string>& names, Uncertainty* u) {
   }
 }
 
+// A segment's fitted angles (rad; phi, theta, psi), its residual rows
+// starting at `row`: the measured ones plus the residuals. Fitted, not
+// measured: a roll angle sensed in steps would hide its own steps' error
+// from its harmonics.
+std::array<Eigen::VectorXd, 3> FittedAngles(const PreparedSegment& segment,
+                                            const SolutionInformation& info,
+                                            int row) {
+  const int n = segment.data.size();
+  const std::vector<double>* measured[3] = {
+      &segment.data.phi, &segment.data.theta, &segment.data.psi};
+  const double sigma[3] = {
+      segment.sigma.phi, segment.sigma.theta, segment.sigma.psi};
+  std::array<Eigen::VectorXd, 3> fitted;
+  for (int c = 0; c < 3; ++c) {
+    fitted[c].resize(n);
+    for (int i = 0; i < n; ++i) {
+      fitted[c](i) =
+          ((*measured[c])[i] + info.residuals[row + 3 * i + c] * sigma[c]) /
+          kDegreesPerRadian;
+    }
+  }
+  return fitted;
+}
+
 // Each segment's channels as residual series: the Jacobian rows and the
-// weighted residuals of phi, theta, psi in time order.
+// weighted residuals of phi, theta, psi in time order, with the fitted
+// roll (for roll-locked lines) and, in pitch and yaw, the channel's own
+// angle (for calibration terms).
 std::vector<ResidualSeries> SeriesOf(const FitProblem& problem,
                                      const SolutionInformation& info) {
   const ceres::CRSMatrix& crs = info.jacobian;
@@ -265,31 +290,19 @@ std::vector<ResidualSeries> SeriesOf(const FitProblem& problem,
   int row = 0;
   for (const PreparedSegment& segment : problem.segments) {
     const int n = segment.data.size();
+    const std::array<Eigen::VectorXd, 3> fitted =
+        FittedAngles(segment, info, row);
     for (int channel = 0; channel < 3; ++channel) {
       ResidualSeries s{
           Eigen::MatrixXd::Zero(n, crs.num_cols),
           Eigen::VectorXd(n),
           Eigen::Map<const Eigen::VectorXd>(segment.data.t.data(), n),
-          Eigen::VectorXd(n),
-          Eigen::VectorXd(channel == 0 ? 0 : n),
+          fitted[0],
+          channel == 0 ? Eigen::VectorXd() : fitted[channel],
           static_cast<int>(&segment - problem.segments.data())};
-      const std::vector<double>* measured[3] = {
-          &segment.data.phi, &segment.data.theta, &segment.data.psi};
-      const double sigma[3] = {
-          segment.sigma.phi, segment.sigma.theta, segment.sigma.psi};
       for (int i = 0; i < n; ++i) {
         const int r = row + 3 * i + channel;
         s.residual(i) = info.residuals[r];
-        // The fitted angles, not the measured ones: a roll angle sensed in
-        // steps would hide its own steps' error from its harmonics. Roll
-        // for roll-locked lines; pitch and yaw for their calibration.
-        const auto fitted = [&](int c) {
-          return ((*measured[c])[i] +
-                  info.residuals[row + 3 * i + c] * sigma[c]) /
-                 kDegreesPerRadian;
-        };
-        s.roll(i) = fitted(0);
-        if (channel != 0) s.angle(i) = fitted(channel);
         for (int a = crs.rows[r]; a < crs.rows[r + 1]; ++a) {
           s.jacobian(i, crs.cols[a]) = crs.values[a];
         }
@@ -335,8 +348,7 @@ Uncertainty EstimateUncertainty(const FitProblem& problem,
                                 const std::string& source) {
   const int k = problem.free.size();
   const std::vector<std::string>& names = problem.names;
-  SolutionInformation info =
-      InformationAtSolution(problem, values, source);
+  SolutionInformation info = InformationAtSolution(problem, values, source);
   Uncertainty u;
   u.sum_of_residuals = std::sqrt(info.ressum);
   int undetermined = 0;

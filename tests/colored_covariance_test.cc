@@ -8,6 +8,7 @@
 #include "colored_covariance.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -189,14 +190,18 @@ TEST(ColoredCovariance, LinesTheFitAbsorbsAreAddedBackWhole) {
 
 // The scatter of estimates of parameters 1 and 2 over records, against the
 // mean variance reported with the reading-error terms and with the
-// autocorrelation alone (no roll, angle or times).
+// autocorrelation alone (no roll, angle or times), and in how many records
+// a line `is_sought` was found.
 struct Calibration {
   Eigen::Vector2d with, without;
+  int found = 0;
 };
-template <typename MakeRecord>
+template <typename MakeRecord, typename IsSought>
 Calibration StudyRecords(const Eigen::MatrixXd& x,
                          int records,
-                         const MakeRecord& make) {
+                         const MakeRecord& make,
+                         const IsSought& is_sought) {
+  Calibration c;
   const Eigen::MatrixXd b = (x.transpose() * x).inverse();
   Eigen::MatrixXd estimates(records, 4);
   Eigen::Vector4d var = Eigen::Vector4d::Zero(), plain = var;
@@ -206,9 +211,12 @@ Calibration StudyRecords(const Eigen::MatrixXd& x,
     estimates.row(rec) =
         (b * x.transpose() * (x * Eigen::Vector4d(1.0, 2.0, -0.5, 0.3) + e))
             .transpose();
+    std::vector<SeriesCorrelation> stats;
     var +=
-        SandwichCovariance(b, ColoredInformation({s}, b, nullptr)).diagonal() /
+        SandwichCovariance(b, ColoredInformation({s}, b, &stats)).diagonal() /
         records;
+    c.found +=
+        std::any_of(stats[0].lines.begin(), stats[0].lines.end(), is_sought);
     s.roll.resize(0);
     s.angle.resize(0);
     s.times.resize(0);
@@ -216,7 +224,6 @@ Calibration StudyRecords(const Eigen::MatrixXd& x,
         SandwichCovariance(b, ColoredInformation({s}, b, nullptr)).diagonal() /
         records;
   }
-  Calibration c;
   const Eigen::RowVector4d centre = estimates.colwise().mean();
   for (int j = 1; j < 3; ++j) {
     const double scatter2 =
@@ -240,22 +247,20 @@ TEST(ColoredCovariance, RollLockedLinesFollowTheSpin) {
     const double t = 0.01 * i;
     roll(i) = 2.0 * M_PI * (1.2 * t - 0.02 * t * t);
   }
-  int found = 0;
-  const Calibration c = StudyRecords(x, 200, [&](int, Eigen::VectorXd* e) {
-    const double p = phase(rng);
-    e->resize(n);
-    for (int i = 0; i < n; ++i)
-      (*e)(i) = 3.0 * std::cos(roll(i) + p) + normal(rng);
-    ResidualSeries s = FitLinear(x, *e);
-    s.roll = roll;
-    std::vector<SeriesCorrelation> stats;
-    const Eigen::MatrixXd b = (x.transpose() * x).inverse();
-    ColoredInformation({s}, b, &stats);
-    for (const ResidualLine& line : stats[0].lines)
-      found += line.roll_harmonic == 1;
-    return s;
-  });
-  EXPECT_EQ(found, 200);
+  const Calibration c = StudyRecords(
+      x,
+      200,
+      [&](int, Eigen::VectorXd* e) {
+        const double p = phase(rng);
+        e->resize(n);
+        for (int i = 0; i < n; ++i)
+          (*e)(i) = 3.0 * std::cos(roll(i) + p) + normal(rng);
+        ResidualSeries s = FitLinear(x, *e);
+        s.roll = roll;
+        return s;
+      },
+      [](const ResidualLine& line) { return line.roll_harmonic == 1; });
+  EXPECT_EQ(c.found, 200);
   std::printf("roll-locked: with %.2f %.2f, without %.2f %.2f\n",
               c.with(0),
               c.with(1),
@@ -277,22 +282,20 @@ TEST(ColoredCovariance, CalibrationTermsAreCountedWhole) {
   const Eigen::VectorXd angle = 0.09 * x.col(2);  // rad, about 5 deg
   std::mt19937_64 rng(13);
   std::normal_distribution<double> normal(0.0, 1.0);
-  int found = 0;
-  const Calibration c = StudyRecords(x, 200, [&](int rec, Eigen::VectorXd* e) {
-    const double sign = rec % 2 ? 1.0 : -1.0;
-    e->resize(n);
-    for (int i = 0; i < n; ++i)
-      (*e)(i) = sign * 4.0 * std::pow(angle(i) / 0.09, 3) + normal(rng);
-    ResidualSeries s = FitLinear(x, *e);
-    s.angle = angle;
-    std::vector<SeriesCorrelation> stats;
-    const Eigen::MatrixXd b = (x.transpose() * x).inverse();
-    ColoredInformation({s}, b, &stats);
-    for (const ResidualLine& line : stats[0].lines)
-      found += line.calibration_power == 3;
-    return s;
-  });
-  EXPECT_GE(found, 190);
+  const Calibration c = StudyRecords(
+      x,
+      200,
+      [&](int rec, Eigen::VectorXd* e) {
+        const double sign = rec % 2 ? 1.0 : -1.0;
+        e->resize(n);
+        for (int i = 0; i < n; ++i)
+          (*e)(i) = sign * 4.0 * std::pow(angle(i) / 0.09, 3) + normal(rng);
+        ResidualSeries s = FitLinear(x, *e);
+        s.angle = angle;
+        return s;
+      },
+      [](const ResidualLine& line) { return line.calibration_power == 3; });
+  EXPECT_GE(c.found, 190);
   for (int j = 0; j < 2; ++j) {
     EXPECT_GT(c.with(j), 0.8) << "parameter " << j + 1;
     EXPECT_LT(c.with(j), 1.25) << "parameter " << j + 1;

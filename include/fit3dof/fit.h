@@ -70,7 +70,7 @@ struct ErrorLine {
 
 // One channel's residuals at the solution.
 struct ResidualStatistics {
-  double noise_sigma_deg = 0.0;  // the channel's noise level, estimated
+  double noise_sigma_deg = 0.0;         // the channel's noise level, estimated
   std::vector<double> autocorrelation;  // lags 1..10
   int lag_window = 0;  // lags the standard errors take into account
   bool white = true;   // Ljung-Box test over 20 lags at 1%
@@ -86,7 +86,7 @@ struct SegmentFit {
   ChannelValues sigma_deg;  // the residual weights used (sigma, or the
                             // estimated noise levels with sigma: auto)
   std::array<ResidualStatistics, 3> channels;  // phi, theta, psi
-  std::array<double, 6> initial;  // the fitted initial conditions
+  std::array<double, 6> initial;               // the fitted initial conditions
   bool initial_from_data = false;
 };
 
