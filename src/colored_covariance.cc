@@ -69,10 +69,54 @@ Eigen::MatrixXd Kept(const Eigen::MatrixXd& jacobian,
   return u - jacobian * (b * ju);
 }
 
+// Explained(Kept(jacobian, b, u), r) without forming the n x 2 kept
+// pair: with C = J^T u, K^T r = u^T r - C^T (B J^T r) and K^T K =
+// u^T u - 2 C^T B C + C^T (B J^T J B) C. RefineFrequency evaluates it
+// for a score of frequencies of one series.
+class KeptExplained {
+ public:
+  KeptExplained(const Eigen::MatrixXd& jacobian,
+                const Eigen::MatrixXd& b,
+                const Eigen::VectorXd& r)
+      : jacobian_(jacobian),
+        b_(b),
+        r_(r),
+        bjtr_(b * (jacobian.transpose() * r)),
+        bgb_(b * (jacobian.transpose() * jacobian) * b) {}
+
+  double operator()(const Eigen::MatrixXd& u) const {
+    // Two dot products per column of J: a GEMM's packing costs more here.
+    const Eigen::MatrixXd c = jacobian_.transpose().lazyProduct(u);
+    const Eigen::Vector2d ktr = u.transpose() * r_ - c.transpose() * bjtr_;
+    const Eigen::Matrix2d ktk = u.transpose() * u -
+                                2.0 * c.transpose() * b_ * c +
+                                c.transpose() * bgb_ * c;
+    return ktr.dot(ktk.ldlt().solve(ktr));
+  }
+
+ private:
+  const Eigen::MatrixXd& jacobian_;
+  const Eigen::MatrixXd& b_;
+  const Eigen::VectorXd& r_;
+  const Eigen::VectorXd bjtr_;
+  const Eigen::MatrixXd bgb_;
+};
+
+// Rotates each row of the pair u (cos, sin of a phase) by the phase of
+// the same row of d: the pair at the sum of the phases, without trig.
+void Rotate(const Eigen::MatrixXd& d, Eigen::MatrixXd* u) {
+  for (int i = 0; i < u->rows(); ++i) {
+    const double c = (*u)(i, 0), s = (*u)(i, 1);
+    (*u)(i, 0) = c * d(i, 0) - s * d(i, 1);
+    (*u)(i, 1) = s * d(i, 0) + c * d(i, 1);
+  }
+}
+
 // The frequency near `guess` (within one bin, 1 / span, on a grid of
 // 1 / kRefineSteps of a bin) at which a sinusoid, as the fit leaves it,
 // explains most of r: every kCoarse-th grid point first, then the grid
-// around the best of them.
+// around the best of them. The sinusoids of a pass are one rotation
+// apart, so each pass costs two evaluations of the trig functions.
 double RefineFrequency(const Eigen::MatrixXd& jacobian,
                        const Eigen::MatrixXd& b,
                        const Eigen::VectorXd& r,
@@ -80,23 +124,29 @@ double RefineFrequency(const Eigen::MatrixXd& jacobian,
                        double guess) {
   constexpr int kCoarse = 4;
   const double bin = 1.0 / (t(t.size() - 1) - t(0));
+  const auto frequency = [&](int s) { return guess + bin * s / kRefineSteps; };
+  const KeptExplained explained(jacobian, b, r);
   int best = 0;
   double best_power = -1.0;
-  const auto consider = [&](int s) {
-    const double f = guess + bin * s / kRefineSteps;
-    if (!(f > 0.0) || std::abs(s) > kRefineSteps) return;
-    const double power = Explained(Kept(jacobian, b, CosSinAt(t, f)), r);
-    if (power > best_power) {
-      best_power = power;
-      best = s;
+  // Grid points from..to (within +-kRefineSteps), every step-th.
+  const auto pass = [&](int from, int to, int step) {
+    from = std::max(from, -kRefineSteps);
+    to = std::min(to, kRefineSteps);
+    const Eigen::MatrixXd turn = CosSinAt(t, frequency(step) - guess);
+    Eigen::MatrixXd u = CosSinAt(t, frequency(from));
+    for (int s = from; s <= to; s += step) {
+      if (s > from) Rotate(turn, &u);
+      if (!(frequency(s) > 0.0)) continue;
+      const double power = explained(u);
+      if (power > best_power) {
+        best_power = power;
+        best = s;
+      }
     }
   };
-  for (int s = -kRefineSteps; s <= kRefineSteps; s += kCoarse) consider(s);
-  const int centre = best;
-  for (int s = centre - kCoarse + 1; s < centre + kCoarse; ++s) {
-    if (s != centre) consider(s);
-  }
-  return guess + bin * best / kRefineSteps;
+  pass(-kRefineSteps, kRefineSteps, kCoarse);
+  pass(best - kCoarse + 1, best + kCoarse - 1, 1);
+  return frequency(best);
 }
 
 // A line found in a series: what is reported, and J^T u for its bracket.

@@ -72,8 +72,8 @@ double LineFactor(double chance) {
 Eigen::MatrixXd CosSin(const Eigen::VectorXd& phase) {
   Eigen::MatrixXd u(phase.size(), 2);
   for (int i = 0; i < phase.size(); ++i) {
-    u(i, 0) = std::cos(phase(i));
-    u(i, 1) = std::sin(phase(i));
+    // glibc's sincos: one argument reduction for both.
+    ::sincos(phase(i), &u(i, 1), &u(i, 0));
   }
   return u;
 }

@@ -76,18 +76,33 @@ double BandBackground(const std::vector<double>& power, int lo, int hi) {
 // power at each harmonic (order) of roll, on the periodogram's scale.
 std::vector<double> OrderSpectrum(const Eigen::VectorXd& roll,
                                   const Eigen::VectorXd& r) {
-  // In real arithmetic: std::complex's product checks for infinities
-  // (__muldc3), which here costs most of the time.
+  // In real arithmetic (std::complex's product checks for infinities,
+  // __muldc3), and kChains samples at a time: each sample's powers of
+  // exp(-i phi) are a chain of dependent products, and independent chains
+  // side by side keep the multipliers busy.
+  constexpr int kChains = 4;
   std::vector<double> re(kMaxRollOrder + 1, 0.0), im(kMaxRollOrder + 1, 0.0);
-  for (int i = 0; i < r.size(); ++i) {
-    const double c = std::cos(roll(i)), s = -std::sin(roll(i));
-    double zr = r(i), zi = 0.0;
+  const int n = static_cast<int>(r.size());
+  for (int i0 = 0; i0 < n; i0 += kChains) {
+    double c[kChains], s[kChains], zr[kChains], zi[kChains];
+    for (int j = 0; j < kChains; ++j) {
+      const bool in = i0 + j < n;
+      c[j] = in ? std::cos(roll(i0 + j)) : 1.0;
+      s[j] = in ? -std::sin(roll(i0 + j)) : 0.0;
+      zr[j] = in ? r(i0 + j) : 0.0;
+      zi[j] = 0.0;
+    }
     for (int h = 1; h <= kMaxRollOrder; ++h) {
-      const double next_r = zr * c - zi * s;
-      zi = zr * s + zi * c;
-      zr = next_r;
-      re[h] += zr;
-      im[h] += zi;
+      double sum_r = 0.0, sum_i = 0.0;
+      for (int j = 0; j < kChains; ++j) {
+        const double next_r = zr[j] * c[j] - zi[j] * s[j];
+        zi[j] = zr[j] * s[j] + zi[j] * c[j];
+        zr[j] = next_r;
+        sum_r += zr[j];
+        sum_i += zi[j];
+      }
+      re[h] += sum_r;
+      im[h] += sum_i;
     }
   }
   std::vector<double> power(kMaxRollOrder + 1, 0.0);
@@ -95,6 +110,19 @@ std::vector<double> OrderSpectrum(const Eigen::VectorXd& roll,
     power[h] = re[h] * re[h] + im[h] * im[h];
   }
   return power;
+}
+
+// A power no band's background (BandBackground) falls below: the median
+// of m >= kBackgroundBins of the bins (or of all half of them) is at least
+// the min(kBackgroundBins, half) / 2-th smallest of all. An order below
+// the line factor times it needs no background.
+double LeastBackground(const std::vector<double>& power) {
+  std::vector<double> bins(power.begin() + 1, power.end());
+  if (bins.empty()) return 0.0;
+  const int rank =
+      std::min<int>(kBackgroundBins, static_cast<int>(bins.size())) / 2;
+  std::nth_element(bins.begin(), bins.begin() + rank, bins.end());
+  return bins[rank];
 }
 
 // A reading error that is a function of what the instrument reads, as
@@ -126,8 +154,10 @@ void RollHarmonics(int s,
   const std::vector<double> power =
       Periodogram(std::vector<double>(r.data(), r.data() + n));
   const std::vector<double> orders = OrderSpectrum(roll, r);
+  const double least = factor * LeastBackground(power);
   std::vector<std::pair<double, int>> strong;  // (power / background, h)
   for (int h = 1; h <= kMaxRollOrder; ++h) {
+    if (!(orders[h] > least)) continue;
     const auto [lo, hi] =
         FoldedBand(h * std::min(early, late), h * std::max(early, late), n, dt);
     // Within two bins of zero a harmonic of roll is a slow drift the
