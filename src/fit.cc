@@ -10,6 +10,7 @@
 
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -152,14 +153,19 @@ void Judge(const Case& c, const PipelineOutcome& outcome, FitResult* result) {
   const bool above = limit > 0.0 && outcome.probable_error > limit;
   const bool confirmed =
       result->starts_tried > 0 && result->starts_reached_best >= 2;
+  // With sigma: auto the fit so far weighed the residuals by the noise the
+  // data show without a model (StartNoiseWeights).
+  const bool automatic = std::any_of(
+      c.sigma_auto.begin(), c.sigma_auto.end(), [](bool a) { return a; });
+  const std::string sigma =
+      automatic ? "the data's model-free noise level" : "sigma";
   if (above && !confirmed) {
     result->converged = false;
     result->termination =
         "the fit did not reach the noise level: probable error " +
         FormatNumber("%.3g", outcome.probable_error) + " > " +
-        FormatNumber("%g", limit) +
-        " (a local minimum, a missing effect, or sigma smaller than the "
-        "noise)";
+        FormatNumber("%g", limit) + " (a local minimum, a missing effect, or " +
+        sigma + " smaller than the noise)";
   } else if (above) {
     result->termination +=
         "; the fit did not reach the noise level (probable error " +
@@ -167,8 +173,8 @@ void Judge(const Case& c, const PipelineOutcome& outcome, FitResult* result) {
         FormatNumber("%g", limit) + ") at the minimum " +
         std::to_string(result->starts_reached_best) + " of " +
         std::to_string(result->starts_tried) +
-        " starts reached: not a local minimum; the residuals exceed sigma "
-        "(see adequacy)";
+        " starts reached: not a local minimum; the residuals exceed " + sigma +
+        " (see adequacy)";
   }
   if (!result->converged) {
     LOG(WARNING) << c.name << ": " << result->termination;
@@ -366,6 +372,7 @@ FitResult FitData(const Case& c, const std::vector<TimeHistory>& data) {
   const auto start_time = std::chrono::steady_clock::now();
   FitProblem problem = PrepareProblem(c, data);
   CheckSize(c, problem);
+  StartNoiseWeights(c, &problem);
   FitResult result;
   result.name = c.name;
   result.model = c.model;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "assembly.h"
 #include "fit3dof/input_error.h"
@@ -20,6 +21,10 @@ constexpr double kSettled = 0.01;  // relative change of every weight
 // A floor for an estimated noise level (deg): a channel that fits exactly
 // (a simulated record without noise) must not get an infinite weight.
 constexpr double kFloorDeg = 1e-9;
+// DataNoiseDeg's difference orders and floor.
+constexpr int kLeastOrder = 2;
+constexpr int kMostOrder = 8;
+constexpr double kDataFloorDeg = 1e-4;
 
 // Each segment's RMS residual per channel (deg) at `values`.
 std::vector<ChannelValues> ResidualRms(const FitProblem& p,
@@ -91,6 +96,36 @@ std::string Summary(const FitProblem& p, const RelaxationOutcome& r) {
 }
 
 }  // namespace
+
+double DataNoiseDeg(const std::vector<double>& samples) {
+  std::vector<double> d = samples;
+  double least = std::numeric_limits<double>::infinity();
+  // C(2d, d), the sum of the squared binomial weights of a d-th difference.
+  double gain = 1.0;
+  for (int order = 1; order <= kMostOrder; ++order) {
+    gain *= 2.0 * (2.0 * order - 1.0) / order;
+    if (d.size() < 2) break;
+    for (size_t i = 0; i + 1 < d.size(); ++i) d[i] = d[i + 1] - d[i];
+    d.pop_back();
+    if (order < kLeastOrder) continue;
+    double sum = 0.0;
+    for (double x : d) sum += x * x;
+    least = std::min(least, std::sqrt(sum / d.size() / gain));
+  }
+  if (!std::isfinite(least)) return kDataFloorDeg;
+  return std::max(least, kDataFloorDeg);
+}
+
+void StartNoiseWeights(const Case& c, FitProblem* problem) {
+  for (PreparedSegment& s : problem->segments) {
+    const std::vector<double>* channels[3] = {
+        &s.data.phi, &s.data.theta, &s.data.psi};
+    double* weights[3] = {&s.sigma.phi, &s.sigma.theta, &s.sigma.psi};
+    for (int ch = 0; ch < 3; ++ch) {
+      if (c.sigma_auto[ch]) *weights[ch] = DataNoiseDeg(*channels[ch]);
+    }
+  }
+}
 
 RelaxationOutcome RelaxNoiseWeights(const Case& c,
                                     FitProblem* problem,

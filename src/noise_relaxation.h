@@ -7,6 +7,14 @@
 // solved again from where it is with the new weights, and so on until no
 // weight changes by more than 1% (at most 10 rounds). Channels with a
 // configured sigma keep it.
+//
+// The relaxation needs a start, and the fit before it needs weights that
+// mean something: its rule for local minima (a probable error above
+// solver.max_probable_error calls for restarts, multi_start.h) compares
+// the residuals with sigma. A fixed 1 deg let a fit that lost the motion
+// (2.8 deg RMS in theta) pass as at the noise level. So the auto channels
+// start at the data's own noise level, measured without a model
+// (DataNoiseDeg).
 
 #ifndef FIT3DOF_SRC_NOISE_RELAXATION_H_
 #define FIT3DOF_SRC_NOISE_RELAXATION_H_
@@ -25,6 +33,20 @@ struct RelaxationOutcome {
   bool settled = false;
   std::string summary;  // for the pipeline: the weights it settled on
 };
+
+// A model-free estimate of a channel's noise (deg) from its samples: the
+// least, over difference orders d = 2..8, of the RMS of the d-th
+// differences over sqrt(C(2d, d)), their gain for white noise. A motion
+// sampled more than six times per cycle shrinks with each order, white
+// noise keeps its level, so the least is about the noise (errors slower
+// than the sampling, a calibration curve, count less; a wild point more).
+// At least 1e-4 deg: a record without noise must not get a weight that
+// the integration's own error exceeds. Times are taken as evenly spaced.
+double DataNoiseDeg(const std::vector<double>& samples);
+
+// Sets each auto channel's weight in every segment of `problem` to its
+// DataNoiseDeg: the starting values of the relaxation.
+void StartNoiseWeights(const Case& c, FitProblem* problem);
 
 // Updates the auto channels' weights in `problem`'s segments and `values`
 // (global free order) to the relaxed solution. Nothing to do (rounds = 0)

@@ -122,7 +122,8 @@ struct Case {
   ChannelValues sigma{1.0, 1.0, 1.0};
   // sigma: auto (all channels or some): the weights of those channels are
   // each segment's own noise levels, estimated at the solution by
-  // relaxation (fit.h); `sigma` holds their starting values (1 deg).
+  // relaxation (fit.h), started from the noise the data show without a
+  // model; `sigma` is not used for them.
   std::array<bool, 3> sigma_auto{{false, false, false}};
   NoiseOptions noise;
   SolverOptions solver;

@@ -1,0 +1,66 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+
+#include "noise_relaxation.h"
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "gtest/gtest.h"
+
+namespace fit3dof {
+namespace {
+
+// Table 6's sampling (0.06 s) of its motion: roll spinning up from
+// 641 deg/s, pitch a coning motion of 5 deg at 0.85 Hz (20 samples per
+// cycle), each with the given error added.
+struct Record {
+  std::vector<double> roll, pitch;
+};
+
+Record Table6Like(const std::function<double(int)>& error) {
+  Record r;
+  for (int i = 0; i < 800; ++i) {
+    const double t = 0.06 * i;
+    r.roll.push_back(641.0 * t - 2.0 * t * t + error(i));
+    r.pitch.push_back(5.0 * std::exp(-0.02 * t) *
+                          std::cos(2.0 * M_PI * 0.85 * t + 0.3) +
+                      error(i));
+  }
+  return r;
+}
+
+TEST(DataNoise, FindsWhiteNoiseUnderTheMotion) {
+  for (double sigma : {0.003, 0.01, 0.1}) {
+    std::mt19937 rng(7);
+    std::normal_distribution<double> noise(0.0, sigma);
+    std::vector<double> draws(800);
+    for (double& x : draws) x = noise(rng);
+    const Record r = Table6Like([&](int i) { return draws[i]; });
+    EXPECT_NEAR(DataNoiseDeg(r.roll) / sigma, 1.0, 0.1) << sigma;
+    EXPECT_NEAR(DataNoiseDeg(r.pitch) / sigma, 1.0, 0.1) << sigma;
+  }
+}
+
+// Roll sensed in 2-deg steps: the error is uniform over a step, RMS
+// 2 / sqrt(12) = 0.577 deg.
+TEST(DataNoise, FindsQuantization) {
+  Record r = Table6Like([](int) { return 0.0; });
+  for (double& phi : r.roll) phi = 2.0 * std::round(phi / 2.0);
+  EXPECT_NEAR(DataNoiseDeg(r.roll) / (2.0 / std::sqrt(12.0)), 1.0, 0.15);
+}
+
+// Without noise the motion itself is all that is left: a small level,
+// never below the floor that keeps the weights finite.
+TEST(DataNoise, NoiseFreeMotionGivesTheFloor) {
+  const Record r = Table6Like([](int) { return 0.0; });
+  EXPECT_LT(DataNoiseDeg(r.pitch), 2e-3);
+  EXPECT_GE(DataNoiseDeg(r.pitch), 1e-4);
+  EXPECT_EQ(DataNoiseDeg(std::vector<double>(50, 3.0)), 1e-4);
+  EXPECT_EQ(DataNoiseDeg({1.0}), 1e-4);
+  EXPECT_EQ(DataNoiseDeg({}), 1e-4);
+}
+
+}  // namespace
+}  // namespace fit3dof
