@@ -536,6 +536,22 @@ void ConfigReader::ReadSimulate(const YAML::Node& node, Case* c) const {
 }
 
 void ConfigReader::CheckPhysics(const YAML::Node& root, const Case& c) const {
+  // The bearing moment fades beyond bearing_angle (bearing_moment.h): it
+  // needs one, and there is no default to fall back on silently.
+  const int bearing = Layout(c.model).bearing;
+  const ParameterSetting& moment = c.parameters[bearing];
+  const ParameterSetting& angle = c.parameters[bearing + 1];
+  if ((moment.free || moment.value != 0.0) && !(angle.value > 0.0)) {
+    Fail(root["parameters"],
+         "parameters.bearing_angle",
+         "Cm_bearing needs bearing_angle > 0 (deg), the angle where the "
+         "bearing moment saturates");
+  }
+  if (angle.value < 0.0) {
+    Fail(root["parameters"],
+         "parameters.bearing_angle",
+         "must be > 0 (deg), got " + ShortestNumber(angle.value));
+  }
   const int izx = Layout(c.model).product_of_inertia;
   if (izx >= 0) {
     const double v = c.parameters[izx].value;

@@ -84,7 +84,8 @@ void Apply(const std::string& source,
         throw InputError(where + a.variable + ": expected numbers");
       }
       const int index = first + static_cast<int>(i);
-      if (index > kMaxParameters) {
+      // The report's lists only: the extensions have no NAMELIST index.
+      if (index > kReportParameters[1]) {
         throw InputError(
             where + a.variable + "(" + std::to_string(index) +
             "): beyond the 72 parameters of the asymmetric program");

@@ -47,6 +47,12 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"theta_sin_phi", "theta_sin_phi", 1.0},
       {"psi_cos_phi", "psi_cos_phi", 1.0},
       {"psi_sin_phi", "psi_sin_phi", 1.0},
+      {"Cm_0", "Cm_0", 1.0},
+      {"Cn_0", "Cn_0", 1.0},
+      {"Cm_bearing", "Cm_bearing", 1.0},
+      {"bearing_angle", "bearing_angle", 1.0},
+      {"theta_cal3", "theta_cal3", 1.0},
+      {"psi_cal3", "psi_cal3", 1.0},
   };
   return images;
 }

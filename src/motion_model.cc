@@ -49,6 +49,8 @@ MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
   const int ri = layout_.roll_interaction;
   roll_interaction_ =
       active_[ri] || active_[ri + 1] || active_[ri + 2] || active_[ri + 3];
+  calibration_ =
+      active_[layout_.calibration] || active_[layout_.calibration + 1];
 }
 
 StateGuard MotionModel::Guard() const {

@@ -135,6 +135,36 @@ std::vector<ParameterInfo> MakeSymmetricTable() {
        "deg",
        S::kAngle,
        "roll interaction: yaw reading error, sin(phi) harmonic"},
+      // fit3dof extensions: a body-fixed trim moment (rolls with the body;
+      // the asymmetric program's Cm_0 and Cn_0).
+      {35, "Cm_0", "", "-", S::kPitchStatic, "body-fixed trim moment, pitch"},
+      {36, "Cn_0", "", "-", S::kYawStatic, "body-fixed trim moment, yaw"},
+      // The gas bearing's moment and calibration nonlinearity (Section 5.2).
+      {37,
+       "Cm_bearing",
+       "",
+       "1/rad",
+       S::kPitchStatic,
+       "gas-bearing moment: stiffness near zero angle, fading beyond "
+       "bearing_angle"},
+      {38,
+       "bearing_angle",
+       "",
+       "deg",
+       S::kAngle,
+       "gas-bearing moment: the angle where it saturates"},
+      {39,
+       "theta_cal3",
+       "",
+       "deg",
+       S::kAngle,
+       "calibration nonlinearity: pitch reading error at 5 deg, cubic"},
+      {40,
+       "psi_cal3",
+       "",
+       "deg",
+       S::kAngle,
+       "calibration nonlinearity: yaw reading error at 5 deg, cubic"},
   };
 }
 
@@ -415,6 +445,31 @@ std::vector<ParameterInfo> MakeAsymmetricTable() {
        "deg",
        S::kAngle,
        "roll interaction: yaw reading error, sin(phi) harmonic"},
+      {77,
+       "Cm_bearing",
+       "",
+       "1/rad",
+       S::kPitchStatic,
+       "gas-bearing moment: stiffness near zero angle, fading beyond "
+       "bearing_angle"},
+      {78,
+       "bearing_angle",
+       "",
+       "deg",
+       S::kAngle,
+       "gas-bearing moment: the angle where it saturates"},
+      {79,
+       "theta_cal3",
+       "",
+       "deg",
+       S::kAngle,
+       "calibration nonlinearity: pitch reading error at 5 deg, cubic"},
+      {80,
+       "psi_cal3",
+       "",
+       "deg",
+       S::kAngle,
+       "calibration nonlinearity: yaw reading error at 5 deg, cubic"},
   };
 }
 
@@ -477,8 +532,8 @@ std::string SuggestParameter(ModelKind model, std::string_view name) {
 }
 
 const ParameterLayout& Layout(ModelKind model) {
-  static const ParameterLayout symmetric{22, 23, 24, -1, 30};
-  static const ParameterLayout asymmetric{64, 65, 66, 59, 72};
+  static const ParameterLayout symmetric{22, 23, 24, -1, 30, 36, 38};
+  static const ParameterLayout asymmetric{64, 65, 66, 59, 72, 76, 78};
   return model == ModelKind::kSymmetric ? symmetric : asymmetric;
 }
 

@@ -20,6 +20,7 @@
 #include <cmath>
 
 #include "fit3dof/angles.h"
+#include "fit3dof/bearing_moment.h"
 #include "fit3dof/coefficients.h"
 #include "fit3dof/parameters.h"
 
@@ -168,6 +169,13 @@ void AsymmetricMoments(const CoefficientView<Tk>& k,
   *mz = yaw + r * yaw_damping;
   if (k.on(45)) *mz += k(45) * q * b;
   if (k.on(46)) *mz += k(46) * p * a;
+  // The gas bearing's moment (77, 78; bearing_moment.h): Cm_bearing is
+  // scaled for pitch, I_y / I_z moves it to the yaw axis.
+  if (k.on(77)) {
+    const T fade = BearingFade((a2 + b2) / (k(78) * k(78)));
+    *my += k(77) * a * fade;
+    *mz -= k(77) * b * fade * (constants.Iy / constants.Iz);
+  }
 
   // Tunnel-fixed stiffness and damping, Eqs. 39 and 41. myt is M_yT / I_y
   // and mzt is M_zT / I_z; the ratios of inertias move them to the axis

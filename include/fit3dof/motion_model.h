@@ -5,7 +5,8 @@
 // sets the initial state from the initial-condition parameters, integrates
 // the equations of motion of the chosen program with RK4, and applies the
 // measurement model (flow-angularity offsets theta_T and psi_T are added to
-// the computed theta and psi, as INTGRL does).
+// the computed theta and psi, as INTGRL does; the reading errors of Section
+// 5.2 follow).
 //
 // This is the one path from parameters to angles: `fit3dof simulate`
 // evaluates it with doubles, the fitter's residual blocks with ceres::Jet.
@@ -47,6 +48,9 @@ void CheckIntegrationSteps(double steps,
                            double span,
                            double max_step,
                            const std::string& source);
+
+// The angle (rad) at which theta_cal3 and psi_cal3 give the reading error.
+inline constexpr double kCalibrationAngle = 5.0 * kDegree;
 
 class MotionModel {
  public:
@@ -130,8 +134,10 @@ class MotionModel {
   ParameterLayout layout_;
   // Positions of phi, theta and psi in the state.
   std::array<int, 3> state_index_;
-  // Whether any roll-interaction parameter is active (Measure).
+  // Whether any roll-interaction or calibration parameter is active
+  // (Measure).
   bool roll_interaction_ = false;
+  bool calibration_ = false;
 };
 
 // The terms that matter: every free parameter and every non-zero one.
@@ -168,6 +174,15 @@ void MotionModel::Measure(const Tx* x, const Tk* internal, T* angles) const {
     const Tx s = sin(phi);
     theta += internal[ri] * c + internal[ri + 1] * s;
     psi += internal[ri + 2] * c + internal[ri + 3] * s;
+  }
+  // The calibration nonlinearity of Section 5.2: a reading error that grows
+  // as the cube of the angle the bearing sits at, its size given at 5 deg.
+  if (calibration_) {
+    const int cal = layout_.calibration;
+    const Tx u = x[state_index_[1]] / kCalibrationAngle;
+    const Tx v = x[state_index_[2]] / kCalibrationAngle;
+    theta += internal[cal] * (u * u * u);
+    psi += internal[cal + 1] * (v * v * v);
   }
   angles[0] = T(phi * kDegreesPerRadian);
   angles[1] = theta * kDegreesPerRadian;

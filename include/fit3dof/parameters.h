@@ -6,10 +6,19 @@
 // name parameters by these names (see docs/parameters.md); the
 // 1-based report index is what a legacy NAMELIST deck (AACON, NCON) uses.
 //
-// After the report's lists come four fit3dof extensions (symmetric 31-34,
-// asymmetric 73-76), the roll-interaction measurement error of Section 5.2:
-// theta_m = theta + theta_cos_phi cos(phi) + theta_sin_phi sin(phi), and
-// the same for psi (degrees). They have no NAMELIST equivalent.
+// After the report's lists come fit3dof extensions, none with a NAMELIST
+// equivalent:
+//   - the roll-interaction measurement error of Section 5.2 (symmetric
+//     31-34, asymmetric 73-76): theta_m = theta + theta_cos_phi cos(phi) +
+//     theta_sin_phi sin(phi), and the same for psi (degrees);
+//   - a body-fixed trim moment in the symmetric program (35-36, Cm_0 and
+//     Cn_0: the asymmetric program's 1 and 28, turning with the body);
+//   - the gas bearing's moment (symmetric 37-38, asymmetric 77-78): a
+//     stiffness Cm_bearing near zero angle that fades beyond bearing_angle,
+//     the form of the pendulum study of Section 5.2 (bearing_moment.h);
+//   - the calibration nonlinearity of Section 5.2 (symmetric 39-40,
+//     asymmetric 79-80): theta_m += theta_cal3 (theta / 5 deg)^3, the
+//     same for psi (the reading error at 5 deg).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -26,7 +35,10 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 76;
+inline constexpr int kMaxParameters = 80;
+// The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
+// indices a NAMELIST deck may use.
+inline constexpr int kReportParameters[2] = {30, 72};
 
 enum class ModelKind {
   kSymmetric,   // axial symmetry, aeroballistic axes (Table 1, Eq. 6)
@@ -91,6 +103,8 @@ struct ParameterLayout {
   int product_of_inertia;  // I_zx, or -1 for the symmetric model
   int roll_interaction;    // first of theta_cos_phi, theta_sin_phi,
                            // psi_cos_phi, psi_sin_phi
+  int bearing;             // Cm_bearing, then bearing_angle
+  int calibration;         // theta_cal3, then psi_cal3
 };
 const ParameterLayout& Layout(ModelKind model);
 

@@ -19,6 +19,7 @@
 
 #include <cmath>
 
+#include "fit3dof/bearing_moment.h"
 #include "fit3dof/coefficients.h"
 #include "fit3dof/parameters.h"
 
@@ -145,6 +146,25 @@ void SymmetricMoments(const CoefficientView<Tk>& k,
     }
     *my += k(15) * alphadot;
     *mz -= k(15) * betadot;
+  }
+
+  // fit3dof extensions: a body-fixed trim moment (35, 36), turned from
+  // body axes into the non-rolling frame by the roll angle, and the gas
+  // bearing's moment (37, 38; bearing_moment.h).
+  if (k.on(35) || k.on(36)) {
+    using std::sin;
+    const Tx sf = sin(x[kSymPhi]);
+    const Tx cf = cos(x[kSymPhi]);
+    T cm0(0.0), cn0(0.0);
+    if (k.on(35)) cm0 += k(35);
+    if (k.on(36)) cn0 += k(36);
+    *my += cm0 * cf - cn0 * sf;
+    *mz += cm0 * sf + cn0 * cf;
+  }
+  if (k.on(37)) {
+    const T fade = BearingFade(delta2 / (k(38) * k(38)));
+    *my += k(37) * alpha * fade;
+    *mz -= k(37) * beta * fade;
   }
 
   // Roll: Cl_0 + p (Cl_p + Cl_p_delta delta + Cl_p_delta2 delta^2).
