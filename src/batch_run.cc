@@ -170,7 +170,8 @@ RunResult Perform(const RunSpec& spec,
       diagnosis_note +=
           (diagnosis_note.empty() ? "added " : ", ") + step.effect;
     }
-    diagnosis_note += (diagnosis_note.empty() ? "" : "; ") + d.verdict;
+    diagnosis_note += std::string(diagnosis_note.empty() ? "" : "; ") +
+                      VerdictToString(d.verdict);
   } else {
     fit = Fit(c);
   }

@@ -1,9 +1,11 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
 // The diagnosis loop (diagnose.h): fit, check the residuals, score every
-// catalog effect not yet in the model, refit the best few, add the one that
-// lowers BIC most, repeat. The pieces: effect_catalog.cc, score_test.cc,
-// residual_check.cc, diagnosis_report.cc.
+// catalog effect not yet in the model, refit the best few, add the best
+// one that earns its place (unless a second one explains the residual as
+// well), repeat. The pieces: effect_catalog.cc, score_test.cc,
+// effect_validation.cc, residual_check.cc, residual_description.cc,
+// diagnosis_report.cc.
 
 #include "fit3dof/diagnose.h"
 
@@ -11,9 +13,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <limits>
 
 #include "diagnose_internal.h"
+#include "format.h"
 
 namespace fit3dof {
 namespace {
@@ -31,10 +34,24 @@ struct Candidate {
   CandidateScore score;
 };
 
+// A candidate refitted in full.
+struct Contender {
+  const Candidate* candidate;
+  FitResult fit;
+  double bic;
+  CandidateFit record;
+};
+
 bool Wanted(const DiagnoseOptions& options, const Effect& e) {
   return options.effects.empty() ||
          std::find(options.effects.begin(), options.effects.end(), e.id) !=
              options.effects.end();
+}
+
+std::vector<TimeHistory> FittedData(const FitResult& fit) {
+  std::vector<TimeHistory> data;
+  for (const SegmentFit& segment : fit.segments) data.push_back(segment.data);
+  return data;
 }
 
 // Every applicable effect scored at the fit's solution, best first.
@@ -42,10 +59,7 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
                                         const FitResult& fit,
                                         const DiagnoseOptions& options) {
   const Case at = CaseAtSolution(current, fit);
-  // The samples the fit used (selected, noise added, wild points
-  // screened): read once, not once per candidate.
-  std::vector<TimeHistory> data;
-  for (const SegmentFit& segment : fit.segments) data.push_back(segment.data);
+  const std::vector<TimeHistory> data = FittedData(fit);
   std::vector<Candidate> candidates;
   for (const Effect& e : EffectCatalog()) {
     if (!Wanted(options, e)) continue;
@@ -62,65 +76,165 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
   return candidates;
 }
 
-// Refits the best `options.refit` candidates; the index of the one with the
-// lowest BIC below `bic_now` (its fit in *best_fit), or -1.
-int BestRefit(const std::vector<Candidate>& candidates,
-              const DiagnoseOptions& options,
-              double bic_now,
-              const std::string& name,
-              FitResult* best_fit,
-              double* best_bic) {
-  int best = -1;
-  *best_bic = bic_now;
+// The estimates of `names` in `fit`.
+std::vector<ParameterEstimate> Own(const FitResult& fit,
+                                   const std::vector<std::string>& names) {
+  std::vector<ParameterEstimate> own;
+  for (const ParameterEstimate& e : fit.parameters) {
+    if (e.segment.empty() &&
+        std::find(names.begin(), names.end(), e.name) != names.end()) {
+      own.push_back(e);
+    }
+  }
+  return own;
+}
+
+// The best `options.refit` candidates refitted on the first fit's samples:
+// those that lower BIC by more than min_bic_drop, lowest BIC first.
+std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
+                                  const FitResult& fit,
+                                  const std::vector<TimeHistory>& data,
+                                  const DiagnoseOptions& options) {
+  const double bic_now = Bic(fit);
+  std::vector<Contender> contenders;
   for (int i = 0; i < std::min<int>(options.refit, candidates.size()); ++i) {
-    FitResult r;
+    const Candidate& k = candidates[i];
+    Contender c{&k, FitResult(), 0.0, CandidateFit()};
     try {
-      r = Fit(candidates[i].c);
+      c.fit = FitSamples(k.c, data);
     } catch (const std::exception& e) {
-      LOG(WARNING) << name << ": refit with " << candidates[i].effect->id
+      LOG(WARNING) << fit.name << ": refit with " << k.effect->id
                    << " failed: " << e.what();
       continue;
     }
-    const double bic = Bic(r);
-    VLOG(1) << name << ": " << candidates[i].effect->id << " score "
-            << candidates[i].score.score << ", BIC " << bic_now << " -> "
-            << bic;
-    if (bic < *best_bic) {
-      *best_bic = bic;
-      best = i;
-      *best_fit = r;
+    c.bic = Bic(c.fit);
+    c.record.effect = k.effect->id;
+    c.record.parameters = Own(c.fit, k.added);
+    c.record.bic_drop = bic_now - c.bic;
+    c.record.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+    VLOG(1) << fit.name << ": " << k.effect->id << " score " << k.score.score
+            << ", BIC drop " << c.record.bic_drop;
+    if (c.record.bic_drop >= options.min_bic_drop) {
+      contenders.push_back(std::move(c));
     }
   }
-  return best;
+  std::sort(
+      contenders.begin(),
+      contenders.end(),
+      [](const Contender& a, const Contender& b) { return a.bic < b.bic; });
+  return contenders;
 }
 
-// The step that adds `chosen`: its parameters as fitted in `fit`.
-DiagnosisStep Step(const Candidate& chosen, const FitResult& fit) {
+// The out-of-sample check of one round: the current model fitted to the
+// first part of each segment once, each contender against it.
+class OutOfSample {
+ public:
+  OutOfSample(const Case& current,
+              const FitResult& fit,
+              const DiagnoseOptions& options)
+      : current_(CaseAtSolution(current, fit)),
+        data_(FittedData(fit)),
+        held_out_(HoldOut(data_, options.held_out_blocks)) {
+    for (const SegmentFit& s : fit.segments) weights_.push_back(s.sigma_deg);
+    for (const std::vector<bool>& held : held_out_.held) {
+      held_samples_ += 3 * std::count(held.begin(), held.end(), true);
+    }
+  }
+
+  // n_test ln(RSS_without / RSS_with) over the held-out samples; -infinity
+  // when the contender cannot be fitted or integrated there.
+  double Gain(const Case& with) {
+    if (held_samples_ == 0) return 0.0;
+    if (rss_without_ < 0.0) rss_without_ = Rss(current_);
+    return held_samples_ * std::log(rss_without_ / Rss(with));
+  }
+
+ private:
+  double Rss(const Case& c) const {
+    try {
+      const FitResult trained = FitSamples(c, held_out_.train);
+      return PredictionRss(c, trained, data_, held_out_, weights_);
+    } catch (const std::exception&) {
+      return std::numeric_limits<double>::infinity();
+    }
+  }
+
+  const Case current_;
+  const std::vector<TimeHistory> data_;
+  const HeldOut held_out_;
+  std::vector<ChannelValues> weights_;
+  int held_samples_ = 0;
+  double rss_without_ = -1.0;
+};
+
+// Whether the contender earns its place (diagnose.h): fills
+// record.rejected with why not.
+void Judge(const FitResult& current,
+           const DiagnoseOptions& options,
+           OutOfSample* out_of_sample,
+           Contender* c) {
+  const Candidate& k = *c->candidate;
+  std::string why = Implausible(*k.effect, k.c, c->fit);
+  // A coefficient may move far only when the new model explains the record
+  // down to the noise: a missing effect's bias hides in the fit (the part
+  // it absorbs leaves no residual), so no error bar of the fit without it
+  // covers the move (diagnose.h).
+  if (why.empty() && !CheckResiduals(c->fit, options).at_noise_level) {
+    why = Drags(current, c->fit, k.added, options.max_drag);
+  }
+  if (why.empty()) {
+    const double gain = out_of_sample->Gain(k.c);
+    c->record.prediction_gain = gain;
+    const double needed = options.gain_per_parameter * k.added.size();
+    if (!(gain > needed)) {
+      why =
+          "it does not predict the held-out part of the record better "
+          "(log-likelihood gain " +
+          FormatNumber("%.3g", gain) + ", needs " +
+          FormatNumber("%.3g", needed) + ")";
+    }
+  }
+  c->record.rejected = why;
+}
+
+// The contenders judged in BIC order until the best that earns its place
+// and the next one within ambiguity_bic of it are known; returns the
+// indices of those that earned it.
+std::vector<int> Earned(const FitResult& current,
+                        const DiagnoseOptions& options,
+                        OutOfSample* out_of_sample,
+                        std::vector<Contender>* contenders) {
+  std::vector<int> earned;
+  for (size_t i = 0; i < contenders->size() && earned.size() < 2; ++i) {
+    Contender& c = (*contenders)[i];
+    if (!earned.empty() &&
+        c.bic - (*contenders)[earned[0]].bic >= options.ambiguity_bic) {
+      break;
+    }
+    Judge(current, options, out_of_sample, &c);
+    if (c.record.rejected.empty()) earned.push_back(static_cast<int>(i));
+  }
+  return earned;
+}
+
+std::string Separation(const Effect& a, const Effect& b) {
+  if (a.separated_by == b.separated_by)
+    return "a run at another " + a.separated_by;
+  return "a run at another " + a.separated_by + " or " + b.separated_by;
+}
+
+// The step that adds contender c.
+DiagnosisStep Step(const Contender& c, const std::vector<Contender>& all) {
   DiagnosisStep step;
-  step.effect = chosen.effect->id;
-  step.description = chosen.effect->description;
-  step.score = chosen.score.score;
-  for (const ParameterEstimate& e : fit.parameters) {
-    if (std::find(chosen.added.begin(), chosen.added.end(), e.name) !=
-        chosen.added.end()) {
-      step.parameters.push_back(e);
-    }
-  }
+  const Candidate& k = *c.candidate;
+  step.effect = k.effect->id;
+  step.description = k.effect->description;
+  step.score = k.score.score;
+  step.step_parameters = c.record.parameters;
+  step.bic_drop = c.record.bic_drop;
+  step.prediction_gain = c.record.prediction_gain;
+  for (const Contender& other : all) step.contenders.push_back(other.record);
   return step;
-}
-
-std::string Verdict(const ResidualCheck& check) {
-  if (check.at_noise_level) return "residuals at noise level";
-  char verdict[256];
-  std::snprintf(verdict,
-                sizeof(verdict),
-                "residuals remain above the noise level (probable error %.3g, "
-                "lag-1 autocorrelation theta %.2f psi %.2f) and no catalog "
-                "effect explains them significantly",
-                check.probable_error,
-                check.lag1.theta,
-                check.lag1.psi);
-  return verdict;
 }
 
 // final.yaml reruns the fit: the solution with the user's solver settings
@@ -136,12 +250,81 @@ Case FinalCase(const Case& user, const Case& current, const FitResult& fit) {
   return final_case;
 }
 
+// Each step's parameters as the final model has them.
+void FinalValues(const FitResult& final_fit, Diagnosis* d) {
+  d->final_parameters = final_fit.parameters;
+  for (DiagnosisStep& step : d->steps) {
+    std::vector<std::string> names;
+    for (const ParameterEstimate& e : step.step_parameters) {
+      names.push_back(e.name);
+    }
+    step.parameters = Own(final_fit, names);
+  }
+}
+
+std::string Added(const Diagnosis& d) {
+  std::string text;
+  for (const DiagnosisStep& s : d.steps) {
+    text += (text.empty() ? "" : ", ") + s.description;
+  }
+  return text;
+}
+
+void Conclude(Diagnosis* d) {
+  const ResidualCheck& check = d->final;
+  if (!d->ambiguous.empty()) {
+    d->verdict = Verdict::kAmbiguous;
+    const Effect* a = FindEffect(d->ambiguous[0].effect);
+    const Effect* b = FindEffect(d->ambiguous[1].effect);
+    d->verdict_text = "ambiguous: " + a->description + " or " + b->description +
+                      " explain the residual alike (BIC lower by " +
+                      FormatNumber("%.1f", d->ambiguous[0].bic_drop) + " and " +
+                      FormatNumber("%.1f", d->ambiguous[1].bic_drop) +
+                      "); neither added; " + d->separated_by +
+                      " would separate them";
+  } else if (check.at_noise_level) {
+    d->verdict = d->steps.empty() ? Verdict::kNoiseLevel : Verdict::kExplained;
+    d->verdict_text = d->steps.empty() ? "residuals at noise level"
+                                       : "explained: " + Added(*d) +
+                                             "; residuals at noise level";
+  } else {
+    d->verdict = Verdict::kNotExplained;
+    d->verdict_text =
+        "not explained by the catalog: the residuals remain structured "
+        "(probable error " +
+        FormatNumber("%.3g", check.probable_error) +
+        ", lag-1 autocorrelation theta " +
+        FormatNumber("%.2f", check.lag1.theta) + " psi " +
+        FormatNumber("%.2f", check.lag1.psi) + ")" +
+        (d->steps.empty() ? "" : " after adding " + Added(*d)) +
+        " and no further effect earns its place";
+  }
+  if (d->verdict != Verdict::kNoiseLevel && d->verdict != Verdict::kExplained) {
+    d->residual_description = DescribeResiduals(d->fits.back());
+  }
+}
+
 }  // namespace
+
+const char* VerdictToString(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kNoiseLevel:
+      return "noise_level";
+    case Verdict::kExplained:
+      return "explained";
+    case Verdict::kAmbiguous:
+      return "ambiguous";
+    case Verdict::kNotExplained:
+      return "not_explained";
+  }
+  return "";
+}
 
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
   Diagnosis d;
   Case current = c;
   FitResult fit = Fit(current);
+  const std::vector<TimeHistory> data = FittedData(fit);
   d.fits.push_back(fit);
   d.initial = CheckResiduals(fit, options);
   ResidualCheck check = d.initial;
@@ -149,17 +332,27 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
        ++step) {
     const std::vector<Candidate> candidates =
         ScoredCandidates(current, fit, options);
-    const double bic_now = Bic(fit);
-    FitResult best_fit;
-    double best_bic = bic_now;
-    const int best =
-        BestRefit(candidates, options, bic_now, c.name, &best_fit, &best_bic);
-    if (best < 0 || bic_now - best_bic < options.min_bic_drop) break;
-    DiagnosisStep record = Step(candidates[best], best_fit);
+    std::vector<Contender> contenders =
+        Contenders(candidates, fit, data, options);
+    OutOfSample out_of_sample(current, fit, options);
+    const std::vector<int> earned =
+        Earned(fit, options, &out_of_sample, &contenders);
+    if (earned.empty()) {
+      for (const Contender& k : contenders) d.rejected.push_back(k.record);
+      break;
+    }
+    const Contender& best = contenders[earned[0]];
+    if (earned.size() > 1) {
+      const Contender& rival = contenders[earned[1]];
+      d.ambiguous = {best.record, rival.record};
+      d.separated_by =
+          Separation(*best.candidate->effect, *rival.candidate->effect);
+      break;
+    }
+    DiagnosisStep record = Step(best, contenders);
     for (const Candidate& k : candidates) record.ranking.push_back(k.score);
-    record.bic_drop = bic_now - best_bic;
-    current = candidates[best].c;
-    fit = best_fit;
+    current = best.candidate->c;
+    fit = best.fit;
     d.fits.push_back(fit);
     check = CheckResiduals(fit, options);
     record.after = check;
@@ -167,7 +360,8 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
   }
   d.final = check;
   d.final_case = FinalCase(c, current, fit);
-  d.verdict = Verdict(check);
+  FinalValues(fit, &d);
+  Conclude(&d);
   return d;
 }
 

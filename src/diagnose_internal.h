@@ -12,6 +12,7 @@
 
 #include "fit3dof/case.h"
 #include "fit3dof/diagnose.h"
+#include "fit3dof/fit.h"
 #include "fit3dof/time_history.h"
 
 namespace fit3dof {
@@ -31,6 +32,39 @@ CandidateScore Score(const Case& candidate,
                      const std::vector<std::string>& added,
                      const std::string& id,
                      const std::vector<TimeHistory>& data);
+
+// Why the effect's parameters, as `fit` (of case `c`) has them, lie
+// outside its bounds (diagnose.h, Effect::bounds), or empty.
+std::string Implausible(const Effect& effect,
+                        const Case& c,
+                        const FitResult& fit);
+
+// Why adding the effect's parameters `added` moved a coefficient free in
+// `before` by more than `max_drag` of its standard error there, or empty.
+std::string Drags(const FitResult& before,
+                  const FitResult& after,
+                  const std::vector<std::string>& added,
+                  double max_drag);
+
+// Each segment cut into `blocks` runs of samples, alternately kept for
+// training (the first, where the initial conditions hold, among them) and
+// held out: the held-out samples span the record's amplitudes and spin
+// rates, and the motion is integrated through them.
+struct HeldOut {
+  std::vector<TimeHistory> train;
+  std::vector<std::vector<bool>> held;  // per segment and sample
+};
+HeldOut HoldOut(const std::vector<TimeHistory>& data, int blocks);
+
+// The weighted residual sum of squares over the held-out samples of the
+// case fitted to the training part (fit `trained`), the motion integrated
+// from each segment's start; `weights` per segment (deg). Infinity when the
+// motion cannot be integrated.
+double PredictionRss(const Case& c,
+                     const FitResult& trained,
+                     const std::vector<TimeHistory>& data,
+                     const HeldOut& held_out,
+                     const std::vector<ChannelValues>& weights);
 
 }  // namespace fit3dof
 

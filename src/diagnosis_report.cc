@@ -1,12 +1,14 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// A diagnosis written out (diagnose.h): diagnosis.json and the lines
-// printed by `fit3dof diagnose`.
+// A diagnosis written out (diagnose.h): diagnosis.json (docs/formats.md)
+// and the lines printed by `fit3dof diagnose`.
 
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "fit3dof/diagnose.h"
+#include "format.h"
 #include "json_values.h"
 
 namespace fit3dof {
@@ -24,77 +26,126 @@ json Check(const ResidualCheck& r) {
           {"at_noise_level", r.at_noise_level}};
 }
 
+// name -> {value, standard_error, rms_error, units}.
+json Estimates(const std::vector<ParameterEstimate>& estimates) {
+  json out = json::object();
+  for (const ParameterEstimate& e : estimates) {
+    if (!e.segment.empty()) continue;
+    out[e.name] = {{"value", e.value},
+                   {"standard_error", JsonNumber(e.standard_error)},
+                   {"rms_error", JsonNumber(e.rms_error)},
+                   {"units", e.units},
+                   {"free", e.free}};
+  }
+  return out;
+}
+
+json Contender(const CandidateFit& c) {
+  json out = {{"effect", c.effect},
+              {"parameters", Estimates(c.parameters)},
+              {"bic_drop", c.bic_drop},
+              {"prediction_gain", JsonNumber(c.prediction_gain)},
+              {"earned_its_place", c.rejected.empty()}};
+  if (!c.rejected.empty()) out["rejected"] = c.rejected;
+  return out;
+}
+
+json Contenders(const std::vector<CandidateFit>& contenders) {
+  json out = json::array();
+  for (const CandidateFit& c : contenders) out.push_back(Contender(c));
+  return out;
+}
+
+json Step(const DiagnosisStep& s) {
+  json ranking = json::array();
+  for (const CandidateScore& k : s.ranking) {
+    ranking.push_back(
+        {{"effect", k.effect}, {"score", k.score}, {"dof", k.dof}});
+  }
+  return {{"effect", s.effect},
+          {"description", s.description},
+          {"parameters", Estimates(s.parameters)},
+          {"step_parameters", Estimates(s.step_parameters)},
+          {"statistic",
+           {{"score", s.score},
+            {"bic_drop", s.bic_drop},
+            {"prediction_gain", JsonNumber(s.prediction_gain)},
+            {"ranking", ranking}}},
+          {"contenders", Contenders(s.contenders)},
+          {"rms_residual_deg", JsonChannels(s.after.rms_deg)},
+          {"probable_error", s.after.probable_error}};
+}
+
+// "name = value +- se units, ...".
+std::string Values(const std::vector<ParameterEstimate>& estimates) {
+  std::string values;
+  for (const ParameterEstimate& e : estimates) {
+    values += (values.empty() ? "" : ", ") + e.name + " = " +
+              FormatNumber("%.4g", e.value) + " +- " +
+              FormatNumber("%.2g", e.standard_error) + " " + e.units;
+  }
+  return values;
+}
+
 }  // namespace
 
 std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   json out;
   out["name"] = c.name;
+  out["verdict"] = VerdictToString(d.verdict);
+  out["verdict_text"] = d.verdict_text;
+  out["effects_added"] = json::array();
+  for (const DiagnosisStep& s : d.steps)
+    out["effects_added"].push_back(s.effect);
+  out["ambiguous_between"] = json::array();
+  for (const CandidateFit& a : d.ambiguous) {
+    out["ambiguous_between"].push_back(a.effect);
+  }
+  if (!d.ambiguous.empty()) {
+    out["ambiguous"] = Contenders(d.ambiguous);
+    out["separated_by"] = d.separated_by;
+  }
+  if (!d.residual_description.empty()) {
+    out["residual_description"] = d.residual_description;
+  }
+  out["rejected"] = Contenders(d.rejected);
+  out["final_parameters"] = Estimates(d.final_parameters);
   out["initial_rms_residual_deg"] = JsonChannels(d.initial.rms_deg);
   out["final_rms_residual_deg"] = JsonChannels(d.final.rms_deg);
   out["noise_sigma_deg"] = JsonChannels(c.sigma);
   out["initial"] = Check(d.initial);
   out["final"] = Check(d.final);
   out["steps"] = json::array();
-  for (const DiagnosisStep& s : d.steps) {
-    json parameters = json::object();
-    for (const ParameterEstimate& e : s.parameters) {
-      parameters[e.name] = {{"value", e.value},
-                            {"rms_error", JsonNumber(e.rms_error)},
-                            {"units", e.units}};
-    }
-    json ranking = json::array();
-    for (const CandidateScore& k : s.ranking) {
-      ranking.push_back(
-          {{"effect", k.effect}, {"score", k.score}, {"dof", k.dof}});
-    }
-    out["steps"].push_back(
-        {{"effect", s.effect},
-         {"description", s.description},
-         {"parameters", parameters},
-         {"statistic",
-          {{"score", s.score}, {"bic_drop", s.bic_drop}, {"ranking", ranking}}},
-         {"rms_residual_deg", JsonChannels(s.after.rms_deg)},
-         {"probable_error", s.after.probable_error}});
-  }
-  out["verdict"] = d.verdict;
+  for (const DiagnosisStep& s : d.steps) out["steps"].push_back(Step(s));
   return out.dump(2) + "\n";
 }
 
 std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   std::string out;
-  char line[512];
   ResidualCheck before = d.initial;
   for (const DiagnosisStep& s : d.steps) {
-    std::string values;
-    for (const ParameterEstimate& e : s.parameters) {
-      char v[128];
-      std::snprintf(v,
-                    sizeof(v),
-                    "%s%s = %.4g +- %.2g %s",
-                    values.empty() ? "" : ", ",
-                    e.name.c_str(),
-                    e.value,
-                    e.rms_error,
-                    e.units.c_str());
-      values += v;
-    }
-    std::snprintf(
-        line,
-        sizeof(line),
-        "missing effect: %s (%s); theta residual %.3g deg -> %.3g deg, psi "
-        "%.3g -> %.3g deg (noise %.3g, %.3g deg)\n",
-        s.description.c_str(),
-        values.c_str(),
-        before.rms_deg.theta,
-        s.after.rms_deg.theta,
-        before.rms_deg.psi,
-        s.after.rms_deg.psi,
-        sigma.theta,
-        sigma.psi);
-    out += line;
+    // The final model's values: a later step may move an earlier effect's.
+    out += "missing effect: " + s.description + " (" + Values(s.parameters) +
+           "); theta residual " + FormatNumber("%.3g", before.rms_deg.theta) +
+           " deg -> " + FormatNumber("%.3g", s.after.rms_deg.theta) +
+           " deg, psi " + FormatNumber("%.3g", before.rms_deg.psi) + " -> " +
+           FormatNumber("%.3g", s.after.rms_deg.psi) + " deg (noise " +
+           FormatNumber("%.3g", sigma.theta) + ", " +
+           FormatNumber("%.3g", sigma.psi) + " deg)\n";
     before = s.after;
   }
-  out += "verdict: " + d.verdict + "\n";
+  for (const CandidateFit& a : d.ambiguous) {
+    out += "  candidate: " + a.effect + " (" + Values(a.parameters) +
+           "), BIC lower by " + FormatNumber("%.1f", a.bic_drop) + "\n";
+  }
+  for (const CandidateFit& r : d.rejected) {
+    out += "  not added: " + r.effect + " (" + Values(r.parameters) +
+           "): " + r.rejected + "\n";
+  }
+  out += "verdict: " + d.verdict_text + "\n";
+  if (!d.residual_description.empty()) {
+    out += "  " + d.residual_description + "\n";
+  }
   return out;
 }
 

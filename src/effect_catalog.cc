@@ -3,6 +3,8 @@
 // The effects diagnose can add (diagnose.h), and the candidate case of
 // each.
 
+#include <algorithm>
+
 #include "diagnose_internal.h"
 #include "fit3dof/config.h"
 #include "fit3dof/input_error.h"
@@ -17,55 +19,118 @@ const std::vector<Effect>& EffectCatalog() {
        "tunnel-fixed pitch and yaw stiffness (Eq. 39)",
        {"t1", "t3"},
        {"t1", "t3"},
-       false},
+       false,
+       {},
+       "amplitude",
+       "|t1|, |t3| up to half of |Cm_alpha|"},
       {"tunnel_damping",
        "tunnel-fixed pitch and yaw damping (Eq. 39)",
        {"t2", "t4"},
        {"t2", "t4"},
-       false},
+       false,
+       {},
+       "amplitude",
+       "|t2|, |t4| up to twice |Cm_q|"},
       {"flow_angularity",
        "flow angularity / zero offsets in pitch and yaw",
        {"theta_T", "psi_T"},
        {"theta_T", "psi_T"},
-       false},
+       false,
+       {},
+       "spin rate",
+       "|theta_T|, |psi_T| up to 1 deg"},
       {"product_of_inertia",
        "a product of inertia I_zx (asymmetric program)",
        {},
        {"Izx"},
-       true},
+       true,
+       {},
+       "spin rate",
+       "|I_zx| up to 5% of I_y"},
       {"roll_torque",
        "a roll torque from the gas bearing (Cl_0)",
        {"Cl_0"},
        {"Cl_0"},
-       false},
+       false,
+       {},
+       "spin rate",
+       "none"},
       {"magnus",
        "a Magnus moment",
        {"Cm_p_alpha"},
        {"Cm_p_beta", "Cn_p_alpha"},
-       false},
+       false,
+       {},
+       "spin rate",
+       "none"},
       {"nonlinear_stiffness",
        "nonlinear (cubic) static stiffness",
        {"Cm_alpha_delta", "Cm_alpha_delta2"},
        {"Cm_alpha3", "Cn_beta3"},
-       false},
+       false,
+       {},
+       "amplitude",
+       "changes the linear stiffness by at most its own size over the "
+       "record's angles"},
       {"nonlinear_damping",
        "nonlinear pitch and yaw damping",
        {"Cm_q_delta", "Cm_q_delta2"},
        {"Cm_q_alpha2", "Cn_r_beta2"},
-       false},
-      {"roll_damping", "roll damping (Cl_p)", {"Cl_p"}, {"Cl_p"}, false},
-      {"trim_moment",
-       "trim moments in pitch and yaw (Cm_0, Cn_0)",
+       false,
        {},
+       "amplitude",
+       "changes the linear damping by at most its own size over the "
+       "record's angles"},
+      {"roll_damping",
+       "roll damping (Cl_p)",
+       {"Cl_p"},
+       {"Cl_p"},
+       false,
+       {},
+       "spin rate",
+       "none"},
+      {"trim_moment",
+       "a body-fixed trim moment in pitch and yaw (Cm_0, Cn_0)",
        {"Cm_0", "Cn_0"},
-       false},
+       {"Cm_0", "Cn_0"},
+       false,
+       {},
+       "spin rate",
+       "a trim angle |(Cm_0, Cn_0)| / |Cm_alpha| up to 2 deg"},
       {"roll_interaction",
        "a pitch and yaw reading error that varies with roll (Section 5.2)",
        {"theta_cos_phi", "theta_sin_phi", "psi_cos_phi", "psi_sin_phi"},
        {"theta_cos_phi", "theta_sin_phi", "psi_cos_phi", "psi_sin_phi"},
-       false},
+       false,
+       {},
+       "spin rate",
+       "up to 0.2 deg in each channel (the report's bench test: 0.1)"},
+      {"bearing_moment",
+       "a gas-bearing moment near zero angle (Section 5.2)",
+       {"Cm_bearing", "bearing_angle"},
+       {"Cm_bearing", "bearing_angle"},
+       false,
+       {{"bearing_angle", 1.0}},
+       "bearing pressure",
+       "|Cm_bearing| up to |Cm_alpha|, bearing_angle within the record's "
+       "angles"},
+      {"calibration_nonlinearity",
+       "a pitch and yaw calibration nonlinearity (Section 5.2)",
+       {"theta_cal3", "psi_cal3"},
+       {"theta_cal3", "psi_cal3"},
+       false,
+       {},
+       "amplitude",
+       "up to 0.2 deg at the record's largest angle"},
   };
   return catalog;
+}
+
+const Effect* FindEffect(const std::string& id) {
+  for (const Effect& e : EffectCatalog()) {
+    if (e.id == id) return &e;
+  }
+  return nullptr;
 }
 
 bool CandidateCase(const Case& at,
@@ -88,13 +153,27 @@ bool CandidateCase(const Case& at,
     const int position = FindParameter(candidate.model, name);
     if (position < 0) continue;
     ParameterSetting& p = candidate.parameters[position];
-    if (p.free || p.value != 0.0) continue;
+    double start = 0.0;
+    for (const auto& [companion, value] : effect.companions) {
+      if (companion == name) start = value;
+    }
+    // A companion the user already set keeps its value (freed with the
+    // effect); the effect's own terms must not be in the model yet.
+    if (p.free || (p.value != 0.0 && start == 0.0)) continue;
     p.free = true;
-    p.value = 0.0;
+    if (p.value == 0.0) p.value = start;
     p.auto_start = false;
     added->push_back(ParameterTable(candidate.model)[position].name);
   }
-  if (added->empty()) return false;
+  // Companions alone (the effect's own terms already in the model) are no
+  // candidate.
+  const bool own =
+      std::any_of(added->begin(), added->end(), [&](const std::string& name) {
+        return std::none_of(effect.companions.begin(),
+                            effect.companions.end(),
+                            [&](const auto& c) { return c.first == name; });
+      });
+  if (!own) return false;
   // Refits start at the current solution: no multi-start, and the
   // diagnosis judges the residual level itself.
   candidate.solver.multi_start = false;

@@ -316,14 +316,6 @@ std::string LineName(double hz, double spin_hz) {
   return name;
 }
 
-// The spin rate (Hz) of a segment's fitted motion.
-double SpinHz(const SegmentFit& s) {
-  const int n = s.data.size();
-  const double duration = s.data.t.back() - s.data.t.front();
-  if (n < 2 || !(duration > 0.0)) return 0.0;
-  return std::abs(s.computed[3 * (n - 1)] - s.computed[0]) / 360.0 / duration;
-}
-
 // How one segment's channel is not white: "0.81 in theta (lines at 1.72 Hz
 // = spin, ...)".
 std::string Structure(const SegmentFit& s, int ch, bool several) {
@@ -366,9 +358,9 @@ void JudgeAdequacy(const Case& c, FitResult* result) {
       " looks for a missing effect");
 }
 
-// The fit of the given samples of each segment (the whole of Fit but the
-// wild-point screen).
-FitResult FitData(const Case& c, const std::vector<TimeHistory>& data) {
+}  // namespace
+
+FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
   const auto start_time = std::chrono::steady_clock::now();
   FitProblem problem = PrepareProblem(c, data);
   CheckSize(c, problem);
@@ -407,6 +399,8 @@ FitResult FitData(const Case& c, const std::vector<TimeHistory>& data) {
                        .count();
   return result;
 }
+
+namespace {
 
 // Rounds of post-fit screening and refitting for rejecting segments.
 constexpr int kWildPointRounds = 3;
@@ -463,6 +457,14 @@ void ReportWildPoints(const Case& c,
 
 }  // namespace
 
+double SpinHz(const SegmentFit& s) {
+  const int n = s.data.size();
+  if (n < 2) return 0.0;
+  const double duration = s.data.t.back() - s.data.t.front();
+  if (!(duration > 0.0)) return 0.0;
+  return std::abs(s.computed[3 * (n - 1)] - s.computed[0]) / 360.0 / duration;
+}
+
 Case CaseAtSolution(const Case& c, const FitResult& r) {
   Case at = c;
   for (const ParameterEstimate& e : r.parameters) {
@@ -511,7 +513,7 @@ FitResult Fit(const Case& c) {
   std::vector<TimeHistory> data = ReadSegmentData(c, &outliers);
   FitResult result;
   try {
-    result = FitData(c, data);
+    result = FitSamples(c, data);
   } catch (const InputError& e) {
     if (outliers.empty()) throw;
     throw InputError(std::string(e.what()) + "; " + WildPointSummary(outliers));
@@ -546,7 +548,7 @@ FitResult Fit(const Case& c) {
     if (!refit) break;
     const double seconds = result.seconds;
     const int iterations = result.iterations;
-    result = FitData(CaseAtSolution(c, result), data);
+    result = FitSamples(CaseAtSolution(c, result), data);
     result.seconds += seconds;
     result.iterations += iterations;
   }

@@ -27,14 +27,49 @@
 // in full;
 // the one with the lowest Bayesian information criterion,
 //   BIC = n ln(RSS / n) + k ln(n)   (n residuals, k free parameters),
-// is added if it lowers BIC by more than `min_bic_drop` (10: very strong
-// evidence). The loop stops at the noise level or when no candidate is
-// significant.
+// is a contender if it lowers BIC by more than `min_bic_drop` (10: very
+// strong evidence).
+//
+// Never a confident wrong answer. A contender is added only when it earns
+// its place (effect_validation.cc):
+//   - plausible: its values within the bounds of its effect (reading
+//     errors up to 0.2 deg, |I_zx| up to 5% of I_y, a trim angle up to
+//     2 deg, tunnel terms up to half the aerodynamic ones, nonlinear terms
+//     that change the linear ones by at most their own size over the
+//     record; EffectCatalog lists each);
+//   - not dragging the coefficients: unless it explains the record down
+//     to the noise, no coefficient free before it moves by more than
+//     `max_drag` (5) of its own standard error times the factor by which
+//     the effect lowers the probable error. (A missing effect's bias hides
+//     in the fit: the part of it the coefficients absorb leaves no
+//     residual, so no error bar of the fit without it covers the move; an
+//     effect that explains everything may move them as far as it must,
+//     one that explains a little must not move them far);
+//   - out of sample: each segment cut into `held_out_blocks` (8) runs of
+//     samples, every other one held out (the first, where the initial
+//     conditions hold, kept); fitted to the kept samples with and without
+//     it, the model predicts the held-out ones better with it
+//     (log-likelihood gain n_held ln(RSS_without / RSS_with) above 2 per
+//     parameter it adds, AIC's price). Held-out runs spread over the
+//     record test an effect at every amplitude and spin rate the record
+//     has: a calibration error that lives at the large early angles would
+//     go untested in a held-out final third.
+// When two contenders both earn their place and their BICs lie within
+// `ambiguity_bic` (10), the verdict is `ambiguous` and neither is added:
+// both fits are reported with what would separate them (another spin
+// rate, amplitude or dynamic pressure). Segments diagnosed together (runs
+// at different spin rates) separate what one run cannot. When the
+// residuals stay structured and nothing earns its place the verdict is
+// `not_explained`, with a description of what the residuals show (lines
+// against the modal and spin frequencies, a trend in time, a dependence
+// on the angle or on roll). Every added effect is reported with the final
+// model's values.
 
 #ifndef FIT3DOF_DIAGNOSE_H_
 #define FIT3DOF_DIAGNOSE_H_
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fit3dof/case.h"
@@ -48,9 +83,19 @@ struct Effect {
   std::vector<std::string> symmetric;   // parameters in the symmetric model
   std::vector<std::string> asymmetric;  // and in the asymmetric one
   bool to_asymmetric = false;           // needs the asymmetric program
+  // Values the effect's terms need when the case has none (the bearing
+  // moment's bearing_angle), freed with its parameters.
+  std::vector<std::pair<std::string, double>> companions;
+  // What a second run would change to tell it from an effect of the same
+  // signature ("spin rate", "amplitude", "dynamic pressure").
+  std::string separated_by;
+  // Its plausibility bounds, in words (effect_validation.cc checks them).
+  std::string bounds;
 };
 
 const std::vector<Effect>& EffectCatalog();
+// The entry called `id`, or nullptr.
+const Effect* FindEffect(const std::string& id);
 
 struct DiagnoseOptions {
   double noise_limit = 1.1;
@@ -58,6 +103,10 @@ struct DiagnoseOptions {
   double spectral_factor = 4.0;  // spectral_limit = factor * ln(N)
   int refit = 5;
   double min_bic_drop = 10.0;
+  double ambiguity_bic = 10.0;
+  double max_drag = 5.0;
+  int held_out_blocks = 8;
+  double gain_per_parameter = 2.0;
   int max_steps = 5;
   std::vector<std::string> effects;  // restrict the catalog (empty: all)
 };
@@ -81,21 +130,56 @@ struct CandidateScore {
   int dof = 0;         // directions not already spanned
 };
 
+// A contender refitted in full, and whether it earned its place.
+struct CandidateFit {
+  std::string effect;
+  std::vector<ParameterEstimate> parameters;  // its own, as fitted
+  double bic_drop = 0.0;
+  // Out of sample: n_test ln(RSS_without / RSS_with) over the held-out
+  // part (NaN when not checked).
+  double prediction_gain = 0.0;
+  std::string rejected;  // why it did not earn its place; empty if it did
+};
+
 struct DiagnosisStep {
   std::string effect;
   std::string description;
+  // The effect's parameters in the final model, and as this step fitted
+  // them.
   std::vector<ParameterEstimate> parameters;
+  std::vector<ParameterEstimate> step_parameters;
   double score = 0.0;
   double bic_drop = 0.0;
+  double prediction_gain = 0.0;
   std::vector<CandidateScore> ranking;
+  std::vector<CandidateFit> contenders;  // every refit of the step
   ResidualCheck after;
 };
+
+enum class Verdict {
+  kNoiseLevel,    // the first fit's residuals are measurement noise
+  kExplained,     // effects were added and the residuals are noise
+  kAmbiguous,     // two effects explain the residual alike
+  kNotExplained,  // structured residuals no catalog effect explains
+};
+// "noise_level" | "explained" | "ambiguous" | "not_explained".
+const char* VerdictToString(Verdict verdict);
 
 struct Diagnosis {
   ResidualCheck initial;
   ResidualCheck final;
   std::vector<DiagnosisStep> steps;
-  std::string verdict;
+  Verdict verdict = Verdict::kNoiseLevel;
+  std::string verdict_text;  // the sentence for people
+  // When ambiguous: the effects, their fits, and what would separate them.
+  std::vector<CandidateFit> ambiguous;
+  std::string separated_by;
+  // When the residuals stay structured: what they show, and the contenders
+  // of the last round, each with why it did not earn its place.
+  std::string residual_description;
+  std::vector<CandidateFit> rejected;
+  // Every parameter of the final model (its free ones with errors).
+  std::vector<ParameterEstimate> final_parameters;
   Case final_case;
   std::vector<FitResult> fits;  // the fit before the first step, then one
                                 // per step
@@ -106,6 +190,12 @@ ResidualCheck CheckResiduals(const FitResult& fit,
 
 // Throws InputError for bad input (as Fit does).
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options);
+
+// What structured residuals show, for an engineer to act on: the strongest
+// lines of theta + i psi against the motion's modal frequencies and the
+// spin's harmonics, a trend in time, a dependence on the pitch or yaw
+// angle, a dependence on the roll angle (residual_description.cc).
+std::string DescribeResiduals(const FitResult& fit);
 
 std::string DiagnosisJson(const Diagnosis& d, const Case& noise_reference);
 // `sigma`: the stated noise level, quoted beside the residuals.

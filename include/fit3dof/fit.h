@@ -143,6 +143,15 @@ struct FitResult {
 // converge returns normally with converged = false.
 FitResult Fit(const Case& c);
 
+// Fit without reading: the samples of each segment given (one record per
+// segment of `c`, as ReadSegmentData returns them or a FitResult's
+// segments hold them), no wild-point screen. Diagnose fits its candidates
+// and its out-of-sample checks on the samples the first fit used.
+FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data);
+
+// The spin rate (Hz) of a segment's fitted motion, over the record.
+double SpinHz(const SegmentFit& s);
+
 // The case with every free value at the fit's result and each segment's
 // initial conditions given as fitted.
 Case CaseAtSolution(const Case& c, const FitResult& result);

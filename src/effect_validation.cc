@@ -1,0 +1,278 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Whether a contender earns its place in the model (diagnose.h): its
+// plausibility bounds, the drag it puts on the coefficients already free,
+// and the out-of-sample check's pieces (the held-out part of each segment,
+// the prediction error over it).
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <initializer_list>
+#include <limits>
+#include <map>
+
+#include "diagnose_internal.h"
+#include "fit3dof/angles.h"
+#include "fit3dof/motion_model.h"
+#include "fit3dof/parameters.h"
+#include "format.h"
+
+namespace fit3dof {
+namespace {
+
+// What a bound sees: the fitted values by name and the record's largest
+// total angle.
+struct BoundContext {
+  std::map<std::string, double> values;
+  double largest_deg = 0.0;
+
+  double operator()(const std::string& name) const {
+    const auto it = values.find(name);
+    return it == values.end() ? 0.0 : it->second;
+  }
+  double largest_rad() const { return largest_deg * kDegree; }
+};
+
+BoundContext ContextOf(const FitResult& fit) {
+  BoundContext b;
+  for (const ParameterEstimate& e : fit.parameters) {
+    if (e.segment.empty()) b.values[e.name] = e.value;
+  }
+  for (const SegmentFit& s : fit.segments) {
+    for (int i = 0; i < s.data.size(); ++i) {
+      b.largest_deg =
+          std::max(b.largest_deg, std::hypot(s.data.theta[i], s.data.psi[i]));
+    }
+  }
+  return b;
+}
+
+std::string Exceeds(const std::string& what, double value, double bound) {
+  return what + " " + FormatNumber("%.3g", value) + " exceeds " +
+         FormatNumber("%.3g", bound);
+}
+
+// Each effect's bound (Effect::bounds in words): empty when within it.
+using Bound = std::function<std::string(const BoundContext&)>;
+
+std::string ReadingError(const BoundContext& v) {
+  const double theta = std::hypot(v("theta_cos_phi"), v("theta_sin_phi"));
+  const double psi = std::hypot(v("psi_cos_phi"), v("psi_sin_phi"));
+  if (std::max(theta, psi) > 0.2) {
+    return Exceeds("a reading error of", std::max(theta, psi), 0.2) + " deg";
+  }
+  return "";
+}
+
+std::string Calibration(const BoundContext& v) {
+  const double reach = std::pow(v.largest_deg / 5.0, 3);
+  const double worst =
+      std::max(std::abs(v("theta_cal3")), std::abs(v("psi_cal3"))) * reach;
+  if (worst > 0.2) {
+    return Exceeds("a calibration error at the largest angle of", worst, 0.2) +
+           " deg";
+  }
+  return "";
+}
+
+// A nonlinear term's change of its linear coefficient at the record's
+// largest angle against that coefficient: terms (name, power of the angle).
+std::string Nonlinear(
+    const BoundContext& v,
+    const char* linear,
+    std::initializer_list<std::pair<const char*, int>> terms) {
+  const double d = v.largest_rad();
+  double change = 0.0;
+  for (const auto& [name, power] : terms) {
+    change += std::abs(v(name)) * std::pow(d, power);
+  }
+  if (change > std::abs(v(linear))) {
+    return std::string("it changes ") + linear + " by " +
+           FormatNumber("%.3g", change) + " over the record, more than |" +
+           linear + "| = " + FormatNumber("%.3g", std::abs(v(linear)));
+  }
+  return "";
+}
+
+const std::map<std::string, Bound>& Bounds() {
+  static const std::map<std::string, Bound> bounds = {
+      {"tunnel_stiffness",
+       [](const BoundContext& v) {
+         const double worst = std::max(std::abs(v("t1")), std::abs(v("t3")));
+         const double bound = 0.5 * std::abs(v("Cm_alpha"));
+         return worst > bound ? Exceeds("|t1|, |t3| up to", worst, bound)
+                              : std::string();
+       }},
+      {"tunnel_damping",
+       [](const BoundContext& v) {
+         const double worst = std::max(std::abs(v("t2")), std::abs(v("t4")));
+         const double bound = 2.0 * std::abs(v("Cm_q"));
+         if (bound == 0.0) return std::string();  // no damping to compare
+         return worst > bound ? Exceeds("|t2|, |t4| up to", worst, bound)
+                              : std::string();
+       }},
+      {"flow_angularity",
+       [](const BoundContext& v) {
+         const double worst =
+             std::max(std::abs(v("theta_T")), std::abs(v("psi_T")));
+         return worst > 1.0 ? Exceeds("an offset of", worst, 1.0) + " deg"
+                            : std::string();
+       }},
+      {"trim_moment",
+       [](const BoundContext& v) {
+         const double stiffness = std::abs(v("Cm_alpha"));
+         const double trim = std::hypot(v("Cm_0"), v("Cn_0"));
+         if (stiffness == 0.0) return std::string();
+         const double angle = trim / stiffness / kDegree;
+         return angle > 2.0 ? Exceeds("a trim angle of", angle, 2.0) + " deg"
+                            : std::string();
+       }},
+      {"roll_interaction", ReadingError},
+      {"calibration_nonlinearity", Calibration},
+      {"nonlinear_stiffness",
+       [](const BoundContext& v) {
+         std::string why = Nonlinear(
+             v, "Cm_alpha", {{"Cm_alpha_delta", 1}, {"Cm_alpha_delta2", 2}});
+         if (why.empty()) why = Nonlinear(v, "Cm_alpha", {{"Cm_alpha3", 2}});
+         if (why.empty()) why = Nonlinear(v, "Cn_beta", {{"Cn_beta3", 2}});
+         return why;
+       }},
+      {"nonlinear_damping",
+       [](const BoundContext& v) {
+         std::string why =
+             Nonlinear(v, "Cm_q", {{"Cm_q_delta", 1}, {"Cm_q_delta2", 2}});
+         if (why.empty()) why = Nonlinear(v, "Cm_q", {{"Cm_q_alpha2", 2}});
+         if (why.empty()) why = Nonlinear(v, "Cn_r", {{"Cn_r_beta2", 2}});
+         return why;
+       }},
+      {"bearing_moment",
+       [](const BoundContext& v) {
+         const double moment = std::abs(v("Cm_bearing"));
+         const double stiffness = std::abs(v("Cm_alpha"));
+         if (moment > stiffness) {
+           return Exceeds("|Cm_bearing|", moment, stiffness) + " (|Cm_alpha|)";
+         }
+         const double angle = v("bearing_angle");
+         if (!(angle > 0.0) || angle > v.largest_deg) {
+           return "bearing_angle " + FormatNumber("%.3g", angle) +
+                  " deg lies outside the record's angles (0-" +
+                  FormatNumber("%.3g", v.largest_deg) + " deg)";
+         }
+         return std::string();
+       }},
+  };
+  return bounds;
+}
+
+}  // namespace
+
+std::string Implausible(const Effect& effect,
+                        const Case& c,
+                        const FitResult& fit) {
+  const BoundContext context = ContextOf(fit);
+  if (effect.id == "product_of_inertia") {
+    // The inertias are the case's, not parameters.
+    const double izx = std::abs(context("Izx"));
+    const double iy = c.body.Iy;
+    if (iy > 0.0 && izx > 0.05 * iy) {
+      return Exceeds("|I_zx|", izx, 0.05 * iy) + " slug ft^2 (5% of I_y)";
+    }
+    return "";
+  }
+  const auto it = Bounds().find(effect.id);
+  if (it == Bounds().end()) return "";
+  return it->second(context);
+}
+
+std::string Drags(const FitResult& before,
+                  const FitResult& after,
+                  const std::vector<std::string>& added,
+                  double max_drag) {
+  std::map<std::string, double> moved;
+  for (const ParameterEstimate& e : after.parameters) {
+    if (e.segment.empty()) moved[e.name] = e.value;
+  }
+  // A missing effect biases the coefficients in proportion to the misfit
+  // it leaves, which their standard errors (taken as noise) do not cover:
+  // the allowance grows with the share of the misfit the effect explains,
+  // sqrt(RSS_before / RSS_after) (the probable errors' ratio). An effect
+  // that takes the residual from 100 times the noise to the noise may move
+  // a coefficient by 100 times as much as one that explains little.
+  const double explained =
+      after.sum_of_residuals > 0.0
+          ? std::max(1.0, before.sum_of_residuals / after.sum_of_residuals)
+          : 1.0;
+  std::string worst;
+  double worst_ratio = max_drag * explained;
+  for (const ParameterEstimate& e : before.parameters) {
+    if (!e.free || !e.segment.empty() ||
+        IsInitialCondition(before.model, e.position) ||
+        std::find(added.begin(), added.end(), e.name) != added.end()) {
+      continue;
+    }
+    const auto it = moved.find(e.name);
+    if (it == moved.end() || !(e.standard_error > 0.0)) continue;
+    const double ratio = std::abs(it->second - e.value) / e.standard_error;
+    if (ratio > worst_ratio) {
+      worst_ratio = ratio;
+      worst = "it moves " + e.name + " by " + FormatNumber("%.3g", ratio) +
+              " of its standard errors (" + FormatNumber("%.4g", e.value) +
+              " -> " + FormatNumber("%.4g", it->second) + ") while it " +
+              "lowers the probable error only " +
+              FormatNumber("%.3g", explained) + "-fold";
+    }
+  }
+  return worst;
+}
+
+HeldOut HoldOut(const std::vector<TimeHistory>& data, int blocks) {
+  HeldOut h;
+  for (const TimeHistory& d : data) {
+    TimeHistory train;
+    std::vector<bool> held(d.size(), false);
+    for (int i = 0; i < d.size(); ++i) {
+      held[i] = (static_cast<long>(i) * blocks / d.size()) % 2 == 1;
+      if (!held[i]) train.Append(d.t[i], d.phi[i], d.theta[i], d.psi[i]);
+    }
+    h.train.push_back(std::move(train));
+    h.held.push_back(std::move(held));
+  }
+  return h;
+}
+
+double PredictionRss(const Case& c,
+                     const FitResult& trained,
+                     const std::vector<TimeHistory>& data,
+                     const HeldOut& held_out,
+                     const std::vector<ChannelValues>& weights) {
+  const Case at = CaseAtSolution(c, trained);
+  const int first = Layout(at.model).first_initial;
+  double rss = 0.0;
+  for (size_t s = 0; s < data.size(); ++s) {
+    std::vector<double> values = at.Values();
+    for (int j = 0; j < 6; ++j) {
+      values[first + j] = trained.segments[s].initial[j];
+    }
+    const MotionModel model(at.Spec(), ActiveParameters(values, {}));
+    const TimeHistory& d = data[s];
+    std::vector<double> angles(3 * d.size());
+    if (!model.Evaluate(
+            values.data(), d.t.data(), d.size(), angles.data(), nullptr)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    const double w[3] = {weights[s].phi, weights[s].theta, weights[s].psi};
+    for (int i = 0; i < d.size(); ++i) {
+      if (!held_out.held[s][i]) continue;
+      const double measured[3] = {d.phi[i], d.theta[i], d.psi[i]};
+      for (int ch = 0; ch < 3; ++ch) {
+        double r = angles[3 * i + ch] - measured[ch];
+        if (ch == 0) r -= 360.0 * std::round(r / 360.0);
+        rss += (r / w[ch]) * (r / w[ch]);
+      }
+    }
+  }
+  return rss;
+}
+
+}  // namespace fit3dof

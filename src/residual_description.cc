@@ -1,0 +1,151 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// What structured residuals show (DescribeResiduals, diagnose.h), in the
+// terms an engineer checks a missing effect by: which frequencies (the
+// motion's own modes, the spin and its harmonics), a trend in time, a
+// dependence on the angle the bearing sits at, a dependence on roll.
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "fit3dof/angles.h"
+#include "fit3dof/diagnose.h"
+#include "format.h"
+#include "spectral_lines.h"
+
+namespace fit3dof {
+namespace {
+
+// A regression's share of a residual's variance below which it is not
+// worth naming.
+constexpr double kNamedShare = 0.1;
+// Frequencies within this fraction of a reference are called "at" it.
+constexpr double kNear = 0.05;
+
+// The share of r's variance (about its mean) that the columns of x
+// explain by least squares.
+double Share(const Eigen::MatrixXd& x, const Eigen::VectorXd& r) {
+  const int n = static_cast<int>(r.size());
+  Eigen::MatrixXd design(n, x.cols() + 1);
+  design << Eigen::VectorXd::Ones(n), x;
+  const Eigen::VectorXd centred = r.array() - r.mean();
+  const double total = centred.squaredNorm();
+  if (!(total > 0.0)) return 0.0;
+  const Eigen::VectorXd fit = design * design.colPivHouseholderQr().solve(r);
+  return std::clamp(1.0 - (r - fit).squaredNorm() / total, 0.0, 1.0);
+}
+
+std::string Percent(double share) {
+  return FormatNumber("%.0f", 100.0 * share) + "%";
+}
+
+// What a residual line at f (Hz) sits at: a mode of the motion, a
+// harmonic of the spin, or neither.
+std::string LineName(double f,
+                     const std::vector<SpectralLine>& modes,
+                     double spin_hz) {
+  for (const SpectralLine& m : modes) {
+    if (std::abs(f - m.frequency_hz) <= kNear * m.frequency_hz) {
+      return "at the motion's mode of " + FormatNumber("%.3g", m.frequency_hz) +
+             " Hz";
+    }
+  }
+  for (int h = 1; h <= 3 && spin_hz > 0.0; ++h) {
+    if (std::abs(f - h * spin_hz) <= kNear * h * spin_hz) {
+      return "at " + std::to_string(h) + " x spin";
+    }
+  }
+  return "at neither the motion's modes nor the spin";
+}
+
+struct Channel {
+  const char* name;
+  Eigen::VectorXd residual, angle, computed;
+};
+
+std::string DescribeChannel(const Channel& c,
+                            const Eigen::VectorXd& t,
+                            const Eigen::VectorXd& roll,
+                            double spin_hz) {
+  const int n = static_cast<int>(t.size());
+  const double dt = (t(n - 1) - t(0)) / (n - 1);
+  std::string text;
+  const auto add = [&](const std::string& s) {
+    text += (text.empty() ? "" : ", ") + s;
+  };
+  const std::vector<double> r(c.residual.data(), c.residual.data() + n);
+  const std::vector<double> motion(c.computed.data(), c.computed.data() + n);
+  const std::vector<SpectralLine> modes = SpectralLines(motion, dt, 4.0, 2);
+  for (const SpectralLine& line : SpectralLines(r, dt)) {
+    add("a line at " + FormatNumber("%.3g", line.frequency_hz) + " Hz (" +
+        LineName(line.frequency_hz, modes, spin_hz) + ")");
+  }
+  const Eigen::VectorXd centred_t = t.array() - t.mean();
+  const double trend = Share(centred_t, c.residual);
+  if (trend > kNamedShare) add("a trend in time (" + Percent(trend) + ")");
+  // The angle to the powers 1-3: a calibration curve or a stiffness that
+  // changes with amplitude.
+  Eigen::MatrixXd powers(n, 3);
+  const double scale = std::max(c.angle.cwiseAbs().maxCoeff(), 1e-12);
+  for (int p = 0; p < 3; ++p) {
+    powers.col(p) = (c.angle / scale).array().pow(p + 1);
+  }
+  const double amplitude = Share(powers, c.residual);
+  if (amplitude > kNamedShare) {
+    add(std::string("a dependence on the ") + c.name + " angle (" +
+        Percent(amplitude) + ")");
+  }
+  Eigen::MatrixXd harmonics(n, 6);
+  for (int h = 1; h <= 3; ++h) {
+    harmonics.col(2 * h - 2) = (h * roll).array().cos();
+    harmonics.col(2 * h - 1) = (h * roll).array().sin();
+  }
+  const double locked = Share(harmonics, c.residual);
+  if (locked > kNamedShare) {
+    add("a dependence on the roll angle, harmonics 1-3 (" + Percent(locked) +
+        ")");
+  }
+  return text.empty() ? "" : std::string(c.name) + ": " + text;
+}
+
+}  // namespace
+
+std::string DescribeResiduals(const FitResult& fit) {
+  std::string text;
+  for (const SegmentFit& s : fit.segments) {
+    const int n = s.data.size();
+    if (n < 16) continue;
+    Eigen::VectorXd t(n), roll(n);
+    Channel channels[2] = {
+        {"pitch", Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)},
+        {"yaw", Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)}};
+    for (int i = 0; i < n; ++i) {
+      t(i) = s.data.t[i];
+      roll(i) = s.computed[3 * i] * kDegree;
+      const double measured[2] = {s.data.theta[i], s.data.psi[i]};
+      for (int c = 0; c < 2; ++c) {
+        channels[c].computed(i) = s.computed[3 * i + 1 + c];
+        channels[c].angle(i) = channels[c].computed(i);
+        channels[c].residual(i) = measured[c] - channels[c].computed(i);
+      }
+    }
+    const double spin_hz = SpinHz(s);
+    std::string segment;
+    for (const Channel& c : channels) {
+      const std::string part = DescribeChannel(c, t, roll, spin_hz);
+      if (!part.empty()) segment += (segment.empty() ? "" : "; ") + part;
+    }
+    if (segment.empty()) continue;
+    if (fit.segments.size() > 1) segment = "'" + s.name + "': " + segment;
+    text += (text.empty() ? "" : "; ") + segment;
+  }
+  if (text.empty()) {
+    return "no line, trend, angle or roll dependence stands out: the "
+           "residual is broadband";
+  }
+  return "the residuals show " + text +
+         " (shares: of the channel's residual variance)";
+}
+
+}  // namespace fit3dof
