@@ -16,6 +16,7 @@
 #include <limits>
 
 #include "diagnose_internal.h"
+#include "fit3dof/thread_budget.h"
 #include "format.h"
 
 namespace fit3dof {
@@ -36,9 +37,9 @@ struct Candidate {
 
 // A candidate refitted in full.
 struct Contender {
-  const Candidate* candidate;
+  const Candidate* candidate = nullptr;
   FitResult fit;
-  double bic;
+  double bic = 0.0;
   CandidateFit record;
 };
 
@@ -60,12 +61,18 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
                                         const DiagnoseOptions& options) {
   const Case at = CaseAtSolution(current, fit);
   const std::vector<TimeHistory> data = FittedData(fit);
-  std::vector<Candidate> candidates;
+  std::vector<Candidate> all;
   for (const Effect& e : EffectCatalog()) {
     if (!Wanted(options, e)) continue;
     Candidate k{&e, Case(), {}, {}};
-    if (!CandidateCase(at, e, &k.c, &k.added)) continue;
-    k.score = Score(k.c, k.added, e.id, data);
+    if (CandidateCase(at, e, &k.c, &k.added)) all.push_back(std::move(k));
+  }
+  // Within the process's thread budget (thread_budget.h).
+  ParallelFor(static_cast<int>(all.size()), [&](int i) {
+    all[i].score = Score(all[i].c, all[i].added, all[i].effect->id, data);
+  });
+  std::vector<Candidate> candidates;
+  for (Candidate& k : all) {
     if (k.score.dof > 0) candidates.push_back(std::move(k));
   }
   std::sort(candidates.begin(),
@@ -96,24 +103,34 @@ std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
                                   const std::vector<TimeHistory>& data,
                                   const DiagnoseOptions& options) {
   const double bic_now = Bic(fit);
-  std::vector<Contender> contenders;
-  for (int i = 0; i < std::min<int>(options.refit, candidates.size()); ++i) {
+  const int n = std::min<int>(options.refit, candidates.size());
+  std::vector<Contender> refits(n);
+  std::vector<bool> fitted(n, false);
+  ParallelFor(n, [&](int i) {
     const Candidate& k = candidates[i];
-    Contender c{&k, FitResult(), 0.0, CandidateFit()};
+    Contender& c = refits[i];
+    c.candidate = &k;
     try {
-      c.fit = FitSamples(k.c, data);
+      Case refit = k.c;
+      RefitFromSolution(&refit, fit.probable_error);
+      c.fit = FitSamples(refit, data);
+      fitted[i] = true;
     } catch (const std::exception& e) {
       LOG(WARNING) << fit.name << ": refit with " << k.effect->id
                    << " failed: " << e.what();
-      continue;
     }
+  });
+  std::vector<Contender> contenders;
+  for (int i = 0; i < n; ++i) {
+    if (!fitted[i]) continue;
+    Contender& c = refits[i];
     c.bic = Bic(c.fit);
-    c.record.effect = k.effect->id;
-    c.record.parameters = Own(c.fit, k.added);
+    c.record.effect = c.candidate->effect->id;
+    c.record.parameters = Own(c.fit, c.candidate->added);
     c.record.bic_drop = bic_now - c.bic;
     c.record.prediction_gain = std::numeric_limits<double>::quiet_NaN();
-    VLOG(1) << fit.name << ": " << k.effect->id << " score " << k.score.score
-            << ", BIC drop " << c.record.bic_drop;
+    VLOG(1) << fit.name << ": " << c.record.effect << " score "
+            << c.candidate->score.score << ", BIC drop " << c.record.bic_drop;
     if (c.record.bic_drop >= options.min_bic_drop) {
       contenders.push_back(std::move(c));
     }
@@ -125,6 +142,12 @@ std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
   return contenders;
 }
 
+Case FromSolution(const Case& c, const FitResult& fit) {
+  Case at = CaseAtSolution(c, fit);
+  RefitFromSolution(&at, fit.probable_error);
+  return at;
+}
+
 // The out-of-sample check of one round: the current model fitted to the
 // first part of each segment once, each contender against it.
 class OutOfSample {
@@ -132,7 +155,7 @@ class OutOfSample {
   OutOfSample(const Case& current,
               const FitResult& fit,
               const DiagnoseOptions& options)
-      : current_(CaseAtSolution(current, fit)),
+      : current_(FromSolution(current, fit)),
         data_(FittedData(fit)),
         held_out_(HoldOut(data_, options.held_out_blocks)) {
     for (const SegmentFit& s : fit.segments) weights_.push_back(s.sigma_deg);
@@ -183,7 +206,7 @@ void Judge(const FitResult& current,
     why = Drags(current, c->fit, k.added, options.max_drag);
   }
   if (why.empty()) {
-    const double gain = out_of_sample->Gain(k.c);
+    const double gain = out_of_sample->Gain(FromSolution(k.c, c->fit));
     c->record.prediction_gain = gain;
     const double needed = options.gain_per_parameter * k.added.size();
     if (!(gain > needed)) {

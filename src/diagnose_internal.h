@@ -17,6 +17,15 @@
 
 namespace fit3dof {
 
+// Solver settings for a fit that starts at a solution whose probable
+// error is `probable_error` (a refit with one more effect, the
+// out-of-sample fits): no multi-start, no rule on the residual level (the
+// diagnosis judges it), and continuation only when the solution is far
+// from the noise (probable error above kNearSolution): near it the
+// growing windows only cost time.
+inline constexpr double kNearSolution = 3.0;
+void RefitFromSolution(Case* c, double probable_error);
+
 // The case `at` with the effect's parameters free at zero (converted to the
 // asymmetric program when the effect needs it), their names in `added`;
 // false when the effect does not apply or is already in the model.

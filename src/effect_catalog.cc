@@ -64,22 +64,22 @@ const std::vector<Effect>& EffectCatalog() {
        "spin rate",
        "none"},
       {"nonlinear_stiffness",
-       "nonlinear (cubic) static stiffness",
-       {"Cm_alpha_delta", "Cm_alpha_delta2"},
+       "nonlinear (cubic) static stiffness (Eq. 16's delta^2 term)",
+       {"Cm_alpha_delta2"},
        {"Cm_alpha3", "Cn_beta3"},
        false,
        {},
        "amplitude",
-       "changes the linear stiffness by at most its own size over the "
+       "changes the linear stiffness by at most twice its size over the "
        "record's angles"},
       {"nonlinear_damping",
-       "nonlinear pitch and yaw damping",
-       {"Cm_q_delta", "Cm_q_delta2"},
+       "nonlinear pitch and yaw damping (Eq. 16's delta^2 term)",
+       {"Cm_q_delta2"},
        {"Cm_q_alpha2", "Cn_r_beta2"},
        false,
        {},
        "amplitude",
-       "changes the linear damping by at most its own size over the "
+       "changes the linear damping by at most twice its size over the "
        "record's angles"},
       {"roll_damping",
        "roll damping (Cl_p)",
@@ -133,6 +133,14 @@ const Effect* FindEffect(const std::string& id) {
   return nullptr;
 }
 
+void RefitFromSolution(Case* c, double probable_error) {
+  // Far above the noise (the fit without the effect lost the motion: a
+  // missing roll damping over 48 s) the refit needs the growing windows.
+  c->solver.continuation = probable_error > kNearSolution;
+  c->solver.multi_start = false;
+  c->solver.max_probable_error = 0.0;
+}
+
 bool CandidateCase(const Case& at,
                    const Effect& effect,
                    Case* out,
@@ -174,10 +182,6 @@ bool CandidateCase(const Case& at,
                             [&](const auto& c) { return c.first == name; });
       });
   if (!own) return false;
-  // Refits start at the current solution: no multi-start, and the
-  // diagnosis judges the residual level itself.
-  candidate.solver.multi_start = false;
-  candidate.solver.max_probable_error = 0.0;
   *out = candidate;
   return true;
 }

@@ -25,7 +25,8 @@ namespace {
 // total angle.
 struct BoundContext {
   std::map<std::string, double> values;
-  double largest_deg = 0.0;
+  double largest_deg = 0.0;  // total angle
+  double largest_theta_deg = 0.0, largest_psi_deg = 0.0;
 
   double operator()(const std::string& name) const {
     const auto it = values.find(name);
@@ -65,16 +66,22 @@ std::string ReadingError(const BoundContext& v) {
   return "";
 }
 
+// Each channel's error at its own largest angle: a channel that stays near
+// zero leaves its term undetermined, and harmless.
 std::string Calibration(const BoundContext& v) {
-  const double reach = std::pow(v.largest_deg / 5.0, 3);
-  const double worst =
-      std::max(std::abs(v("theta_cal3")), std::abs(v("psi_cal3"))) * reach;
+  const double worst = std::max(
+      std::abs(v("theta_cal3")) * std::pow(v.largest_theta_deg / 5.0, 3),
+      std::abs(v("psi_cal3")) * std::pow(v.largest_psi_deg / 5.0, 3));
   if (worst > 0.2) {
     return Exceeds("a calibration error at the largest angle of", worst, 0.2) +
            " deg";
   }
   return "";
 }
+
+// How far a nonlinear term may change its linear coefficient over the
+// record, in units of that coefficient.
+constexpr double kMostNonlinear = 2.0;
 
 // A nonlinear term's change of its linear coefficient at the record's
 // largest angle against that coefficient: terms (name, power of the angle).
@@ -87,10 +94,11 @@ std::string Nonlinear(
   for (const auto& [name, power] : terms) {
     change += std::abs(v(name)) * std::pow(d, power);
   }
-  if (change > std::abs(v(linear))) {
+  if (change > kMostNonlinear * std::abs(v(linear))) {
     return std::string("it changes ") + linear + " by " +
-           FormatNumber("%.3g", change) + " over the record, more than |" +
-           linear + "| = " + FormatNumber("%.3g", std::abs(v(linear)));
+           FormatNumber("%.3g", change) + " over the record, more than " +
+           "twice |" + linear +
+           "| = " + FormatNumber("%.3g", std::abs(v(linear)));
   }
   return "";
 }

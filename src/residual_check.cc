@@ -11,6 +11,12 @@
 #include "fit3dof/diagnose.h"
 
 namespace fit3dof {
+namespace {
+
+// The upper 0.1% point of the standard normal.
+constexpr double kZ999 = 3.0902323061678132;
+
+}  // namespace
 
 ResidualCheck CheckResiduals(const FitResult& fit,
                              const DiagnoseOptions& options) {
@@ -69,10 +75,22 @@ ResidualCheck CheckResiduals(const FitResult& fit,
     check.peak_frequency_hz = signed_k * (n - 1) / (n * duration);
     spectral_limit = options.spectral_factor * std::log(static_cast<double>(n));
   }
+  // The limits never below what noise itself reaches with chance 1e-3 on
+  // a record this short: E^2 is chi-square over its degrees of freedom
+  // (sd sqrt(2 / dof)), a lag-1 autocorrelation of noise has sd
+  // 1 / sqrt(n). On 47 samples E = 1.12 or a lag-1 autocorrelation of 0.4
+  // is one noise record in twenty.
+  const double dof = std::max(
+      1.0, 3.0 * fit.points - static_cast<double>(fit.free_parameters));
+  const double noise_limit = std::max(
+      options.noise_limit, std::sqrt(1.0 + kZ999 * std::sqrt(2.0 / dof)));
+  const double whiteness_limit =
+      std::max(options.whiteness_limit,
+               kZ999 / std::sqrt(std::max(1.0, 1.0 * fit.points)));
   const double worst =
       std::max({std::abs(lag[0]), std::abs(lag[1]), std::abs(lag[2])});
-  check.at_noise_level = fit.probable_error < options.noise_limit &&
-                         worst < options.whiteness_limit &&
+  check.at_noise_level = fit.probable_error < noise_limit &&
+                         worst < whiteness_limit &&
                          check.peak_ratio < spectral_limit;
   return check;
 }

@@ -261,3 +261,121 @@ TEST(Diagnose, AddsNothingToCleanData) {
 
 }  // namespace
 }  // namespace fit3dof
+
+namespace fit3dof {
+namespace {
+
+// The short record: the Section 5.3 sharp cone, 3 s at 10 points
+// per cycle of its 1.55-Hz motion, 8 deg of coning, spinning at
+// `spin` deg/s, with a body-fixed trim moment that leaves residuals of
+// about 1.4 times the noise.
+Case ShortTruth(double spin) {
+  Case c = LoadConfig(testing::SourcePath("configs/report/table6_motion.yaml"));
+  for (ParameterSetting& p : c.parameters) p = ParameterSetting{};
+  c.body = {0.3491, 0.6667, 0.0301, 0.2583, 0.2583};
+  c.flow = {2900.0, 460.0};
+  const std::vector<std::pair<const char*, double>> values = {
+      {"Cm_alpha", -0.23},
+      {"Cm_q", -5.5},
+      {"Cm_alpha_delta2", -1.13},
+      {"Cm_0", 4.4e-5},
+      {"Cn_0", -3.3e-5},
+      {"phidot0", spin},
+      {"theta0", 8.0}};
+  for (const auto& [name, value] : values) {
+    c.parameters[FindParameter(c.model, name)].value = value;
+  }
+  return c;
+}
+
+std::string SimulateShort(const Case& truth,
+                          const std::string& path,
+                          std::uint64_t seed) {
+  std::vector<double> times;
+  for (double t = 0.0; t <= 3.0; t += 0.0645) times.push_back(t);
+  Case c = truth;
+  c.solver.step = 0.002;
+  TimeHistory data = SimulateAt(c, c.Values(), times);
+  NoiseOptions noise;
+  noise.enabled = true;
+  noise.sigma = {0.01, 0.01, 0.01};
+  noise.seed = seed;
+  AddNoise(noise, &data);
+  WriteTimeHistory(path, data);
+  return path;
+}
+
+// A fit config of the short records: Cm_alpha and Cm_q free, the cubic
+// stiffness known, no trim.
+Case ShortConfig(const std::vector<std::string>& files) {
+  Case c = ShortTruth(30.0);
+  for (const char* name : {"Cm_0", "Cn_0", "phidot0", "theta0"}) {
+    c.parameters[FindParameter(c.model, name)] = ParameterSetting{};
+  }
+  c.parameters[FindParameter(c.model, "Cm_alpha")] = {-0.2, true, false};
+  c.parameters[FindParameter(c.model, "Cm_q")] = {-2.0, true, false};
+  c.segments.clear();
+  for (size_t i = 0; i < files.size(); ++i) {
+    Segment s;
+    s.name = "run" + std::to_string(i + 1);
+    s.data_file = files[i];
+    for (int j = 0; j < 6; ++j) s.initial[j].free = true;
+    c.segments.push_back(s);
+  }
+  c.sigma = {0.01, 0.01, 0.01};
+  c.solver.step = 0.002;
+  c.source = files[0];
+  return c;
+}
+
+// At one slow spin (90 deg of roll in the record) a body-fixed trim moment
+// and a roll-synchronous reading error leave the same signature: the
+// verdict says so, adds neither, and names what would separate them.
+// Two runs at different spin rates, diagnosed together, do separate them.
+TEST(Diagnose, AmbiguityIsAVerdictAndTwoSpinRatesSeparate) {
+  const std::string dir = testing::ScratchDirectory("diagnose_ambiguous");
+  const std::string slow =
+      SimulateShort(ShortTruth(30.0), dir + "/slow.csv", 3);
+  const Diagnosis one = Diagnose(ShortConfig({slow}), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(one, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(one.verdict), std::string("ambiguous")) << text;
+  EXPECT_TRUE(one.steps.empty()) << text;
+  std::set<std::string> pair;
+  for (const CandidateFit& a : one.ambiguous) pair.insert(a.effect);
+  EXPECT_TRUE(pair.count("trim_moment")) << text;
+  EXPECT_NE(one.separated_by.find("spin rate"), std::string::npos) << text;
+  const nlohmann::json j =
+      nlohmann::json::parse(DiagnosisJson(one, ShortConfig({slow})));
+  EXPECT_EQ(j["verdict"], "ambiguous");
+  EXPECT_EQ(j["ambiguous_between"].size(), 2u);
+
+  if (testing::kSanitized) return;  // the second half: plain build
+  const std::string fast =
+      SimulateShort(ShortTruth(400.0), dir + "/fast.csv", 4);
+  const Diagnosis two = Diagnose(ShortConfig({slow, fast}), DiagnoseOptions());
+  const std::string both = FormatDiagnosis(two, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(two.verdict), std::string("explained")) << both;
+  ASSERT_EQ(two.steps.size(), 1u) << both;
+  EXPECT_EQ(two.steps[0].effect, "trim_moment") << both;
+}
+
+// An effect outside the catalog (a pitch reading that drifts 0.05 deg
+// over the Table 6 record) ends not_explained, with at most one effect
+// added, and the residuals described (the trend) for the engineer.
+TEST(Diagnose, SaysWhenNoCatalogEffectExplains) {
+  const std::string dir = testing::ScratchDirectory("diagnose_drift");
+  Simulate(Truth(), dir + "/clean.csv", 8);
+  TimeHistory data = ReadTimeHistory(dir + "/clean.csv");
+  for (int i = 0; i < data.size(); ++i) data.theta[i] += 0.001 * data.t[i];
+  WriteTimeHistory(dir + "/data.csv", data);
+  const Diagnosis d =
+      Diagnose(FitConfig(Truth(), dir + "/data.csv"), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
+  EXPECT_LE(d.steps.size(), 1u) << text;
+  EXPECT_NE(d.residual_description.find("trend in time"), std::string::npos)
+      << text;
+}
+
+}  // namespace
+}  // namespace fit3dof

@@ -11,7 +11,9 @@
 // above `whiteness_limit` (0.3), and the periodogram of theta + i psi has
 // no line above `spectral_limit` (4 ln N) times its mean: measurement noise
 // is white with a flat spectrum, a missing effect leaves slow, structured
-// residuals with lines near the motion's frequencies.
+// residuals with lines near the motion's frequencies. On short records the
+// first two limits rise to what noise reaches with chance 1e-3:
+// E^2 <= 1 + 3.09 sqrt(2 / dof) and |lag-1| <= 3.09 / sqrt(n).
 //
 // Which effect? Every catalog effect not yet in the model is scored at the
 // current solution by a score (Lagrange-multiplier) test: with g = J_c^T r
@@ -35,7 +37,7 @@
 //   - plausible: its values within the bounds of its effect (reading
 //     errors up to 0.2 deg, |I_zx| up to 5% of I_y, a trim angle up to
 //     2 deg, tunnel terms up to half the aerodynamic ones, nonlinear terms
-//     that change the linear ones by at most their own size over the
+//     that change the linear ones by at most twice their size over the
 //     record; EffectCatalog lists each);
 //   - not dragging the coefficients: unless it explains the record down
 //     to the noise, no coefficient free before it moves by more than
