@@ -165,7 +165,7 @@ RunResult Perform(const RunSpec& spec,
     }
     WriteFileAtomically(dir + "/final.yaml", CaseToYaml(d.final_case));
     WriteFileAtomically(dir + "/diagnosis.json", DiagnosisJson(d, c));
-    fit = d.fits.back();
+    fit = d.FinalFit();
     for (const DiagnosisStep& step : d.steps) {
       diagnosis_note +=
           (diagnosis_note.empty() ? "added " : ", ") + step.effect;

@@ -273,21 +273,25 @@ Case FinalCase(const Case& user, const Case& current, const FitResult& fit) {
   return final_case;
 }
 
-// Each step's parameters as the final model has them.
-void FinalValues(const FitResult& final_fit, Diagnosis* d) {
-  d->final_parameters = final_fit.parameters;
-  for (DiagnosisStep& step : d->steps) {
-    std::vector<std::string> names;
-    for (const ParameterEstimate& e : step.step_parameters) {
-      names.push_back(e.name);
+// Each step's parameters as the final model has them (a partial step's as
+// the last partial model has them).
+void FinalValues(Diagnosis* d) {
+  d->final_parameters = d->FinalFit().parameters;
+  for (std::vector<DiagnosisStep>* steps : {&d->steps, &d->partial}) {
+    const FitResult& fit = steps == &d->steps ? d->FinalFit() : d->fits.back();
+    for (DiagnosisStep& step : *steps) {
+      std::vector<std::string> names;
+      for (const ParameterEstimate& e : step.step_parameters) {
+        names.push_back(e.name);
+      }
+      step.parameters = Own(fit, names);
     }
-    step.parameters = Own(final_fit, names);
   }
 }
 
-std::string Added(const Diagnosis& d) {
+std::string Described(const std::vector<DiagnosisStep>& steps) {
   std::string text;
-  for (const DiagnosisStep& s : d.steps) {
+  for (const DiagnosisStep& s : steps) {
     text += (text.empty() ? "" : ", ") + s.description;
   }
   return text;
@@ -308,7 +312,7 @@ void Conclude(Diagnosis* d) {
   } else if (check.at_noise_level) {
     d->verdict = d->steps.empty() ? Verdict::kNoiseLevel : Verdict::kExplained;
     d->verdict_text = d->steps.empty() ? "residuals at noise level"
-                                       : "explained: " + Added(*d) +
+                                       : "explained: " + Described(d->steps) +
                                              "; residuals at noise level";
   } else {
     d->verdict = Verdict::kNotExplained;
@@ -319,11 +323,16 @@ void Conclude(Diagnosis* d) {
         ", lag-1 autocorrelation theta " +
         FormatNumber("%.2f", check.lag1.theta) + " psi " +
         FormatNumber("%.2f", check.lag1.psi) + ")" +
-        (d->steps.empty() ? "" : " after adding " + Added(*d)) +
-        " and no further effect earns its place";
+        (d->steps.empty() ? "" : " after adding " + Described(d->steps)) +
+        (d->partial.empty()
+             ? " and no further effect earns its place"
+             : "; " + Described(d->partial) + " lowers the probable error to " +
+                   FormatNumber("%.3g", d->fits.back().probable_error) +
+                   " but leaves the residuals structured: not adopted, the "
+                   "final model is the one before it");
   }
   if (d->verdict != Verdict::kNoiseLevel && d->verdict != Verdict::kExplained) {
-    d->residual_description = DescribeResiduals(d->fits.back());
+    d->residual_description = DescribeResiduals(d->FinalFit());
   }
 }
 
@@ -381,9 +390,18 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
     record.after = check;
     d.steps.push_back(record);
   }
+  if (!check.at_noise_level && d.ambiguous.empty() && !d.steps.empty()) {
+    // Nothing explains the record: the steps taken are partial and not
+    // adopted (Diagnosis::partial says why).
+    d.partial = std::move(d.steps);
+    d.steps.clear();
+    current = c;
+    fit = d.fits.front();
+    check = d.initial;
+  }
   d.final = check;
   d.final_case = FinalCase(c, current, fit);
-  FinalValues(fit, &d);
+  FinalValues(&d);
   Conclude(&d);
   return d;
 }

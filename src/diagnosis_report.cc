@@ -117,6 +117,8 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["final"] = Check(d.final);
   out["steps"] = json::array();
   for (const DiagnosisStep& s : d.steps) out["steps"].push_back(Step(s));
+  out["partial"] = json::array();
+  for (const DiagnosisStep& s : d.partial) out["partial"].push_back(Step(s));
   return out.dump(2) + "\n";
 }
 
@@ -133,6 +135,11 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
            FormatNumber("%.3g", sigma.theta) + ", " +
            FormatNumber("%.3g", sigma.psi) + " deg)\n";
     before = s.after;
+  }
+  for (const DiagnosisStep& s : d.partial) {
+    out += "  explains part, not adopted: " + s.description + " (" +
+           Values(s.parameters) + "); probable error " +
+           FormatNumber("%.3g", s.after.probable_error) + "\n";
   }
   for (const CandidateFit& a : d.ambiguous) {
     out += "  candidate: " + a.effect + " (" + Values(a.parameters) +

@@ -208,6 +208,7 @@ TEST(Diagnose, RunsInABatchAndOnTheCommandLine) {
   EXPECT_EQ(j["verdict"], "explained");
   EXPECT_EQ(j["effects_added"], nlohmann::json::array({"flow_angularity"}));
   EXPECT_TRUE(j["ambiguous_between"].empty());
+  EXPECT_TRUE(j["partial"].empty());
   const auto& final_theta_t = j["final_parameters"]["theta_T"];
   EXPECT_NEAR(final_theta_t["value"].get<double>(),
               -0.134,
@@ -372,7 +373,19 @@ TEST(Diagnose, SaysWhenNoCatalogEffectExplains) {
       Diagnose(FitConfig(Truth(), dir + "/data.csv"), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
-  EXPECT_LE(d.steps.size(), 1u) << text;
+  // Nothing is adopted: the final model is the nominal fit, and whatever
+  // lowered the residual on the way is reported as partial.
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_EQ(d.fits.size(), 1 + d.partial.size());
+  EXPECT_EQ(&d.FinalFit(), &d.fits.front());
+  ASSERT_EQ(d.final_parameters.size(), d.fits.front().parameters.size());
+  for (size_t i = 0; i < d.final_parameters.size(); ++i) {
+    EXPECT_EQ(d.final_parameters[i].value, d.fits.front().parameters[i].value);
+  }
+  if (!d.partial.empty()) {
+    EXPECT_NE(d.verdict_text.find("not adopted"), std::string::npos) << text;
+    EXPECT_NE(text.find("explains part, not adopted"), std::string::npos);
+  }
   EXPECT_NE(d.residual_description.find("trend in time"), std::string::npos)
       << text;
 }

@@ -170,7 +170,13 @@ const char* VerdictToString(Verdict verdict);
 struct Diagnosis {
   ResidualCheck initial;
   ResidualCheck final;
-  std::vector<DiagnosisStep> steps;
+  std::vector<DiagnosisStep> steps;  // the effects in the final model
+  // When the residuals stay structured: the effects that earned a step but
+  // left the record unexplained. They are not adopted (the final model is
+  // the one before them): an effect that explains only part of an unknown
+  // structure may be absorbing it (a drift fitted as a roll-synchronous
+  // error), and moves the coefficients by an amount no error bar covers.
+  std::vector<DiagnosisStep> partial;
   Verdict verdict = Verdict::kNoiseLevel;
   std::string verdict_text;  // the sentence for people
   // When ambiguous: the effects, their fits, and what would separate them.
@@ -183,8 +189,12 @@ struct Diagnosis {
   // Every parameter of the final model (its free ones with errors).
   std::vector<ParameterEstimate> final_parameters;
   Case final_case;
-  std::vector<FitResult> fits;  // the fit before the first step, then one
-                                // per step
+  // The fit before the first step, then one per step, then one per
+  // partial step.
+  std::vector<FitResult> fits;
+
+  // The final model's fit.
+  const FitResult& FinalFit() const { return fits[steps.size()]; }
 };
 
 ResidualCheck CheckResiduals(const FitResult& fit,
