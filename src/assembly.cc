@@ -21,20 +21,17 @@ Assembly Assemble(const std::vector<PreparedSegment>& segments,
   ceres::Problem::Options options;
   a.problem = std::make_unique<ceres::Problem>(options);
   const int ks = static_cast<int>(free.shared.size());
-  a.shared_u.resize(ks);
-  for (int g = 0; g < ks; ++g) a.shared_u[g] = values[g] / scale[g];
-  a.own_u.resize(segments.size());
+  a.u.resize(free.size());
+  for (int g = 0; g < free.size(); ++g) a.u[g] = values[g] / scale[g];
+  if (ks > 0) a.blocks.push_back(a.u.data());
   for (size_t s = 0; s < segments.size(); ++s) {
-    const int first = free.own_offset[s];
-    const int count = static_cast<int>(segments[s].own.size());
-    a.own_u[s].resize(count);
-    for (int j = 0; j < count; ++j) {
-      a.own_u[s][j] = values[first + j] / scale[first + j];
+    std::vector<double*> blocks;
+    if (ks > 0) blocks.push_back(a.u.data());
+    if (!segments[s].own.empty()) {
+      blocks.push_back(a.u.data() + free.own_offset[s]);
+      a.blocks.push_back(blocks.back());
     }
-  }
-  if (ks > 0) a.blocks.push_back(a.shared_u.data());
-  for (size_t s = 0; s < segments.size(); ++s) {
-    if (!a.own_u[s].empty()) a.blocks.push_back(a.own_u[s].data());
+    a.segment_blocks.push_back(blocks);
   }
   for (size_t s = 0; s < segments.size(); ++s) {
     const PreparedSegment& p = segments[s];
@@ -48,10 +45,7 @@ Assembly Assemble(const std::vector<PreparedSegment>& segments,
     }
     auto* cost = new SegmentCostFunction(
         model, base, positions, ks, segment_scale, p.data, p.sigma);
-    std::vector<double*> blocks;
-    if (ks > 0) blocks.push_back(a.shared_u.data());
-    if (!a.own_u[s].empty()) blocks.push_back(a.own_u[s].data());
-    a.problem->AddResidualBlock(cost, nullptr, blocks);
+    a.problem->AddResidualBlock(cost, nullptr, a.segment_blocks[s]);
     a.costs.push_back(cost);
   }
   return a;
@@ -61,22 +55,14 @@ std::vector<double> FreeValues(const Assembly& a,
                                const FreeLayout& free,
                                const std::vector<double>& scale) {
   std::vector<double> values(free.size());
-  const int ks = static_cast<int>(a.shared_u.size());
-  for (int g = 0; g < ks; ++g) values[g] = scale[g] * a.shared_u[g];
-  for (size_t s = 0; s < a.own_u.size(); ++s) {
-    for (size_t j = 0; j < a.own_u[s].size(); ++j) {
-      const int g = free.own_offset[s] + static_cast<int>(j);
-      values[g] = scale[g] * a.own_u[s][j];
-    }
-  }
+  for (int g = 0; g < free.size(); ++g) values[g] = scale[g] * a.u[g];
   return values;
 }
 
 std::vector<double> SegmentFullValues(const Assembly& a, size_t s) {
-  std::vector<const double*> blocks;
-  if (!a.shared_u.empty()) blocks.push_back(a.shared_u.data());
-  if (!a.own_u[s].empty()) blocks.push_back(a.own_u[s].data());
-  return a.costs[s]->FullValues(blocks.data());
+  const std::vector<double*>& blocks = a.segment_blocks[s];
+  const std::vector<const double*> values(blocks.begin(), blocks.end());
+  return a.costs[s]->FullValues(values.data());
 }
 
 bool EvaluateJacobian(const Assembly& a,

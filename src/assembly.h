@@ -22,9 +22,14 @@ namespace fit3dof {
 struct Assembly {
   std::unique_ptr<ceres::Problem> problem;
   std::vector<SegmentCostFunction*> costs;  // owned by the problem
-  std::vector<double> shared_u;
-  std::vector<std::vector<double>> own_u;
+  // Every free coordinate in the global order (shared, then each
+  // segment's own) in one buffer, the blocks pointing into it: their
+  // addresses then follow the global order. ceres::Covariance orders its
+  // columns by block address; with a buffer per block that order, and the
+  // last digits of every error bar, depended on where the heap put them.
+  std::vector<double> u;
   std::vector<double*> blocks;  // in global order, non-empty ones only
+  std::vector<std::vector<double*>> segment_blocks;  // each residual's
 };
 
 // The problem for physical values `values` (global free order) of

@@ -553,6 +553,7 @@ FitResult Fit(const Case& c) {
     result.iterations += iterations;
   }
   ReportWildPoints(c, outliers, &result);
+  result.provenance = ProvenanceOf(c);
   return result;
 }
 

@@ -24,6 +24,7 @@
 #include "fit3dof/interrupt.h"
 #include "fit3dof/namelist.h"
 #include "fit3dof/progress.h"
+#include "fit3dof/provenance.h"
 #include "fit3dof/simulator.h"
 #include "fit3dof/thread_budget.h"
 #include "fit3dof/time_history.h"
@@ -403,5 +404,6 @@ int Run(int argc, char** argv) {
 int main(int argc, char** argv) {
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);
+  fit3dof::SetCommandLine(argc, argv);
   return fit3dof::Run(argc, argv);
 }

@@ -11,6 +11,7 @@
 
 #include "csv_field.h"
 #include "fit3dof/atomic_file.h"
+#include "fit3dof/version.h"
 #include "format.h"
 #include "json_values.h"
 #include "report_json.h"
@@ -130,6 +131,17 @@ ordered_json ReportObject(const FitResult& r) {
                              {"reached_best", r.starts_reached_best}};
   }
   report["seconds"] = r.seconds;
+  json data = json::array();
+  for (const DataFileRecord& f : r.provenance.data) {
+    data.push_back({{"path", f.path},
+                    {"sha256", f.sha256.empty() ? json() : json(f.sha256)},
+                    {"bytes", f.bytes}});
+  }
+  report["provenance"] = {{"fit3dof_version", FIT3DOF_VERSION},
+                          {"config", r.provenance.config},
+                          {"data", data},
+                          {"date", r.provenance.date},
+                          {"command_line", r.provenance.command_line}};
   return report;
 }
 

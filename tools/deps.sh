@@ -8,7 +8,8 @@ FIT3DOF_PACKAGES=(
   libceres-dev libeigen3-dev libgflags-dev libgoogle-glog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev nlohmann-json3-dev libfccp-dev libcli11-dev
-  python3 python3-matplotlib python3-numpy
+  libssl-dev pybind11-dev python3-pybind11 python3-dev
+  python3 python3-matplotlib python3-numpy python3-pytest
 )
 
 fit3dof_install_deps() {

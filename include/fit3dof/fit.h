@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "fit3dof/case.h"
+#include "fit3dof/provenance.h"
 #include "fit3dof/time_history.h"
 #include "fit3dof/wild_points.h"
 
@@ -133,6 +134,8 @@ struct FitResult {
   std::vector<Outlier> outliers;
   std::vector<SegmentFit> segments;
   double seconds = 0.0;
+  // Set by Fit (FitSamples reads no files and leaves it empty).
+  Provenance provenance;
 };
 
 // Fits the case's data. Wild points are screened for before the fit (in the
