@@ -55,6 +55,36 @@ def variant(root, tmp, name, edits):
     return out
 
 
+def python_threads(root, repeats=3):
+    """Wall time of two fits run in two Python threads over one fit's:
+    near 1 when the fits run side by side (the GIL released), 2 when
+    not."""
+    import threading
+    sys.path.insert(0, os.path.join(root, "build", "python"))
+    import fit3dof
+    case = fit3dof.load_config(os.path.join(
+        root, "configs", "report", "asymmetric_magnus_fit.yaml"))
+    one, two = [], []
+    for _ in range(repeats):
+        began = time.perf_counter()
+        fit3dof.fit(case)
+        one.append(time.perf_counter() - began)
+        threads = [threading.Thread(target=fit3dof.fit, args=(case,))
+                   for _ in range(2)]
+        began = time.perf_counter()
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        two.append(time.perf_counter() - began)
+    ratio = statistics.median(two) / statistics.median(one)
+    print(f"  one fit {statistics.median(one):.3f} s, two in two threads "
+          f"{statistics.median(two):.3f} s: ratio {ratio:.2f} "
+          f"({os.cpu_count()} cores; 2.0 would mean no parallelism)")
+    return {"one_seconds": statistics.median(one),
+            "two_threads_seconds": statistics.median(two), "ratio": ratio}
+
+
 def main():
     root = sys.argv[1]
     quick = "--quick" in sys.argv
@@ -146,6 +176,9 @@ def main():
             print(f"  fit3dof is {ratio:.0f}x faster")
             result["scipy"] = scipy
             result["speedup_vs_scipy"] = ratio
+
+    print("== Python module: two fits in two threads against one fit")
+    result["python_threads"] = python_threads(root)
 
     out = os.environ.get("FIT3DOF_BENCH_OUT", os.path.join(root, "bench.json"))
     with open(out, "w") as f:

@@ -9,7 +9,7 @@ FIT3DOF_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev nlohmann-json3-dev libfccp-dev libcli11-dev
   libssl-dev pybind11-dev python3-pybind11 python3-dev
-  python3 python3-matplotlib python3-numpy python3-pytest
+  python3 python3-matplotlib python3-numpy python3-pytest python3-yaml
 )
 
 fit3dof_install_deps() {

@@ -214,3 +214,31 @@ def test_batch_writes_the_summary_and_returns_it(tmp_path):
     assert [r["name"] for r in summary["runs"]] == ["a", "b"]
     with pytest.raises(ValueError):
         fit3dof.batch(str(tmp_path / "missing.yaml"), str(tmp_path / "x"))
+
+
+def test_the_example_script_fits_the_campaign(tmp_path):
+    script = os.path.join(SOURCE, "examples", "campaign.py")
+    out = subprocess.run(["/usr/bin/python3", script, str(tmp_path)],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "12 runs" in out.stdout
+    assert out.stdout.count(" True ") == 12, out.stdout
+    assert (tmp_path / "campaign_from_python.png").stat().st_size > 20000
+
+
+def test_report_records_its_provenance(tmp_path):
+    path = os.path.join(REPORT, "table6_sigma0.01.yaml")
+    assert cli("fit", path, "--out_dir=" + str(tmp_path)).returncode == 0
+    with open(tmp_path / "report.json") as f:
+        provenance = json.load(f)["provenance"]
+    assert provenance["fit3dof_version"] == fit3dof.__version__
+    assert provenance["config"] == path
+    assert provenance["command_line"].endswith(
+        f"fit {path} --out_dir={tmp_path}")
+    import hashlib
+    [data] = provenance["data"]
+    with open(data["path"], "rb") as f:
+        content = f.read()
+    assert data["sha256"] == hashlib.sha256(content).hexdigest()
+    assert data["bytes"] == len(content)
+    assert provenance["date"].endswith("Z") and provenance["date"][:2] == "20"
