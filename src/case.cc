@@ -122,8 +122,8 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
 }
 
 bool operator==(const SimulateOptions& a, const SimulateOptions& b) {
-  return std::tie(a.dt, a.duration, a.samples) ==
-         std::tie(b.dt, b.duration, b.samples);
+  return std::tie(a.dt, a.duration, a.samples, a.process_noise) ==
+         std::tie(b.dt, b.duration, b.samples, b.process_noise);
 }
 
 // `source` (where the case was read from) is not part of what it is.

@@ -61,6 +61,7 @@ class ConfigReader : public NodeReader {
   void ReadSigma(const YAML::Node& node, Case* c) const;
   void ReadSolver(const YAML::Node& node, Case* c) const;
   void ReadSimulate(const YAML::Node& node, Case* c) const;
+  void ReadProcessNoise(const YAML::Node& node, Case* c) const;
   void CheckPhysics(const YAML::Node& root, const Case& c) const;
 
   std::string base_dir_;
@@ -510,8 +511,30 @@ void ConfigReader::ReadSolver(const YAML::Node& node, Case* c) const {
   if (node["step"]) c->solver.step = Positive(node["step"], "solver.step");
 }
 
+void ConfigReader::ReadProcessNoise(const YAML::Node& node, Case* c) const {
+  const std::string key = "simulate.process_noise";
+  CheckKeys(node, key, {"roll", "pitch", "yaw", "correlation_time", "seed"});
+  ProcessNoiseOptions& p = c->simulate.process_noise;
+  const char* const axes[3] = {"roll", "pitch", "yaw"};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (node[axes[axis]]) {
+      // The RMS of the random moment coefficient about that axis.
+      p.rms[axis] = NonNegative(node[axes[axis]], key + "." + axes[axis]);
+    }
+  }
+  if (node["correlation_time"]) {
+    p.correlation_time =
+        Positive(node["correlation_time"], key + ".correlation_time");
+  }
+  if (node["seed"]) {
+    p.seed = static_cast<std::uint64_t>(
+        Integer(node["seed"], key + ".seed", 0, 1L << 53));
+  }
+}
+
 void ConfigReader::ReadSimulate(const YAML::Node& node, Case* c) const {
-  CheckKeys(node, "simulate", {"duration", "dt", "samples"});
+  CheckKeys(node, "simulate", {"duration", "dt", "samples", "process_noise"});
+  if (node["process_noise"]) ReadProcessNoise(node["process_noise"], c);
   c->simulate.dt = Positive(Required(node, "simulate", "dt"), "simulate.dt");
   const bool has_duration = node["duration"].IsDefined();
   const bool has_samples = node["samples"].IsDefined();

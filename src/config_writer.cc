@@ -182,6 +182,16 @@ void WriteOptions(YAML::Emitter& y, const Case& c) {
     } else {
       Number(y, "duration", m.duration);
     }
+    const ProcessNoiseOptions& p = m.process_noise;
+    if (p.enabled()) {
+      y << YAML::Key << "process_noise" << YAML::Value << YAML::BeginMap;
+      Number(y, "roll", p.rms[0]);
+      Number(y, "pitch", p.rms[1]);
+      Number(y, "yaw", p.rms[2]);
+      Number(y, "correlation_time", p.correlation_time);
+      y << YAML::Key << "seed" << YAML::Value << p.seed;
+      y << YAML::EndMap;
+    }
     y << YAML::EndMap;
   }
 }

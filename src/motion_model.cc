@@ -51,6 +51,13 @@ MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
       active_[ri] || active_[ri + 1] || active_[ri + 2] || active_[ri + 3];
   calibration_ =
       active_[layout_.calibration] || active_[layout_.calibration + 1];
+  // A moment coefficient as an angular acceleration, as scaling.cc turns
+  // Cl_0, Cm and Cn (q S d / I of the axis; one I in the symmetric model).
+  const double qsd =
+      spec_.flow.dynamic_pressure * spec_.body.area * spec_.body.diameter;
+  const double iz =
+      spec_.model == ModelKind::kSymmetric ? spec_.body.Iy : spec_.body.Iz;
+  moment_scale_ = {qsd / spec_.body.Ix, qsd / spec_.body.Iy, qsd / iz};
 }
 
 StateGuard MotionModel::Guard() const {

@@ -57,6 +57,8 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
                                             double* angles,
                                             double* jacobian,
                                             IntegrationFailure* failure) const {
+  CHECK(random_moment_ == nullptr)
+      << "process noise is for simulation; fits model it otherwise";
   const int np = num_parameters();
   std::array<double, kMaxParameters> internal;
   ToInternal(values, &internal);

@@ -5,6 +5,7 @@
 #include "fit3dof/simulator.h"
 
 #include <cstdio>
+#include <memory>
 
 #include "fit3dof/input_error.h"
 #include "fit3dof/motion_model.h"
@@ -12,9 +13,13 @@
 
 namespace fit3dof {
 
-TimeHistory SimulateAt(const Case& c,
-                       const std::vector<double>& values,
-                       const std::vector<double>& times) {
+namespace {
+
+// The motion at `times`, with the random moments if given.
+TimeHistory Motion(const Case& c,
+                   const std::vector<double>& values,
+                   const std::vector<double>& times,
+                   std::shared_ptr<const RandomMoment> random_moment) {
   const int n = static_cast<int>(times.size());
   if (n > 1) {
     CheckIntegrationSteps(TotalSubsteps(times.data(), n, c.solver.step),
@@ -22,7 +27,8 @@ TimeHistory SimulateAt(const Case& c,
                           c.solver.step,
                           c.source);
   }
-  const MotionModel model(c.Spec(), ActiveParameters(values, c.FreeFlags()));
+  MotionModel model(c.Spec(), ActiveParameters(values, c.FreeFlags()));
+  model.set_random_moment(std::move(random_moment));
   std::vector<double> angles(3 * n);
   IntegrationFailure failure;
   if (!model.Evaluate(
@@ -40,6 +46,14 @@ TimeHistory SimulateAt(const Case& c,
   return history;
 }
 
+}  // namespace
+
+TimeHistory SimulateAt(const Case& c,
+                       const std::vector<double>& values,
+                       const std::vector<double>& times) {
+  return Motion(c, values, times, nullptr);
+}
+
 TimeHistory Simulate(const Case& c) {
   const int n = c.simulate.NumSamples();
   if (n < 2) {
@@ -49,7 +63,13 @@ TimeHistory Simulate(const Case& c) {
   }
   std::vector<double> times(n);
   for (int i = 0; i < n; ++i) times[i] = i * c.simulate.dt;
-  TimeHistory history = SimulateAt(c, c.Values(), times);
+  std::shared_ptr<const RandomMoment> random_moment;
+  const ProcessNoiseOptions& process = c.simulate.process_noise;
+  if (process.enabled()) {
+    random_moment = std::make_shared<RandomMoment>(
+        process, times.front(), times.back(), c.solver.step);
+  }
+  TimeHistory history = Motion(c, c.Values(), times, random_moment);
   AddNoise(c.noise, &history);
   return history;
 }

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 #include "fit3dof/input_error.h"
@@ -69,7 +70,10 @@ Case SymmetricCase(Incidence incidence, double step) {
 
 // Largest difference (deg) over 10 s between the symmetric case and its
 // ToAsymmetric image, each integrated by its own program.
-double LargestDifference(Incidence incidence, double step) {
+double LargestDifference(
+    Incidence incidence,
+    double step,
+    std::shared_ptr<const RandomMoment> random_moment = nullptr) {
   const Case symmetric_case = SymmetricCase(incidence, step);
   const Case asymmetric_case = ToAsymmetric(symmetric_case);
   std::vector<double> times;
@@ -79,6 +83,8 @@ double LargestDifference(Incidence incidence, double step) {
   const std::vector<double> av = asymmetric_case.Values();
   MotionModel symmetric(symmetric_case.Spec(), ActiveParameters(sv, {}));
   MotionModel asymmetric(asymmetric_case.Spec(), ActiveParameters(av, {}));
+  symmetric.set_random_moment(random_moment);
+  asymmetric.set_random_moment(random_moment);
   std::vector<double> s(3 * n), a(3 * n);
   EXPECT_TRUE(
       symmetric.Evaluate(sv.data(), times.data(), n, s.data(), nullptr));
@@ -102,6 +108,20 @@ TEST(ModelEquivalence, AxisymmetricBodyGivesTheSameMotionInBothPrograms) {
 
 // The comparison is not vacuous: each extension term moves the motion by
 // more than 1e-3 deg (ten million times the agreement above).
+// Process noise (random_moment.h) enters both programs' equations the same
+// way: random tunnel-fixed pitch and yaw moments and a roll moment.
+TEST(ModelEquivalence, ProcessNoiseGivesTheSameMotionInBothPrograms) {
+  ProcessNoiseOptions options;
+  options.rms = {2e-5, 3e-4, 3e-4};
+  options.seed = 11;
+  const auto moment = std::make_shared<RandomMoment>(options, 0.0, 10.0, 1e-4);
+  const double difference =
+      LargestDifference(Incidence::kVelocityRatio, 0.0001, moment);
+  std::printf("with process noise: largest difference %.3g deg over 10 s\n",
+              difference);
+  EXPECT_LT(difference, 1e-9);
+}
+
 TEST(ModelEquivalence, TheExtensionTermsMoveTheMotion) {
   const Case all = SymmetricCase(Incidence::kVelocityRatio, 0.001);
   std::vector<double> times;

@@ -23,6 +23,7 @@
 #include "fit3dof/bearing_moment.h"
 #include "fit3dof/coefficients.h"
 #include "fit3dof/parameters.h"
+#include "fit3dof/random_moment.h"
 
 namespace fit3dof {
 
@@ -69,7 +70,8 @@ void AsymmetricMoments(const CoefficientView<Tk>& k,
                        const AsymmetricTrig<Tx>& trig,
                        T* mx,
                        T* my,
-                       T* mz) {
+                       T* mz,
+                       const TunnelMoment* extra = nullptr) {
   using std::abs;
   using std::atan;
   const Tx& theta = x[kAsymTheta];
@@ -182,8 +184,14 @@ void AsymmetricMoments(const CoefficientView<Tk>& k,
   // they act on (the listing's RX1/RY1 and friends).
   const bool pitch_tunnel = k.on(62) || k.on(63);
   const bool yaw_tunnel = k.on(61) || k.on(64);
-  if (pitch_tunnel || yaw_tunnel) {
+  // Process noise (simulate only; random_moment.h) joins them.
+  if (pitch_tunnel || yaw_tunnel || extra != nullptr) {
     T myt(0.0), mzt(0.0);
+    if (extra != nullptr) {
+      myt += extra->pitch;
+      mzt += extra->yaw;
+      *mx += extra->roll;
+    }
     if (k.on(63)) myt += k(63) * theta;
     if (k.on(62)) myt += k(62) * (q * cf - r * sf);  // thetadot
     if (k.on(64)) mzt += k(64) * psi;
@@ -204,10 +212,11 @@ template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
 void AsymmetricDerivative(const CoefficientView<Tk>& k,
                           const AsymmetricConstants& constants,
                           const Tx* x,
-                          T* dx) {
+                          T* dx,
+                          const TunnelMoment* extra = nullptr) {
   const AsymmetricTrig<Tx> trig(x);
   T mx, my, mz;
-  AsymmetricMoments(k, constants, x, trig, &mx, &my, &mz);
+  AsymmetricMoments(k, constants, x, trig, &mx, &my, &mz, extra);
   const Tx& p = x[kAsymP];
   const Tx& q = x[kAsymQ];
   const Tx& r = x[kAsymR];

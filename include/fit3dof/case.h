@@ -17,6 +17,7 @@
 #include "fit3dof/body.h"
 #include "fit3dof/motion_model.h"
 #include "fit3dof/parameters.h"
+#include "fit3dof/random_moment.h"
 #include "fit3dof/wild_points.h"
 
 namespace fit3dof {
@@ -102,6 +103,8 @@ struct SimulateOptions {
   double dt = 0.0;        // DTGEN, s
   double duration = 0.0;  // s; or give samples
   int samples = 0;        // number of samples including t = 0
+  // Random moments driving the motion (random_moment.h); none by default.
+  ProcessNoiseOptions process_noise;
 
   // Number of samples the options describe.
   int NumSamples() const;

@@ -15,6 +15,7 @@
 #define FIT3DOF_MOTION_MODEL_H_
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "fit3dof/angles.h"
@@ -22,6 +23,7 @@
 #include "fit3dof/body.h"
 #include "fit3dof/coefficients.h"
 #include "fit3dof/parameters.h"
+#include "fit3dof/random_moment.h"
 #include "fit3dof/runge_kutta.h"
 #include "fit3dof/scaling.h"
 #include "fit3dof/symmetric_dynamics.h"
@@ -99,11 +101,22 @@ class MotionModel {
                                  double* jacobian,
                                  IntegrationFailure* failure) const;
 
+  // Process noise for simulation (random_moment.h): Evaluate and
+  // EvaluateStates add the random moments, held over each RK4 step at
+  // their value at its midpoint. Not for fitting: sensitivities CHECK that
+  // none is set.
+  void set_random_moment(std::shared_ptr<const RandomMoment> moment) {
+    random_moment_ = std::move(moment);
+  }
+
  private:
   // dx/dt of the chosen program; Tx the state's scalar, Tk the
   // coefficients' (coefficients.h).
   template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
-  void Derivative(const CoefficientView<Tk>& k, const Tx* x, T* dx) const;
+  void Derivative(const CoefficientView<Tk>& k,
+                  const Tx* x,
+                  T* dx,
+                  const TunnelMoment* extra = nullptr) const;
 
   // The measurement model: the three measured angles (deg) of state x, with
   // `internal` the parameters in internal units.
@@ -138,6 +151,10 @@ class MotionModel {
   // (Measure).
   bool roll_interaction_ = false;
   bool calibration_ = false;
+  std::shared_ptr<const RandomMoment> random_moment_;
+  // Moment coefficient to internal acceleration per axis (roll, pitch,
+  // yaw): the scales of Cl_0, t1 and t3.
+  std::array<double, 3> moment_scale_{{0.0, 0.0, 0.0}};
 };
 
 // The terms that matter: every free parameter and every non-zero one.
@@ -150,11 +167,12 @@ ActiveSet ActiveParameters(const std::vector<double>& values,
 template <typename Tx, typename Tk, typename T>
 void MotionModel::Derivative(const CoefficientView<Tk>& k,
                              const Tx* x,
-                             T* dx) const {
+                             T* dx,
+                             const TunnelMoment* extra) const {
   if (spec_.model == ModelKind::kSymmetric) {
-    SymmetricDerivative(k, symmetric_, x, dx);
+    SymmetricDerivative(k, symmetric_, x, dx, extra);
   } else {
-    AsymmetricDerivative(k, asymmetric_, x, dx);
+    AsymmetricDerivative(k, asymmetric_, x, dx, extra);
   }
 }
 
@@ -211,9 +229,25 @@ bool MotionModel::Integrate(const T* values,
   // (phi, theta, psi, p, q, r).
   T x[6];
   for (int j = 0; j < 6; ++j) x[j] = (*internal)[layout_.first_initial + j];
-  auto rhs = [&](const T* s, T* ds) { Derivative(k, s, ds); };
-  return IntegrateSamples<T, 6>(
-      rhs, times, n, spec_.max_step, Guard(), x, observe, failure);
+  if (random_moment_ == nullptr) {
+    auto rhs = [&](const T* s, T* ds) { Derivative(k, s, ds); };
+    return IntegrateSamples<T, 6>(
+        rhs, times, n, spec_.max_step, Guard(), x, observe, failure);
+  }
+  // With process noise: the random moment at each step's midpoint.
+  double t = n > 0 ? times[0] : 0.0;
+  TunnelMoment extra;
+  auto rhs = [&](const T* s, T* ds) { Derivative(k, s, ds, &extra); };
+  auto step = [&](double h) {
+    const std::array<double, 3> c = random_moment_->At(t + 0.5 * h);
+    extra.roll = c[0] * moment_scale_[0];
+    extra.pitch = c[1] * moment_scale_[1];
+    extra.yaw = c[2] * moment_scale_[2];
+    RungeKutta4Step<T, 6>(rhs, h, x);
+    t += h;
+  };
+  return IntegrateSamplesWith<T, 6>(
+      step, times, n, spec_.max_step, Guard(), x, observe, failure);
 }
 
 template <typename T>

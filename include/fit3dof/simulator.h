@@ -22,7 +22,9 @@ TimeHistory SimulateAt(const Case& c,
                        const std::vector<double>& times);
 
 // The case's own motion: its parameter values at t = 0, dt, 2 dt, ... per
-// its simulate options, with its noise (if enabled) added.
+// its simulate options, driven by their process noise (random moments,
+// random_moment.h) and with the measurement noise (noise:) added, each
+// if enabled. SimulateAt has neither.
 TimeHistory Simulate(const Case& c);
 
 }  // namespace fit3dof

@@ -22,6 +22,7 @@
 #include "fit3dof/bearing_moment.h"
 #include "fit3dof/coefficients.h"
 #include "fit3dof/parameters.h"
+#include "fit3dof/random_moment.h"
 
 namespace fit3dof {
 
@@ -66,7 +67,8 @@ void SymmetricMoments(const CoefficientView<Tk>& k,
                       const SymmetricTrig<Tx>& trig,
                       T* mx,
                       T* my,
-                      T* mz) {
+                      T* mz,
+                      const TunnelMoment* extra = nullptr) {
   using std::atan;
   using std::cos;
   using std::sqrt;
@@ -178,8 +180,14 @@ void SymmetricMoments(const CoefficientView<Tk>& k,
   // Tunnel-fixed stiffness and damping, Eqs. 39-40 (parameters 19-22).
   const bool pitch_tunnel = k.on(20) || k.on(21);
   const bool yaw_tunnel = k.on(19) || k.on(22);
-  if (pitch_tunnel || yaw_tunnel) {
+  // Process noise (simulate only; random_moment.h) joins them.
+  if (pitch_tunnel || yaw_tunnel || extra != nullptr) {
     T myt(0.0), mzt(0.0);
+    if (extra != nullptr) {
+      myt += extra->pitch;
+      mzt += extra->yaw;
+      *mx += extra->roll;
+    }
     if (k.on(21)) myt += k(21) * theta;
     if (k.on(20)) myt += k(20) * thetadot;
     if (k.on(22)) mzt += k(22) * psi;
@@ -198,10 +206,11 @@ template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
 void SymmetricDerivative(const CoefficientView<Tk>& k,
                          const SymmetricConstants& constants,
                          const Tx* x,
-                         T* dx) {
+                         T* dx,
+                         const TunnelMoment* extra = nullptr) {
   const SymmetricTrig<Tx> trig(x);
   T mx, my, mz;
-  SymmetricMoments(k, constants, x, trig, &mx, &my, &mz);
+  SymmetricMoments(k, constants, x, trig, &mx, &my, &mz, extra);
   const double ratio = constants.ratio;
   const Tx& phidot = x[kSymPhiDot];
   const Tx& thetadot = x[kSymThetaDot];
