@@ -208,19 +208,8 @@ void BM_ColoredCovariance(benchmark::State& state) {
 }
 BENCHMARK(BM_ColoredCovariance)->Unit(benchmark::kMillisecond);
 
-BENCHMARK(BM_Forward)->Arg(10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Jacobian)
-    ->Arg(1)
-    ->Arg(4)
-    ->Arg(8)
-    ->Arg(10)
-    ->Arg(12)
-    ->Arg(16)
-    ->Arg(20)
-    ->Arg(24)
-    ->Arg(25)
-    ->Arg(27)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Forward)->Apply(MethodArgs)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Jacobian)->Apply(MethodArgs)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_JetLaneJacobian)->Apply(MethodArgs)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SensitivityJacobian)
     ->Apply(MethodArgs)

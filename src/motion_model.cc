@@ -43,6 +43,9 @@ MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
   layout_ = Layout(spec_.model);
   if (spec_.model == ModelKind::kSymmetric) {
     state_index_ = {kSymPhi, kSymTheta, kSymPsi};
+    for (const KinematicRow& row : kSymmetricKinematics) {
+      kinematic_rate_[row.angle] = row.rate;
+    }
   } else {
     state_index_ = {kAsymPhi, kAsymTheta, kAsymPsi};
   }

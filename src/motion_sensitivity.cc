@@ -14,13 +14,21 @@
 // right-hand side then costs one evaluation with a 6-lane Jet over the
 // state (f and F_x), one with Jets over the free coefficients at a double
 // state (F_p: only the operations that touch a coefficient carry lanes),
-// and a 6 x 6 by 6 x m product. The initial conditions enter only S(0);
-// the measurement model's parameters only the observation.
+// and the product F_x S. The initial conditions enter only S(0); the
+// measurement model's parameters only the observation.
+//
+// S is stored row by row (row j: dx_j/dp, m entries), so that a row of
+// F_x S is a sum of six contiguous rows (vectorized), and a kinematic row
+// of the symmetric program (dx_j/dt = x_rate exactly) is a copy of row
+// `rate`: half of F_x S costs nothing there.
 
 #include <glog/logging.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "ceres/jet.h"
@@ -31,20 +39,121 @@ namespace {
 
 using StateJet = ceres::Jet<double, 6>;
 
-// Coefficient lanes per Jet pass of F_p and of the measurement model.
-constexpr int kCoefficientLanes = 12;
-using CoefficientJet = ceres::Jet<double, kCoefficientLanes>;
-
 // The parameters in internal units as Jets whose lanes carry the
-// derivatives with respect to up to kCoefficientLanes of them.
+// derivatives with respect to up to kLanes of them: 12-lane passes, and a
+// 4-lane one for the last few (a lane costs the same whether used or not).
+template <int kLanes>
 struct CoefficientPass {
-  std::array<CoefficientJet, kMaxParameters> internal;
-  std::vector<int> columns;  // column of the Jacobian of each lane
+  std::array<ceres::Jet<double, kLanes>, kMaxParameters> internal;
+  int first = 0;  // the lanes' columns of S: first, first + 1, ...
+  int lanes = 0;  // lanes in use
+};
+
+// Lanes per pass: 8, the last pass 4 when at most 4 remain. Measured on
+// the Table 6 record with 20 and 27 free (bench/evaluation_benchmark,
+// least of 6 interleaved runs): 8-lane passes cost 0.85x and 0.89x of
+// 12-lane ones, though they execute 6% more instructions.
+constexpr int kWide = 8;
+struct CoefficientPasses {
+  std::vector<CoefficientPass<kWide>> wide;
+  std::vector<CoefficientPass<4>> narrow;
+
+  template <typename Visit>
+  void ForEach(const Visit& visit) const {
+    for (const auto& pass : wide) visit(pass);
+    for (const auto& pass : narrow) visit(pass);
+  }
+};
+
+// Seeds `pass` with the parameters `internal`, lane l carrying the scale
+// of parameters[first + l], the derivative for column first + l of S.
+template <int kLanes>
+void SeedPass(const std::array<double, kMaxParameters>& internal,
+              const std::vector<double>& scale,
+              const std::vector<int>& parameters,
+              int first,
+              int lanes,
+              CoefficientPass<kLanes>* pass) {
+  CHECK_LE(lanes, kLanes);
+  for (int p = 0; p < kMaxParameters; ++p) {
+    pass->internal[p] = ceres::Jet<double, kLanes>(internal[p]);
+  }
+  for (int lane = 0; lane < lanes; ++lane) {
+    const int parameter = parameters[first + lane];
+    pass->internal[parameter].v[lane] = scale[parameter];
+  }
+  pass->first = first;
+  pass->lanes = lanes;
+}
+
+// The passes for the coefficients `parameters`, S's first columns.
+CoefficientPasses MakePasses(const std::array<double, kMaxParameters>& internal,
+                             const std::vector<double>& scale,
+                             const std::vector<int>& parameters) {
+  CoefficientPasses passes;
+  const int count = static_cast<int>(parameters.size());
+  for (int first = 0; first < count; first += kWide) {
+    const int lanes = std::min(count - first, kWide);
+    if (lanes <= 4) {
+      SeedPass(internal,
+               scale,
+               parameters,
+               first,
+               lanes,
+               &passes.narrow.emplace_back());
+    } else {
+      SeedPass(internal,
+               scale,
+               parameters,
+               first,
+               lanes,
+               &passes.wide.emplace_back());
+    }
+  }
+  return passes;
+}
+
+// S's columns: the coefficients first (each pass's lanes on adjacent
+// columns), then the initial conditions; column q of S is column
+// jacobian_column[q] of the caller's Jacobian.
+struct SensitivityColumns {
+  SensitivityColumns(const int* wrt, int m, int first_initial, int np) {
+    std::vector<int> initials;
+    for (int l = 0; l < m; ++l) {
+      const int i = wrt[l];
+      CHECK(i >= 0 && i < np) << "parameter " << i;
+      if (i >= first_initial && i < first_initial + 6) {
+        initials.push_back(l);
+      } else {
+        jacobian_column.push_back(l);
+        coefficient_parameters.push_back(i);
+      }
+    }
+    jacobian_column.insert(
+        jacobian_column.end(), initials.begin(), initials.end());
+  }
+  int num_coefficients() const {
+    return static_cast<int>(coefficient_parameters.size());
+  }
+
+  std::vector<int> jacobian_column;
+  std::vector<int> coefficient_parameters;  // of columns 0 .. num - 1
 };
 
 // Seeds one StateJet per state variable: lane j is d/dx_j.
 void SeedState(const double* x, StateJet* xj) {
   for (int j = 0; j < 6; ++j) xj[j] = StateJet(x[j], j);
+}
+
+// out[l] = sum_j d[j] s[j m + l], l < m: a row of the gradient d times S.
+void RowTimesSensitivity(const Eigen::Matrix<double, 6, 1>& d,
+                         const double* __restrict s,
+                         int m,
+                         double* __restrict out) {
+  for (int l = 0; l < m; ++l) {
+    out[l] = d[0] * s[l] + d[1] * s[m + l] + d[2] * s[2 * m + l] +
+             d[3] * s[3 * m + l] + d[4] * s[4 * m + l] + d[5] * s[5 * m + l];
+  }
 }
 
 }  // namespace
@@ -65,73 +174,81 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
   const CoefficientView<double> k(internal.data(), active_);
   const int first_initial = layout_.first_initial;
 
-  // z = (x, S) with S column-major: S(j, l) = z[6 + 6 l + j].
+  const SensitivityColumns columns(wrt, m, first_initial, np);
+  const CoefficientPasses passes =
+      MakePasses(internal, scale_, columns.coefficient_parameters);
+  const std::vector<int>& jacobian_column = columns.jacobian_column;
+
+  // z = (x, S) with S row by row: S(j, q) = z[6 + m j + q]; S(0) holds the
+  // initial conditions' unit derivatives (times their scale).
   const int dim = 6 + 6 * m;
   std::vector<double> z(dim, 0.0);
   for (int j = 0; j < 6; ++j) z[j] = internal[first_initial + j];
-  std::vector<CoefficientPass> passes;
-  for (int l = 0; l < m; ++l) {
-    const int i = wrt[l];
-    CHECK(i >= 0 && i < np) << "parameter " << i;
-    if (i >= first_initial && i < first_initial + 6) {
-      z[6 + 6 * l + (i - first_initial)] = scale_[i];
-      continue;
-    }
-    if (passes.empty() ||
-        passes.back().columns.size() == size_t{kCoefficientLanes}) {
-      passes.emplace_back();
-      for (int p = 0; p < kMaxParameters; ++p) {
-        passes.back().internal[p] = CoefficientJet(internal[p]);
-      }
-    }
-    CoefficientPass& pass = passes.back();
-    pass.internal[i].v[pass.columns.size()] = scale_[i];
-    pass.columns.push_back(l);
+  for (int q = columns.num_coefficients(); q < m; ++q) {
+    const int i = wrt[jacobian_column[q]];
+    z[6 + m * (i - first_initial) + q] = scale_[i];
   }
 
-  using Matrix6 = Eigen::Matrix<double, 6, 6, Eigen::RowMajor>;
-  using Sensitivity = Eigen::Matrix<double, 6, Eigen::Dynamic>;
+  // ds += F_p, each pass's lanes on its columns.
+  auto add_coefficient_rates = [&](const double* y,
+                                   const auto& trig,
+                                   double* ds) {
+    passes.ForEach([&](const auto& pass) {
+      std::remove_const_t<std::remove_reference_t<decltype(pass.internal[0])>>
+          fp[6];
+      Derivative(CoefficientView(pass.internal.data(), active_), y, trig, fp);
+      for (int j = 0; j < 6; ++j) {
+        if (kinematic_rate_[j] >= 0) continue;  // no coefficient in it
+        double* out = ds + m * j + pass.first;
+        for (int lane = 0; lane < pass.lanes; ++lane)
+          out[lane] += fp[j].v[lane];
+      }
+    });
+  };
+
   auto rhs = [&](const double* y, double* dy) {
     StateJet xj[6], fj[6];
     SeedState(y, xj);
     Derivative(k, xj, fj);
-    Matrix6 fx;
+    const double* s = y + 6;
+    double* ds = dy + 6;
     for (int j = 0; j < 6; ++j) {
       dy[j] = fj[j].a;
-      fx.row(j) = fj[j].v.transpose();
-    }
-    Eigen::Map<const Sensitivity> s(y + 6, 6, m);
-    Eigen::Map<Sensitivity> ds(dy + 6, 6, m);
-    ds.noalias() = fx * s;
-    for (const CoefficientPass& pass : passes) {
-      CoefficientJet fp[6];
-      Derivative(CoefficientView<CoefficientJet>(pass.internal.data(), active_),
-                 y,
-                 fp);
-      for (size_t lane = 0; lane < pass.columns.size(); ++lane) {
-        for (int j = 0; j < 6; ++j) ds(j, pass.columns[lane]) += fp[j].v[lane];
+      if (kinematic_rate_[j] >= 0) {
+        std::copy_n(s + m * kinematic_rate_[j], m, ds + m * j);
+      } else {
+        RowTimesSensitivity(fj[j].v, s, m, ds + m * j);
       }
+    }
+    if (spec_.model == ModelKind::kSymmetric) {
+      add_coefficient_rates(y, SymmetricTrig<double>(y), ds);
+    } else {
+      add_coefficient_rates(y, AsymmetricTrig<double>(y), ds);
     }
   };
 
+  std::vector<double> rows(3 * m);  // the sample's rows, S's column order
   auto observe = [&](int i, const double* y) {
     StateJet xj[6], aj[3];
     SeedState(y, xj);
     Measure(xj, internal.data(), aj);
-    Eigen::Map<const Sensitivity> s(y + 6, 6, m);
     for (int c = 0; c < 3; ++c) {
       angles[3 * i + c] = aj[c].a;
-      Eigen::Map<Eigen::RowVectorXd> row(jacobian + (3 * i + c) * m, m);
-      row.noalias() = aj[c].v.transpose() * s;
+      RowTimesSensitivity(aj[c].v, y + 6, m, &rows[m * c]);
     }
-    for (const CoefficientPass& pass : passes) {
-      CoefficientJet ap[3];
+    passes.ForEach([&](const auto& pass) {
+      std::remove_const_t<std::remove_reference_t<decltype(pass.internal[0])>>
+          ap[3];
       Measure(y, pass.internal.data(), ap);
-      for (size_t lane = 0; lane < pass.columns.size(); ++lane) {
-        for (int c = 0; c < 3; ++c) {
-          jacobian[(3 * i + c) * m + pass.columns[lane]] += ap[c].v[lane];
+      for (int c = 0; c < 3; ++c) {
+        for (int lane = 0; lane < pass.lanes; ++lane) {
+          rows[m * c + pass.first + lane] += ap[c].v[lane];
         }
       }
+    });
+    for (int c = 0; c < 3; ++c) {
+      double* out = jacobian + (3 * i + c) * m;
+      for (int q = 0; q < m; ++q) out[jacobian_column[q]] = rows[m * c + q];
     }
   };
 

@@ -100,6 +100,9 @@ bool SegmentCostFunction::EvaluatePass(const double* u,
   if (count <= 4) {
     return EvaluateLanes<4>(u, lanes, count, residuals, jacobians);
   }
+  if (count <= 8) {
+    return EvaluateLanes<8>(u, lanes, count, residuals, jacobians);
+  }
   return EvaluateLanes<12>(u, lanes, count, residuals, jacobians);
 }
 

@@ -208,13 +208,15 @@ void AsymmetricMoments(const CoefficientView<Tk>& k,
 
 // Appendix A (the listing's FCT): 3-2-1 kinematics and Euler's equations
 // with the product of inertia I_zx = k(60) (slug ft^2, not scaled).
+// trig: the sines and cosines of x, given so that several coefficient
+// scalars at one state share them.
 template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
 void AsymmetricDerivative(const CoefficientView<Tk>& k,
                           const AsymmetricConstants& constants,
                           const Tx* x,
+                          const AsymmetricTrig<Tx>& trig,
                           T* dx,
                           const TunnelMoment* extra = nullptr) {
-  const AsymmetricTrig<Tx> trig(x);
   T mx, my, mz;
   AsymmetricMoments(k, constants, x, trig, &mx, &my, &mz, extra);
   const Tx& p = x[kAsymP];
@@ -263,6 +265,16 @@ void AsymmetricDerivative(const CoefficientView<Tk>& k,
     dx[kAsymQ] = my - r * p * iyp;
     dx[kAsymR] = mz - p * q * izp;
   }
+}
+
+// The same, computing the sines and cosines of x.
+template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
+void AsymmetricDerivative(const CoefficientView<Tk>& k,
+                          const AsymmetricConstants& constants,
+                          const Tx* x,
+                          T* dx,
+                          const TunnelMoment* extra = nullptr) {
+  AsymmetricDerivative(k, constants, x, AsymmetricTrig<Tx>(x), dx, extra);
 }
 
 }  // namespace fit3dof

@@ -118,6 +118,24 @@ class MotionModel {
                   T* dx,
                   const TunnelMoment* extra = nullptr) const;
 
+  // Derivative at a double state whose sines and cosines `trig` several
+  // coefficient passes share (motion_sensitivity.cc); the trig's type picks
+  // the program, which must be the model's.
+  template <typename Tk, typename T>
+  void Derivative(const CoefficientView<Tk>& k,
+                  const double* x,
+                  const SymmetricTrig<double>& trig,
+                  T* dx) const {
+    SymmetricDerivative(k, symmetric_, x, trig, dx);
+  }
+  template <typename Tk, typename T>
+  void Derivative(const CoefficientView<Tk>& k,
+                  const double* x,
+                  const AsymmetricTrig<double>& trig,
+                  T* dx) const {
+    AsymmetricDerivative(k, asymmetric_, x, trig, dx);
+  }
+
   // The measurement model: the three measured angles (deg) of state x, with
   // `internal` the parameters in internal units.
   template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
@@ -147,6 +165,10 @@ class MotionModel {
   ParameterLayout layout_;
   // Positions of phi, theta and psi in the state.
   std::array<int, 3> state_index_;
+  // For each state variable j whose derivative is exactly state variable
+  // kinematic_rate_[j] (the symmetric program's kinematic rows), that
+  // index; -1 for the rest.
+  std::array<int, 6> kinematic_rate_{{-1, -1, -1, -1, -1, -1}};
   // Whether any roll-interaction or calibration parameter is active
   // (Measure).
   bool roll_interaction_ = false;
@@ -170,9 +192,9 @@ void MotionModel::Derivative(const CoefficientView<Tk>& k,
                              T* dx,
                              const TunnelMoment* extra) const {
   if (spec_.model == ModelKind::kSymmetric) {
-    SymmetricDerivative(k, symmetric_, x, dx, extra);
+    SymmetricDerivative(k, symmetric_, x, SymmetricTrig<Tx>(x), dx, extra);
   } else {
-    AsymmetricDerivative(k, asymmetric_, x, dx, extra);
+    AsymmetricDerivative(k, asymmetric_, x, AsymmetricTrig<Tx>(x), dx, extra);
   }
 }
 

@@ -20,34 +20,35 @@
 // block, then the segment's initial-condition block) while frozen values
 // reach the equations as constants. Two ways to the Jacobian:
 //
-// - Jet lanes: the motion integrated with ceres::Jet<double, 12> (the last
-//   pass 4 wide when at most 4 remain), one pass per 12 columns;
+// - Jet lanes: the motion integrated with ceres::Jet<double, N>, N = 4, 8
+//   or 12 (the narrowest that holds the columns), one pass per 12 columns;
 // - forward sensitivities (MotionModel::EvaluateWithSensitivities): the
 //   motion and dx/dp stepped together, with a 6-lane Jet over the state and
-//   12-lane Jets over the coefficients at each right-hand side; no padding
-//   to whole passes, and the per-column work is a 6 x 6 product instead of
-//   every operation of the equations.
+//   8-lane Jets over the coefficients at each right-hand side; the
+//   per-column work is three rows of F_x S (the symmetric program's three
+//   kinematic rows are copies) instead of every operation of the equations.
 //
 // Both give the same residuals exactly and the same derivatives to rounding
-// (segment_cost_function_test). Measured with bench/evaluation_benchmark
-// (Table 6 record, 800 samples, step 0.01 s; more free parameters also
-// switch on more terms of the model), Jacobian time over forward time,
-// divided by k + 1, medians of 5 interleaved runs on 2026-11-22:
+// (segment_cost_function_test). kAuto takes Jet lanes up to 8 columns and
+// the sensitivities from 9 on. Measured with tools/bench
+// (bench/evaluation_benchmark: Table 6 record, 800 samples, 4800 RK4
+// steps; more free parameters also switch on more terms of the model, and
+// each Jacobian is divided by the forward pass of the same model), least
+// CPU time of 8 interleaved runs, Jacobian / forward / (k + 1):
 //
-//   free k                     4     10     16     20     24     27
-//   Jet lanes                0.55   0.62   0.86   1.09   1.13   1.06
-//   forward sensitivities     -      -     0.83   0.87   0.98   0.87
+//   free k                  1     4     8    10    12    16    20    24    27
+//   Jet lanes             1.43  0.52  0.43  0.61  0.50  0.59  0.59  0.79  0.84
+//   forward sensitivities 2.57  1.09  0.66  0.57  0.50  0.55  0.49  0.52  0.50
+//   kAuto (as fits run)   1.29  0.53  0.43  0.54  0.50  0.55  0.49  0.51  0.50
+//   kAuto before (12/17)  1.38  0.55  0.80  0.67  0.56  0.62  0.68  0.65  0.62
 //
-// (k = 4 and 10 from an earlier run; instruction counts, which callgrind
-// makes repeatable, put the sensitivities 40% above Jet lanes at k = 10.)
-// Jet lanes are used up to 16 columns (one pass of 12 and one of 4), the
-// sensitivities from 17 on, where Jets would need 24 lanes or more. Ceres'
-// DynamicAutoDiffCostFunction measured 0.49/0.64/0.74/0.81 at k = 4, 10,
-// 20, 27 (stride 4) in an earlier run: no better. The target of 0.5 (k + 1)
-// is not met beyond k = 4: a Jet lane costs about half a forward pass on
-// this baseline x86-64 (SSE2) build, and the sensitivities' 6 x 6 product
-// and coefficient Jets cost about as much per column.
-//
+// (2026-11-23; the last row is the previous version: Jet passes of 4 and
+// 12 up to 16 columns, 12-lane coefficient passes, the full 6 x 6 F_x S.)
+// Repeated runs move single entries by up to 10%.
+// Ceres' DynamicAutoDiffCostFunction (stride 4 and 8) is in the same
+// table of tools/bench: no better. At k = 1 no forward-mode Jacobian can
+// reach 0.5 (k + 1): the residuals alone cost one forward pass.
+
 // Free coordinates are optimized in scaled units u = value / scale so that
 // the Jacobian columns are of similar size; the covariance is unscaled
 // afterwards.
@@ -109,7 +110,7 @@ class SegmentCostFunction : public ceres::CostFunction {
   // or forward sensitivities (MotionModel::EvaluateWithSensitivities);
   // kAuto takes the sensitivities from kMinSensitivityColumns columns on.
   enum class JacobianMethod { kAuto, kJetLanes, kSensitivities };
-  static constexpr int kMinSensitivityColumns = 17;
+  static constexpr int kMinSensitivityColumns = 9;
   void set_jacobian_method(JacobianMethod method) { method_ = method; }
 
  private:

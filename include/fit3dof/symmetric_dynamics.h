@@ -36,6 +36,18 @@ enum SymmetricState {
   kSymPsiDot = 5,
 };
 
+// The kinematic rows of Table 1: the rate of each angle is itself a state
+// variable, d(angle)/dt = rate exactly, with no coefficient in it
+// (SymmetricDerivative writes them from this table). Their rows of df/dx
+// are unit vectors and of df/dp zero: the forward sensitivities copy them
+// instead of multiplying (motion_sensitivity.cc).
+struct KinematicRow {
+  int angle;
+  int rate;
+};
+constexpr KinematicRow kSymmetricKinematics[3] = {
+    {kSymPhi, kSymPhiDot}, {kSymTheta, kSymThetaDot}, {kSymPsi, kSymPsiDot}};
+
 struct SymmetricConstants {
   double ratio = 0.0;  // R = I_x / I
   Incidence incidence = Incidence::kVelocityRatio;
@@ -201,14 +213,15 @@ void SymmetricMoments(const CoefficientView<Tk>& k,
 // Eq. 6 (the listing's FCT): dx/dt for the symmetric body. These follow from
 // dh/dt + omega_frame x h = M with h = (I_x p, I q, I r) in the non-rolling
 // frame, whose angular velocity is (-psidot sin(theta), thetadot,
-// psidot cos(theta)).
+// psidot cos(theta)). trig: the sines and cosines of x, given so that
+// several coefficient scalars at one state share them.
 template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
 void SymmetricDerivative(const CoefficientView<Tk>& k,
                          const SymmetricConstants& constants,
                          const Tx* x,
+                         const SymmetricTrig<Tx>& trig,
                          T* dx,
                          const TunnelMoment* extra = nullptr) {
-  const SymmetricTrig<Tx> trig(x);
   T mx, my, mz;
   SymmetricMoments(k, constants, x, trig, &mx, &my, &mz, extra);
   const double ratio = constants.ratio;
@@ -219,16 +232,26 @@ void SymmetricDerivative(const CoefficientView<Tk>& k,
   const Tx& ct = trig.ct;
   const Tx sec = 1.0 / ct;
   const Tx tt = st * sec;
-  dx[kSymPhi] = T(phidot);
+  for (const KinematicRow& row : kSymmetricKinematics) {
+    dx[row.angle] = T(x[row.rate]);
+  }
   dx[kSymPhiDot] = mx + psidot * thetadot * ct + mz * tt +
                    (2.0 - ratio) * psidot * thetadot * tt * st +
                    ratio * phidot * thetadot * tt;
-  dx[kSymTheta] = T(thetadot);
   dx[kSymThetaDot] = my - (1.0 - ratio) * psidot * psidot * st * ct -
                      ratio * phidot * psidot * ct;
-  dx[kSymPsi] = T(psidot);
   dx[kSymPsiDot] = mz * sec + (2.0 - ratio) * psidot * thetadot * tt +
                    ratio * phidot * thetadot * sec;
+}
+
+// The same, computing the sines and cosines of x.
+template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
+void SymmetricDerivative(const CoefficientView<Tk>& k,
+                         const SymmetricConstants& constants,
+                         const Tx* x,
+                         T* dx,
+                         const TunnelMoment* extra = nullptr) {
+  SymmetricDerivative(k, constants, x, SymmetricTrig<Tx>(x), dx, extra);
 }
 
 }  // namespace fit3dof
