@@ -2,10 +2,15 @@
 
 #include "fit3dof/motion_model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "ceres/jet.h"
+#include "fit3dof/random_moment.h"
+#include "fit3dof/symmetric_dynamics.h"
 #include "gtest/gtest.h"
 
 namespace fit3dof {
@@ -214,6 +219,177 @@ TEST(MotionModel, ReportsABlowUp) {
           .Evaluate(values.data(), times.data(), 100, angles.data(), &failure));
   EXPECT_GT(failure.time, 0.0);
   EXPECT_FALSE(failure.reason.empty());
+}
+
+// The Table 6 motion: its four coefficients and initial conditions.
+std::vector<double> Table6Values() {
+  std::vector<double> v(NumParameters(ModelKind::kSymmetric), 0.0);
+  const std::pair<const char*, double> table6[] = {{"Cm_alpha", -0.236},
+                                                   {"Cm_q", -4.0},
+                                                   {"Cm_alpha_delta2", 5.81},
+                                                   {"Cm_q_delta2", 98.5},
+                                                   {"phidot0", 641.0},
+                                                   {"theta0", 5.18},
+                                                   {"thetadot0", -26.356},
+                                                   {"psi0", -2.589},
+                                                   {"psidot0", -7.77}};
+  for (const auto& [name, value] : table6) {
+    v[FindParameter(ModelKind::kSymmetric, name)] = value;
+  }
+  return v;
+}
+
+// The filter-error predictor (EvaluateFiltered): with zero gains its
+// innovations are the measurement less Evaluate's angles, exactly (roll
+// modulo 360 deg); with gains that reset the angles to the readings, a
+// random moment the model lacks leaves only one interval's prediction error
+// in the innovations, far below the open-loop residual; and Jets through it
+// give the derivatives of the held-gain filter (central differences).
+struct FilterCase {
+  ModelSpec spec = SymmetricSpec(Incidence::kVelocityRatio);
+  std::vector<double> values = Table6Values();
+  std::vector<double> times;
+  std::vector<double> measured;     // 3 per sample, deg
+  std::vector<double> reset_gains;  // angles set to the readings
+
+  explicit FilterCase(double rms_moment) {
+    for (int i = 0; i <= 200; ++i) times.push_back(0.02 * i);
+    MotionModel truth(spec, ActiveParameters(values, {}));
+    ProcessNoiseOptions noise;
+    noise.rms = {0.0, rms_moment, rms_moment};
+    noise.seed = 7;
+    truth.set_random_moment(std::make_shared<const RandomMoment>(
+        noise, times.front(), times.back(), spec.max_step));
+    measured.resize(3 * times.size());
+    EXPECT_TRUE(truth.Evaluate(values.data(),
+                               times.data(),
+                               static_cast<int>(times.size()),
+                               measured.data(),
+                               nullptr));
+    reset_gains.assign(18 * times.size(), 0.0);
+    const int angle_rows[3] = {kSymPhi, kSymTheta, kSymPsi};
+    for (size_t i = 0; i < times.size(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        reset_gains[18 * i + 3 * angle_rows[c] + c] = kDegree;
+      }
+    }
+  }
+  int n() const { return static_cast<int>(times.size()); }
+};
+
+double Rms(const std::vector<double>& v, int channel) {
+  double sum = 0.0;
+  for (size_t i = channel; i < v.size(); i += 3) sum += v[i] * v[i];
+  return std::sqrt(sum / (v.size() / 3));
+}
+
+TEST(MotionModelFiltered, ZeroGainsGiveTheOutputErrorResiduals) {
+  FilterCase f(3e-4);
+  const MotionModel model(f.spec, ActiveParameters(f.values, {}));
+  std::vector<double> angles(3 * f.n()), innovations(3 * f.n());
+  const std::vector<double> zero(18 * f.n(), 0.0);
+  ASSERT_TRUE(model.Evaluate(
+      f.values.data(), f.times.data(), f.n(), angles.data(), nullptr));
+  ASSERT_TRUE(model.EvaluateFiltered(f.values.data(),
+                                     f.times.data(),
+                                     f.n(),
+                                     f.measured.data(),
+                                     zero.data(),
+                                     innovations.data(),
+                                     nullptr));
+  for (int i = 0; i < 3 * f.n(); ++i) {
+    double expected = f.measured[i] - angles[i];
+    if (i % 3 == 0) expected -= 360.0 * std::round(expected / 360.0);
+    EXPECT_EQ(innovations[i], expected) << i;
+  }
+  EXPECT_GT(Rms(innovations, 1), 0.05);  // the random moment shows open loop
+}
+
+TEST(MotionModelFiltered, ResettingGainsLeaveOneIntervalsError) {
+  FilterCase f(3e-4);
+  const MotionModel model(f.spec, ActiveParameters(f.values, {}));
+  std::vector<double> open(3 * f.n()), filtered(3 * f.n());
+  const std::vector<double> zero(18 * f.n(), 0.0);
+  ASSERT_TRUE(model.EvaluateFiltered(f.values.data(),
+                                     f.times.data(),
+                                     f.n(),
+                                     f.measured.data(),
+                                     zero.data(),
+                                     open.data(),
+                                     nullptr));
+  ASSERT_TRUE(model.EvaluateFiltered(f.values.data(),
+                                     f.times.data(),
+                                     f.n(),
+                                     f.measured.data(),
+                                     f.reset_gains.data(),
+                                     filtered.data(),
+                                     nullptr));
+  for (int c = 1; c < 3; ++c) {
+    EXPECT_LT(Rms(filtered, c), 0.1 * Rms(open, c)) << "channel " << c;
+  }
+  // Without process noise and with the true parameters there is nothing to
+  // correct: every innovation vanishes, whatever the gains.
+  FilterCase clean(0.0);
+  ASSERT_TRUE(model.EvaluateFiltered(clean.values.data(),
+                                     clean.times.data(),
+                                     clean.n(),
+                                     clean.measured.data(),
+                                     clean.reset_gains.data(),
+                                     filtered.data(),
+                                     nullptr));
+  for (double e : filtered) EXPECT_NEAR(e, 0.0, 1e-9);
+}
+
+TEST(MotionModelFiltered, JetsGiveTheHeldGainDerivatives) {
+  FilterCase f(3e-4);
+  const int wrt[2] = {FindParameter(ModelKind::kSymmetric, "Cm_alpha"),
+                      FindParameter(ModelKind::kSymmetric, "thetadot0")};
+  std::vector<bool> free(f.values.size(), false);
+  for (int i : wrt) free[i] = true;
+  const MotionModel model(f.spec, ActiveParameters(f.values, free));
+  // Gains that pull the angles halfway to the readings.
+  std::vector<double> gains = f.reset_gains;
+  for (double& g : gains) g *= 0.5;
+  using J = ceres::Jet<double, 2>;
+  std::vector<J> jets(f.values.begin(), f.values.end());
+  for (int d = 0; d < 2; ++d) jets[wrt[d]].v[d] = 1.0;
+  std::vector<J> innovations(3 * f.n());
+  ASSERT_TRUE(model.EvaluateFiltered(jets.data(),
+                                     f.times.data(),
+                                     f.n(),
+                                     f.measured.data(),
+                                     gains.data(),
+                                     innovations.data(),
+                                     nullptr));
+  for (int d = 0; d < 2; ++d) {
+    const double h = 1e-6 * std::max(1.0, std::abs(f.values[wrt[d]]));
+    std::vector<double> plus = f.values, minus = f.values;
+    plus[wrt[d]] += h;
+    minus[wrt[d]] -= h;
+    std::vector<double> ep(3 * f.n()), em(3 * f.n());
+    ASSERT_TRUE(model.EvaluateFiltered(plus.data(),
+                                       f.times.data(),
+                                       f.n(),
+                                       f.measured.data(),
+                                       gains.data(),
+                                       ep.data(),
+                                       nullptr));
+    ASSERT_TRUE(model.EvaluateFiltered(minus.data(),
+                                       f.times.data(),
+                                       f.n(),
+                                       f.measured.data(),
+                                       gains.data(),
+                                       em.data(),
+                                       nullptr));
+    double scale = 0.0;
+    for (const J& e : innovations) scale = std::max(scale, std::abs(e.v[d]));
+    ASSERT_GT(scale, 0.0);
+    for (int i = 0; i < 3 * f.n(); ++i) {
+      EXPECT_NEAR(
+          innovations[i].v[d], (ep[i] - em[i]) / (2.0 * h), 1e-5 * scale)
+          << "parameter " << wrt[d] << " row " << i;
+    }
+  }
 }
 
 }  // namespace

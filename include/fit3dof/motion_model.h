@@ -14,7 +14,10 @@
 #ifndef FIT3DOF_MOTION_MODEL_H_
 #define FIT3DOF_MOTION_MODEL_H_
 
+#include <glog/logging.h>
+
 #include <array>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -100,6 +103,24 @@ class MotionModel {
                                  double* angles,
                                  double* jacobian,
                                  IntegrationFailure* failure) const;
+
+  // The motion with a fixed-gain correction at every sample: the predictor
+  // of the filter-error fit (issue 14). At sample i the innovation
+  // e_i = measured - h(x-) (deg, three per sample, the roll one taken to
+  // the branch nearest +-180 deg) goes to innovations[3 i ..], and the
+  // state is corrected, x+ = x- + K_i e_i, with K_i the 6 x 3 row-major
+  // gains[18 i ..] (internal units per degree). The gains are data: with
+  // Jets the innovations' derivatives are those of a filter whose gains
+  // are held (as the filter-error method's Gauss-Newton step holds them).
+  // measured: 3 n angles (deg). Returns false like Evaluate.
+  template <typename T>
+  bool EvaluateFiltered(const T* values,
+                        const double* times,
+                        int n,
+                        const double* measured,
+                        const double* gains,
+                        T* innovations,
+                        IntegrationFailure* failure) const;
 
   // Process noise for simulation (random_moment.h): Evaluate and
   // EvaluateStates add the random moments, held over each RK4 step at
@@ -294,6 +315,32 @@ bool MotionModel::EvaluateStates(const T* values,
   std::array<T, kMaxParameters> internal;
   auto observe = [&](int i, const T* x) {
     for (int j = 0; j < 6; ++j) states[6 * i + j] = x[j];
+  };
+  return Integrate(values, times, n, &internal, observe, failure);
+}
+
+template <typename T>
+bool MotionModel::EvaluateFiltered(const T* values,
+                                   const double* times,
+                                   int n,
+                                   const double* measured,
+                                   const double* gains,
+                                   T* innovations,
+                                   IntegrationFailure* failure) const {
+  CHECK(random_moment_ == nullptr)
+      << "process noise is for simulation; fits model it otherwise";
+  std::array<T, kMaxParameters> internal;
+  auto observe = [&](int i, T* x) {
+    T predicted[3];
+    Measure(x, internal.data(), predicted);
+    T* e = innovations + 3 * i;
+    for (int c = 0; c < 3; ++c) e[c] = measured[3 * i + c] - predicted[c];
+    // Roll is compared modulo 360 deg, as the output-error residual is.
+    e[0] -= 360.0 * std::round(ScalarPart(e[0]) / 360.0);
+    const double* k = gains + 18 * i;
+    for (int j = 0; j < 6; ++j) {
+      x[j] += k[3 * j] * e[0] + k[3 * j + 1] * e[1] + k[3 * j + 2] * e[2];
+    }
   };
   return Integrate(values, times, n, &internal, observe, failure);
 }

@@ -107,15 +107,16 @@ struct StateGuard {
 // Integrates from times[0] (x holds the state there) through times[n-1],
 // calling observe(i, x) at every sample, the first included: step(h)
 // advances the system by one RK4 step of size h, its first kDim values
-// being the motion's state x, which the guard checks. Returns false and
-// fills `failure` if the guard trips.
+// being the motion's state x, which the guard checks. observe may correct
+// x (a filter's update); the integration goes on from the corrected state.
+// Returns false and fills `failure` if the guard trips.
 template <typename T, int kDim, typename Step, typename Observe>
 bool IntegrateSamplesWith(const Step& step,
                           const double* times,
                           int n,
                           double max_step,
                           const StateGuard& guard,
-                          const T* x,
+                          T* x,
                           const Observe& observe,
                           IntegrationFailure* failure) {
   auto check = [&](double t) {
