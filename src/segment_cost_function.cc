@@ -195,8 +195,8 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
   if (sensitivities) {
     return EvaluateSensitivities(u.data(), lanes, residuals, jacobians);
   }
-  // Passes of 12 lanes, the last of 4 when at most 4 remain (the header
-  // says why).
+  // Passes of up to 12 lanes, each as narrow as its columns allow (4, 8 or
+  // 12; the header says why).
   for (size_t first = 0, count = 0; first < lanes.size(); first += count) {
     count = std::min<size_t>(kMaxLanes, lanes.size() - first);
     if (!EvaluatePass(u.data(),
