@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "fit3dof/angles.h"
 #include "fit3dof/batch.h"
 #include "fit3dof/config.h"
 #include "fit3dof/diagnose.h"
@@ -77,7 +78,7 @@ py::array_t<double> Residuals(const SegmentFit& s) {
   for (py::ssize_t i = 0; i < a.shape(0); ++i) {
     for (int ch = 0; ch < 3; ++ch) {
       double r = s.computed[3 * i + ch] - a(i, ch);
-      if (ch == 0) r -= 360.0 * std::round(r / 360.0);
+      if (ch == 0) r -= WholeTurns(r);
       a(i, ch) = r;
     }
   }

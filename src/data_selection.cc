@@ -10,6 +10,8 @@
 #include <cmath>
 #include <utility>
 
+#include "fit3dof/angles.h"
+
 namespace fit3dof {
 
 void SampleSelector::Add(double t, double phi, double theta, double psi) {
@@ -54,7 +56,7 @@ std::vector<double> UnwrapDegrees(const std::vector<double>& angles,
     if (!skip.empty() && skip[i]) continue;
     if (last >= 0) {
       const double step = angles[i] - angles[last];
-      shift -= 360.0 * std::round(step / 360.0);
+      shift -= WholeTurns(step);
     }
     out[i] = angles[i] + shift;
     last = static_cast<int>(i);

@@ -275,7 +275,7 @@ double PredictionRss(const Case& c,
       const double measured[3] = {d.phi[i], d.theta[i], d.psi[i]};
       for (int ch = 0; ch < 3; ++ch) {
         double r = angles[3 * i + ch] - measured[ch];
-        if (ch == 0) r -= 360.0 * std::round(r / 360.0);
+        if (ch == 0) r -= WholeTurns(r);
         rss += (r / w[ch]) * (r / w[ch]);
       }
     }

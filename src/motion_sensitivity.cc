@@ -40,11 +40,12 @@ namespace {
 using StateJet = ceres::Jet<double, 6>;
 
 // The parameters in internal units as Jets whose lanes carry the
-// derivatives with respect to up to kLanes of them: 12-lane passes, and a
-// 4-lane one for the last few (a lane costs the same whether used or not).
+// derivatives with respect to up to kLanes of them (a lane costs the same
+// whether used or not).
 template <int kLanes>
 struct CoefficientPass {
-  std::array<ceres::Jet<double, kLanes>, kMaxParameters> internal;
+  using Jet = ceres::Jet<double, kLanes>;
+  std::array<Jet, kMaxParameters> internal;
   int first = 0;  // the lanes' columns of S: first, first + 1, ...
   int lanes = 0;  // lanes in use
 };
@@ -76,7 +77,7 @@ void SeedPass(const std::array<double, kMaxParameters>& internal,
               CoefficientPass<kLanes>* pass) {
   CHECK_LE(lanes, kLanes);
   for (int p = 0; p < kMaxParameters; ++p) {
-    pass->internal[p] = ceres::Jet<double, kLanes>(internal[p]);
+    pass->internal[p] = typename CoefficientPass<kLanes>::Jet(internal[p]);
   }
   for (int lane = 0; lane < lanes; ++lane) {
     const int parameter = parameters[first + lane];
@@ -94,20 +95,13 @@ CoefficientPasses MakePasses(const std::array<double, kMaxParameters>& internal,
   const int count = static_cast<int>(parameters.size());
   for (int first = 0; first < count; first += kWide) {
     const int lanes = std::min(count - first, kWide);
+    auto seed = [&](auto* pass) {
+      SeedPass(internal, scale, parameters, first, lanes, pass);
+    };
     if (lanes <= 4) {
-      SeedPass(internal,
-               scale,
-               parameters,
-               first,
-               lanes,
-               &passes.narrow.emplace_back());
+      seed(&passes.narrow.emplace_back());
     } else {
-      SeedPass(internal,
-               scale,
-               parameters,
-               first,
-               lanes,
-               &passes.wide.emplace_back());
+      seed(&passes.wide.emplace_back());
     }
   }
   return passes;
@@ -194,8 +188,7 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
                                    const auto& trig,
                                    double* ds) {
     passes.ForEach([&](const auto& pass) {
-      std::remove_const_t<std::remove_reference_t<decltype(pass.internal[0])>>
-          fp[6];
+      typename std::decay_t<decltype(pass)>::Jet fp[6];
       Derivative(CoefficientView(pass.internal.data(), active_), y, trig, fp);
       for (int j = 0; j < 6; ++j) {
         if (kinematic_rate_[j] >= 0) continue;  // no coefficient in it
@@ -237,8 +230,7 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
       RowTimesSensitivity(aj[c].v, y + 6, m, &rows[m * c]);
     }
     passes.ForEach([&](const auto& pass) {
-      std::remove_const_t<std::remove_reference_t<decltype(pass.internal[0])>>
-          ap[3];
+      typename std::decay_t<decltype(pass)>::Jet ap[3];
       Measure(y, pass.internal.data(), ap);
       for (int c = 0; c < 3; ++c) {
         for (int lane = 0; lane < pass.lanes; ++lane) {

@@ -9,6 +9,8 @@
 
 #include <cmath>
 
+#include "fit3dof/angles.h"
+
 namespace fit3dof {
 
 SegmentCostFunction::SegmentCostFunction(
@@ -71,7 +73,7 @@ double SegmentCostFunction::WeightedResidual(int i,
   const double* measured[3] = {
       data_.phi.data(), data_.theta.data(), data_.psi.data()};
   double offset = 0.0;
-  if (c == 0) offset = 360.0 * std::round((computed - measured[0][i]) / 360.0);
+  if (c == 0) offset = WholeTurns(computed - measured[0][i]);
   return (computed - offset - measured[c][i]) * inv_sigma;
 }
 
@@ -86,7 +88,7 @@ bool SegmentCostFunction::ComputeAngles(const std::vector<double>& full,
   }
   for (int i = 0; i < n; ++i) {
     double& phi = (*angles)[3 * i];
-    phi -= 360.0 * std::round((phi - data_.phi[i]) / 360.0);
+    phi -= WholeTurns(phi - data_.phi[i]);
   }
   return true;
 }

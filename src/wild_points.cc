@@ -13,6 +13,7 @@
 #include <queue>
 #include <utility>
 
+#include "fit3dof/angles.h"
 #include "fit3dof/data_selection.h"
 #include "format.h"
 #include "glog/logging.h"
@@ -357,7 +358,7 @@ std::vector<WildPoint> ScreenResiduals(const TimeHistory& data,
     for (int i = 0; i < n; ++i) {
       r[i] = x[i] - computed[3 * i + channel];
       // Roll is compared modulo 360 deg, as the fit does.
-      if (channel == 0) r[i] -= 360.0 * std::round(r[i] / 360.0);
+      if (channel == 0) r[i] -= WholeTurns(r[i]);
       finite &= std::isfinite(r[i]) || flagged[i];
     }
     if (!finite) continue;  // a motion that blew up has no residuals to judge

@@ -26,6 +26,13 @@ namespace fit3dof {
 inline constexpr double kDegree = M_PI / 180.0;
 inline constexpr double kDegreesPerRadian = 180.0 / M_PI;
 
+// The whole turns in an angle of `degrees`, in degrees: subtracting them
+// takes a roll difference to the branch nearest zero (-180..180), as roll
+// is compared modulo 360 deg (the listing's INTGRL).
+inline double WholeTurns(double degrees) {
+  return 360.0 * std::round(degrees / 360.0);
+}
+
 // Body rates from Euler rates at roll phi and pitch theta, given their
 // sines and cosines. Any unit of rate; the result is in the same one.
 template <typename T>

@@ -336,7 +336,7 @@ bool MotionModel::EvaluateFiltered(const T* values,
     T* e = innovations + 3 * i;
     for (int c = 0; c < 3; ++c) e[c] = measured[3 * i + c] - predicted[c];
     // Roll is compared modulo 360 deg, as the output-error residual is.
-    e[0] -= 360.0 * std::round(ScalarPart(e[0]) / 360.0);
+    e[0] -= WholeTurns(ScalarPart(e[0]));
     const double* k = gains + 18 * i;
     for (int j = 0; j < 6; ++j) {
       x[j] += k[3 * j] * e[0] + k[3 * j + 1] * e[1] + k[3 * j + 2] * e[2];
