@@ -50,19 +50,24 @@ struct CoefficientPass {
   int lanes = 0;  // lanes in use
 };
 
-// Lanes per pass: 8, the last pass 4 when at most 4 remain. Measured on
-// the Table 6 record with 20 and 27 free (bench/evaluation_benchmark,
-// least of 6 interleaved runs): 8-lane passes cost 0.85x and 0.89x of
-// 12-lane ones, though they execute 6% more instructions.
+// Lanes per pass: 8, the last pass 4 or 2 when at most that many remain
+// (a 2-lane pass for the last one or two columns: 0.92x of a 4-lane one
+// at k = 16, 2026-11-23; carrying them in spare lanes of the state
+// pass instead cost 1.15x, as every coefficient there becomes a Jet).
+// Measured on the Table 6 record with 20 and 27 free
+// (bench/evaluation_benchmark, least of 6 interleaved runs): 8-lane passes cost
+// 0.85x and 0.89x of 12-lane ones, though they execute 6% more instructions.
 constexpr int kWide = 8;
 struct CoefficientPasses {
   std::vector<CoefficientPass<kWide>> wide;
   std::vector<CoefficientPass<4>> narrow;
+  std::vector<CoefficientPass<2>> thin;
 
   template <typename Visit>
   void ForEach(const Visit& visit) const {
     for (const auto& pass : wide) visit(pass);
     for (const auto& pass : narrow) visit(pass);
+    for (const auto& pass : thin) visit(pass);
   }
 };
 
@@ -98,7 +103,9 @@ CoefficientPasses MakePasses(const std::array<double, kMaxParameters>& internal,
     auto seed = [&](auto* pass) {
       SeedPass(internal, scale, parameters, first, lanes, pass);
     };
-    if (lanes <= 4) {
+    if (lanes <= 2) {
+      seed(&passes.thin.emplace_back());
+    } else if (lanes <= 4) {
       seed(&passes.narrow.emplace_back());
     } else {
       seed(&passes.wide.emplace_back());
@@ -137,6 +144,26 @@ struct SensitivityColumns {
 // Seeds one StateJet per state variable: lane j is d/dx_j.
 void SeedState(const double* x, StateJet* xj) {
   for (int j = 0; j < 6; ++j) xj[j] = StateJet(x[j], j);
+}
+
+// The values of StateJet sines and cosines: the coefficient passes' trig.
+SymmetricTrig<double> ValuesOf(const SymmetricTrig<StateJet>& t) {
+  SymmetricTrig<double> values;
+  values.st = t.st.a;
+  values.ct = t.ct.a;
+  values.sp = t.sp.a;
+  values.cp = t.cp.a;
+  return values;
+}
+AsymmetricTrig<double> ValuesOf(const AsymmetricTrig<StateJet>& t) {
+  AsymmetricTrig<double> values;
+  values.sf = t.sf.a;
+  values.cf = t.cf.a;
+  values.st = t.st.a;
+  values.ct = t.ct.a;
+  values.sp = t.sp.a;
+  values.cp = t.cp.a;
+  return values;
 }
 
 // out[l] = sum_j d[j] s[j m + l], l < m: a row of the gradient d times S.
@@ -199,24 +226,31 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
     });
   };
 
+  // f, F_x S and F_p at z = y, the state's sines and cosines computed once
+  // (`trig`, over StateJets) for every pass.
+  auto rates =
+      [&](const double* y, const StateJet* xj, const auto& trig, double* dy) {
+        StateJet fj[6];
+        Derivative(k, xj, trig, fj);
+        const double* s = y + 6;
+        double* ds = dy + 6;
+        for (int j = 0; j < 6; ++j) {
+          dy[j] = fj[j].a;
+          if (kinematic_rate_[j] >= 0) {
+            std::copy_n(s + m * kinematic_rate_[j], m, ds + m * j);
+          } else {
+            RowTimesSensitivity(fj[j].v, s, m, ds + m * j);
+          }
+        }
+        add_coefficient_rates(y, ValuesOf(trig), ds);
+      };
   auto rhs = [&](const double* y, double* dy) {
-    StateJet xj[6], fj[6];
+    StateJet xj[6];
     SeedState(y, xj);
-    Derivative(k, xj, fj);
-    const double* s = y + 6;
-    double* ds = dy + 6;
-    for (int j = 0; j < 6; ++j) {
-      dy[j] = fj[j].a;
-      if (kinematic_rate_[j] >= 0) {
-        std::copy_n(s + m * kinematic_rate_[j], m, ds + m * j);
-      } else {
-        RowTimesSensitivity(fj[j].v, s, m, ds + m * j);
-      }
-    }
     if (spec_.model == ModelKind::kSymmetric) {
-      add_coefficient_rates(y, SymmetricTrig<double>(y), ds);
+      rates(y, xj, SymmetricTrig<StateJet>(xj), dy);
     } else {
-      add_coefficient_rates(y, AsymmetricTrig<double>(y), ds);
+      rates(y, xj, AsymmetricTrig<StateJet>(xj), dy);
     }
   };
 

@@ -99,8 +99,14 @@ bool SegmentCostFunction::EvaluatePass(const double* u,
                                        double* residuals,
                                        double** jacobians) const {
   CHECK_LE(count, kMaxLanes);
+  if (count <= 2) {
+    return EvaluateLanes<2>(u, lanes, count, residuals, jacobians);
+  }
   if (count <= 4) {
     return EvaluateLanes<4>(u, lanes, count, residuals, jacobians);
+  }
+  if (count <= 6) {
+    return EvaluateLanes<6>(u, lanes, count, residuals, jacobians);
   }
   if (count <= 8) {
     return EvaluateLanes<8>(u, lanes, count, residuals, jacobians);
@@ -197,8 +203,8 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
   if (sensitivities) {
     return EvaluateSensitivities(u.data(), lanes, residuals, jacobians);
   }
-  // Passes of up to 12 lanes, each as narrow as its columns allow (4, 8 or
-  // 12; the header says why).
+  // Passes of up to 12 lanes, each as narrow as its columns allow (2, 4, 6,
+  // 8 or 12; the header says why).
   for (size_t first = 0, count = 0; first < lanes.size(); first += count) {
     count = std::min<size_t>(kMaxLanes, lanes.size() - first);
     if (!EvaluatePass(u.data(),

@@ -1,6 +1,6 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// Jet width 4 of SegmentCostFunction (a unit of its own, so that the three
+// Jet width 4 of SegmentCostFunction (a unit of its own, so that the
 // widths build in parallel).
 
 #include "segment_cost_function_lanes.h"

@@ -20,6 +20,8 @@
 
 #include <cmath>
 
+#include "ceres/jet.h"
+
 namespace fit3dof {
 
 // Radians per degree, and degrees per radian.
@@ -31,6 +33,25 @@ inline constexpr double kDegreesPerRadian = 180.0 / M_PI;
 // is compared modulo 360 deg (the listing's INTGRL).
 inline double WholeTurns(double degrees) {
   return 360.0 * std::round(degrees / 360.0);
+}
+
+// sin x and cos x from one evaluation of each at x's value: for a Jet the
+// derivative lanes are cos x * dx and -sin x * dx, as ceres::sin and
+// ceres::cos give them, but those two compute both functions each. Same
+// numbers, half the calls; the equations of motion take their sines and
+// cosines here (SymmetricTrig, AsymmetricTrig).
+inline void SinCos(double x, double* s, double* c) {
+  *s = std::sin(x);
+  *c = std::cos(x);
+}
+template <typename T, int N>
+void SinCos(const ceres::Jet<T, N>& x,
+            ceres::Jet<T, N>* s,
+            ceres::Jet<T, N>* c) {
+  T sa, ca;
+  SinCos(x.a, &sa, &ca);
+  *s = ceres::Jet<T, N>(sa, ca * x.v);
+  *c = ceres::Jet<T, N>(ca, -sa * x.v);
 }
 
 // Body rates from Euler rates at roll phi and pitch theta, given their

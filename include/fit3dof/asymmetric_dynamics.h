@@ -47,15 +47,11 @@ struct AsymmetricConstants {
 // the equations of motion.
 template <typename T>
 struct AsymmetricTrig {
+  AsymmetricTrig() = default;
   explicit AsymmetricTrig(const T* x) {
-    using std::cos;
-    using std::sin;
-    sf = sin(x[kAsymPhi]);
-    cf = cos(x[kAsymPhi]);
-    st = sin(x[kAsymTheta]);
-    ct = cos(x[kAsymTheta]);
-    sp = sin(x[kAsymPsi]);
-    cp = cos(x[kAsymPsi]);
+    SinCos(x[kAsymPhi], &sf, &cf);
+    SinCos(x[kAsymTheta], &st, &ct);
+    SinCos(x[kAsymPsi], &sp, &cp);
   }
   T sf, cf, st, ct, sp, cp;
 };

@@ -139,20 +139,21 @@ class MotionModel {
                   T* dx,
                   const TunnelMoment* extra = nullptr) const;
 
-  // Derivative at a double state whose sines and cosines `trig` several
-  // coefficient passes share (motion_sensitivity.cc); the trig's type picks
-  // the program, which must be the model's.
-  template <typename Tk, typename T>
+  // Derivative at a state whose sines and cosines `trig` are computed once
+  // and shared by several passes (motion_sensitivity.cc: the state pass and
+  // the coefficient passes); the trig's type picks the program, which must
+  // be the model's.
+  template <typename Tx, typename Tk, typename T>
   void Derivative(const CoefficientView<Tk>& k,
-                  const double* x,
-                  const SymmetricTrig<double>& trig,
+                  const Tx* x,
+                  const SymmetricTrig<Tx>& trig,
                   T* dx) const {
     SymmetricDerivative(k, symmetric_, x, trig, dx);
   }
-  template <typename Tk, typename T>
+  template <typename Tx, typename Tk, typename T>
   void Derivative(const CoefficientView<Tk>& k,
-                  const double* x,
-                  const AsymmetricTrig<double>& trig,
+                  const Tx* x,
+                  const AsymmetricTrig<Tx>& trig,
                   T* dx) const {
     AsymmetricDerivative(k, asymmetric_, x, trig, dx);
   }

@@ -20,13 +20,16 @@
 // block, then the segment's initial-condition block) while frozen values
 // reach the equations as constants. Two ways to the Jacobian:
 //
-// - Jet lanes: the motion integrated with ceres::Jet<double, N>, N = 4, 8
-//   or 12 (the narrowest that holds the columns), one pass per 12 columns;
+// - Jet lanes: the motion integrated with ceres::Jet<double, N>, N = 2, 4,
+//   6, 8 or 12 (the narrowest that holds the columns), one pass per 12
+//   columns;
 // - forward sensitivities (MotionModel::EvaluateWithSensitivities): the
 //   motion and dx/dp stepped together, with a 6-lane Jet over the state and
-//   8-lane Jets over the coefficients at each right-hand side; the
-//   per-column work is three rows of F_x S (the symmetric program's three
-//   kinematic rows are copies) instead of every operation of the equations.
+//   8-lane Jets over the coefficients at each right-hand side (the last
+//   pass 4 or 2 lanes when no more are left), the state's sines and
+//   cosines computed once for all of them; the per-column work is three
+//   rows of F_x S (the symmetric program's three kinematic rows are
+//   copies) instead of every operation of the equations.
 //
 // Both give the same residuals exactly and the same derivatives to rounding
 // (segment_cost_function_test). kAuto takes Jet lanes up to 8 columns and
@@ -34,20 +37,36 @@
 // (bench/evaluation_benchmark: Table 6 record, 800 samples, 4800 RK4
 // steps; more free parameters also switch on more terms of the model, and
 // each Jacobian is divided by the forward pass of the same model), least
-// CPU time of 8 interleaved runs, Jacobian / forward / (k + 1):
+// CPU time of 8 interleaved runs, Jacobian / forward / (k + 1), every k the
+// symmetric case has (2026-11-23):
 //
-//   free k                  1     4     8    10    12    16    20    24    27
-//   Jet lanes             1.43  0.52  0.43  0.61  0.50  0.59  0.59  0.79  0.84
-//   forward sensitivities 2.57  1.09  0.66  0.57  0.50  0.55  0.49  0.52  0.50
-//   kAuto (as fits run)   1.29  0.53  0.43  0.54  0.50  0.55  0.49  0.51  0.50
-//   kAuto before (12/17)  1.38  0.55  0.80  0.67  0.56  0.62  0.68  0.65  0.62
+//  k        1    2    3    4    5    6    7    8    9   10   11   12   13   14
+//  lanes  .84  .56  .61  .49  .53  .45  .51  .46  .78  .71  .60  .56  .69  .67
+//  sens. 1.99 1.35 1.14  .90  .78  .67  .61  .54  .51  .47  .45  .42  .42  .41
+//  kAuto  .84  .56  .61  .49  .53  .45  .52  .46  .51  .47  .45  .42  .42  .41
 //
-// (2026-11-23; the last row is the previous version: Jet passes of 4 and
-// 12 up to 16 columns, 12-lane coefficient passes, the full 6 x 6 F_x S.)
-// Repeated runs move single entries by up to 10%.
-// Ceres' DynamicAutoDiffCostFunction (stride 4 and 8) is in the same
-// table of tools/bench: no better. At k = 1 no forward-mode Jacobian can
-// reach 0.5 (k + 1): the residuals alone cost one forward pass.
+//  k       15   16   17   18   19   20   21   22   23   24   25   26   27
+//  lanes  .66  .63  .64  .62  .65  .63  .84  .90  .87  .81  .87  .84  .84
+//  sens.  .47  .45  .49  .47  .43  .43  .44  .47  .55  .52  .52  .50  .47
+//  kAuto  .47  .45  .49  .48  .43  .43  .45  .47  .56  .52  .52  .50  .47
+//
+// (lanes: Jet lanes only; sens.: sensitivities only; kAuto: as fits run.)
+// Before (same day, k = 1, 4, 8, 10, 12, 16, 20, 24, 27): 1.29, 0.53,
+// 0.43, 0.54, 0.50, 0.55, 0.49, 0.51, 0.50; and before that 1.38, 0.55,
+// 0.80, 0.67, 0.56, 0.62, 0.68, 0.65, 0.62. Repeated runs move single
+// entries by up to 10%. Ceres' DynamicAutoDiffCostFunction (stride 4 and
+// 8) is in the same table of tools/bench: no better.
+//
+// Where 0.5 (k + 1) is missed, and why. k <= 3: a Jacobian includes the
+// residuals (one forward pass) and every operation then carries at least
+// one derivative lane (about another), so about 2 forward passes is the
+// floor: 0.5 (k + 1) is out of reach below k = 3 (k = 1 takes 1.7, k = 3
+// a 4-lane pass, 2.4). k = 5, 7: one 6- or 8-lane pass costs what
+// it costs at k = 6, 8 (3.2 and 4.1 forward passes), divided by one fewer
+// column. k = 23-26: the tunnel terms switched on at k = 21-24 put more
+// operations in every coefficient pass, and 17-20 coefficients need a
+// third pass (about two forward passes whatever its lanes: the double
+// arithmetic of the equations is repeated in each).
 
 // Free coordinates are optimized in scaled units u = value / scale so that
 // the Jacobian columns are of similar size; the covariance is unscaled

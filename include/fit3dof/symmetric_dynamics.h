@@ -19,6 +19,7 @@
 
 #include <cmath>
 
+#include "fit3dof/angles.h"
 #include "fit3dof/bearing_moment.h"
 #include "fit3dof/coefficients.h"
 #include "fit3dof/parameters.h"
@@ -58,13 +59,10 @@ struct SymmetricConstants {
 // trigonometric call costs a full derivative vector).
 template <typename T>
 struct SymmetricTrig {
+  SymmetricTrig() = default;
   explicit SymmetricTrig(const T* x) {
-    using std::cos;
-    using std::sin;
-    st = sin(x[kSymTheta]);
-    ct = cos(x[kSymTheta]);
-    sp = sin(x[kSymPsi]);
-    cp = cos(x[kSymPsi]);
+    SinCos(x[kSymTheta], &st, &ct);
+    SinCos(x[kSymPsi], &sp, &cp);
   }
   T st, ct, sp, cp;
 };
