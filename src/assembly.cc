@@ -45,6 +45,7 @@ Assembly Assemble(const std::vector<PreparedSegment>& segments,
     }
     auto* cost = new SegmentCostFunction(
         model, base, positions, ks, segment_scale, p.data, p.sigma);
+    cost->set_innovation_weights(p.innovation_weights);
     a.problem->AddResidualBlock(cost, nullptr, a.segment_blocks[s]);
     a.costs.push_back(cost);
   }

@@ -17,13 +17,16 @@ const char* FitMethodToString(FitMethod method) {
       return "levenberg_marquardt";
     case FitMethod::kGaussNewton:
       return "gauss_newton";
+    case FitMethod::kFilterError:
+      return "filter_error";
   }
   return "unknown";
 }
 
 bool StringToFitMethod(const std::string& text, FitMethod* method) {
-  for (FitMethod m :
-       {FitMethod::kLevenbergMarquardt, FitMethod::kGaussNewton}) {
+  for (FitMethod m : {FitMethod::kLevenbergMarquardt,
+                      FitMethod::kGaussNewton,
+                      FitMethod::kFilterError}) {
     if (text == FitMethodToString(m)) {
       *method = m;
       return true;
@@ -121,6 +124,11 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
                                         b.starts);
 }
 
+bool operator==(const ProcessNoiseModel& a, const ProcessNoiseModel& b) {
+  return std::tie(a.intensity, a.estimated) ==
+         std::tie(b.intensity, b.estimated);
+}
+
 bool operator==(const SimulateOptions& a, const SimulateOptions& b) {
   return std::tie(a.dt, a.duration, a.samples, a.process_noise) ==
          std::tie(b.dt, b.duration, b.samples, b.process_noise);
@@ -137,6 +145,7 @@ bool operator==(const Case& a, const Case& b) {
                   a.sigma_auto,
                   a.noise,
                   a.solver,
+                  a.process_noise,
                   a.simulate) == std::tie(b.name,
                                           b.model,
                                           b.incidence,
@@ -146,6 +155,7 @@ bool operator==(const Case& a, const Case& b) {
                                           b.sigma_auto,
                                           b.noise,
                                           b.solver,
+                                          b.process_noise,
                                           b.simulate) &&
          Tie(a.body) == Tie(b.body) && Tie(a.flow) == Tie(b.flow);
 }

@@ -62,6 +62,8 @@ class ConfigReader : public NodeReader {
   void ReadSolver(const YAML::Node& node, Case* c) const;
   void ReadSimulate(const YAML::Node& node, Case* c) const;
   void ReadProcessNoise(const YAML::Node& node, Case* c) const;
+  void ReadFitProcessNoise(const YAML::Node& node, Case* c) const;
+  void CheckProcessNoise(const YAML::Node& root, const Case& c) const;
   void CheckPhysics(const YAML::Node& root, const Case& c) const;
 
   std::string base_dir_;
@@ -83,6 +85,7 @@ Case ConfigReader::Read(const YAML::Node& root) {
              "sigma",
              "noise",
              "solver",
+             "process_noise",
              "simulate"});
   Case c;
   c.source = source();
@@ -124,6 +127,8 @@ Case ConfigReader::Read(const YAML::Node& root) {
   if (root["noise"]) ReadNoise(root["noise"], &c);
   if (root["solver"]) ReadSolver(root["solver"], &c);
   if (root["simulate"]) ReadSimulate(root["simulate"], &c);
+  if (root["process_noise"]) ReadFitProcessNoise(root["process_noise"], &c);
+  CheckProcessNoise(root, c);
   CheckPhysics(root, c);
   return c;
 }
@@ -481,10 +486,10 @@ void ConfigReader::ReadSolver(const YAML::Node& node, Case* c) const {
   if (node["method"]) {
     const std::string method = String(node["method"], "solver.method");
     if (!StringToFitMethod(method, &c->solver.method)) {
-      Fail(
-          node["method"],
-          "solver.method",
-          "expected levenberg_marquardt or gauss_newton, got '" + method + "'");
+      Fail(node["method"],
+           "solver.method",
+           "expected levenberg_marquardt, gauss_newton or filter_error, got '" +
+               method + "'");
     }
   }
   if (node["max_probable_error"]) {
@@ -509,6 +514,38 @@ void ConfigReader::ReadSolver(const YAML::Node& node, Case* c) const {
     c->solver.tolerance = Positive(node["tolerance"], "solver.tolerance");
   }
   if (node["step"]) c->solver.step = Positive(node["step"], "solver.step");
+}
+
+void ConfigReader::ReadFitProcessNoise(const YAML::Node& node, Case* c) const {
+  CheckKeys(node, "process_noise", {"roll", "pitch", "yaw"});
+  ProcessNoiseModel& m = c->process_noise;
+  const char* const axes[3] = {"roll", "pitch", "yaw"};
+  for (int axis = 0; axis < 3; ++axis) {
+    const YAML::Node v = node[axes[axis]];
+    if (!v) continue;
+    const std::string key = std::string("process_noise.") + axes[axis];
+    if (v.IsScalar() && v.Scalar() == "auto") {
+      m.estimated[axis] = true;
+    } else {
+      m.intensity[axis] = NonNegative(v, key);
+    }
+  }
+}
+
+void ConfigReader::CheckProcessNoise(const YAML::Node& root,
+                                     const Case& c) const {
+  const bool filter = c.solver.method == FitMethod::kFilterError;
+  if (filter && !c.process_noise.enabled()) {
+    Fail(root["solver"]["method"],
+         "solver.method",
+         "filter_error needs process_noise: {roll: auto, pitch: auto, yaw: "
+         "auto} (auto or an intensity in deg/s^1.5 per axis)");
+  }
+  if (!filter && root["process_noise"]) {
+    Fail(root["process_noise"],
+         "process_noise",
+         "used only by solver: {method: filter_error}");
+  }
 }
 
 void ConfigReader::ReadProcessNoise(const YAML::Node& node, Case* c) const {

@@ -173,6 +173,20 @@ void WriteOptions(YAML::Emitter& y, const Case& c) {
   Flag(y, "multi_start", s.multi_start);
   y << YAML::Key << "starts" << YAML::Value << s.starts;
   y << YAML::EndMap;
+  const ProcessNoiseModel& noise = c.process_noise;
+  if (noise.enabled()) {
+    y << YAML::Key << "process_noise" << YAML::Value << YAML::Flow
+      << YAML::BeginMap;
+    const char* const axes[3] = {"roll", "pitch", "yaw"};
+    for (int axis = 0; axis < 3; ++axis) {
+      if (noise.estimated[axis]) {
+        Word(y, axes[axis], "auto");
+      } else if (noise.intensity[axis] > 0.0) {
+        Number(y, axes[axis], noise.intensity[axis]);
+      }
+    }
+    y << YAML::EndMap;
+  }
   const SimulateOptions& m = c.simulate;
   if (m.dt > 0.0) {
     y << YAML::Key << "simulate" << YAML::Value << YAML::Flow << YAML::BeginMap;

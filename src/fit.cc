@@ -18,6 +18,7 @@
 
 #include "assembly.h"
 #include "continuation.h"
+#include "filter_error.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/interrupt.h"
 #include "fit3dof/parameters.h"
@@ -379,11 +380,17 @@ FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
     VLOG(1) << c.name << ": starting values" << start.str();
   }
   std::vector<double> values;
-  Judge(c, Solve(c, problem, &values, &result), &result);
-  const RelaxationOutcome relaxed = RelaxNoiseWeights(c, &problem, &values);
-  if (relaxed.rounds > 0) {
-    result.iterations += relaxed.iterations;
-    result.pipeline.push_back(relaxed.summary);
+  if (c.solver.method == FitMethod::kFilterError) {
+    // The segments keep the final filter's weights: the error bars below
+    // are the held-gain filter's.
+    Judge(c, SolveFilterError(c, &problem, &values, &result), &result);
+  } else {
+    Judge(c, Solve(c, problem, &values, &result), &result);
+    const RelaxationOutcome relaxed = RelaxNoiseWeights(c, &problem, &values);
+    if (relaxed.rounds > 0) {
+      result.iterations += relaxed.iterations;
+      result.pipeline.push_back(relaxed.summary);
+    }
   }
   const Uncertainty u = EstimateUncertainty(problem, values, c.source);
   result.sum_of_residuals = u.sum_of_residuals;

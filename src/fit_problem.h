@@ -14,6 +14,7 @@
 
 #include "fit3dof/case.h"
 #include "fit3dof/motion_model.h"
+#include "fit3dof/segment_cost_function.h"
 #include "fit3dof/time_history.h"
 
 namespace fit3dof {
@@ -28,6 +29,9 @@ struct PreparedSegment {
   // Residual weights (deg): the config's sigma, or the segment's own noise
   // levels once estimated (sigma: auto).
   ChannelValues sigma;
+  // The filter-error fit's (filter_error.h): residuals are then the
+  // innovations of a filter with these gains; null for output error.
+  std::shared_ptr<const InnovationWeights> innovation_weights;
 };
 
 // The free coordinates of the whole fit: shared ones, then each segment's

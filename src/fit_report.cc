@@ -131,6 +131,16 @@ ordered_json ReportObject(const FitResult& r) {
                              {"reached_best", r.starts_reached_best}};
   }
   report["seconds"] = r.seconds;
+  if (!r.process_noise.empty()) {
+    json noise = json::object();
+    for (const ProcessNoiseEstimate& e : r.process_noise) {
+      noise[e.axis] = {{"intensity", JsonNumber(e.intensity)},
+                       {"standard_error", JsonNumber(e.standard_error)},
+                       {"estimated", e.estimated},
+                       {"units", "deg/s^1.5"}};
+    }
+    report["process_noise"] = noise;
+  }
   json data = json::array();
   for (const DataFileRecord& f : r.provenance.data) {
     data.push_back({{"path", f.path},

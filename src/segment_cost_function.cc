@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "fit3dof/angles.h"
+#include "segment_cost_function_lanes.h"
 
 namespace fit3dof {
 
@@ -77,15 +78,29 @@ double SegmentCostFunction::WeightedResidual(int i,
   return (computed - offset - measured[c][i]) * inv_sigma;
 }
 
+void SegmentCostFunction::set_innovation_weights(
+    std::shared_ptr<const InnovationWeights> w) {
+  if (w != nullptr) {
+    const int n = data_.size();
+    CHECK_EQ(w->gains.size(), 18u * n);
+    CHECK_EQ(w->whitening.size(), 9u * n);
+    measured_.resize(3 * n);
+    for (int i = 0; i < n; ++i) {
+      measured_[3 * i] = data_.phi[i];
+      measured_[3 * i + 1] = data_.theta[i];
+      measured_[3 * i + 2] = data_.psi[i];
+    }
+  }
+  innovation_weights_ = std::move(w);
+}
+
 bool SegmentCostFunction::ComputeAngles(const std::vector<double>& full,
                                         std::vector<double>* angles,
                                         IntegrationFailure* failure) const {
   const int n = data_.size();
   angles->resize(3 * n);
-  if (!model_->Evaluate(
-          full.data(), data_.t.data(), n, angles->data(), failure)) {
-    return false;
-  }
+  if (!Predict(full.data(), angles->data(), failure)) return false;
+  if (innovation_weights_ != nullptr) return true;  // on the branch already
   for (int i = 0; i < n; ++i) {
     double& phi = (*angles)[3 * i];
     phi -= WholeTurns(phi - data_.phi[i]);
@@ -184,6 +199,15 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
     const std::vector<double> full = FullFromFree(u.data());
     std::vector<double> angles;
     if (!ComputeAngles(full, &angles, nullptr)) return false;
+    if (innovation_weights_ != nullptr) {
+      for (int i = 0; i < data_.size(); ++i) {
+        WhitenedResiduals(i, &angles[3 * i], residuals + 3 * i);
+      }
+      for (int r = 0; r < num_residuals(); ++r) {
+        if (!std::isfinite(residuals[r])) return false;
+      }
+      return true;
+    }
     const double* measured[3] = {
         data_.phi.data(), data_.theta.data(), data_.psi.data()};
     const double sigma[3] = {sigma_.phi, sigma_.theta, sigma_.psi};
@@ -197,9 +221,11 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
     return true;
   }
   const int columns = static_cast<int>(lanes.size());
+  // The filter's predictor has no sensitivity form: Jet lanes.
   const bool sensitivities =
-      method_ == JacobianMethod::kSensitivities ||
-      (method_ == JacobianMethod::kAuto && columns >= kMinSensitivityColumns);
+      innovation_weights_ == nullptr &&
+      (method_ == JacobianMethod::kSensitivities ||
+       (method_ == JacobianMethod::kAuto && columns >= kMinSensitivityColumns));
   if (sensitivities) {
     return EvaluateSensitivities(u.data(), lanes, residuals, jacobians);
   }

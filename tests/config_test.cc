@@ -113,8 +113,37 @@ TEST(Config, AutoStartingValuesAndSolverMethod) {
             std::string::npos);
   EXPECT_NE(
       Error(Replace(kValid, "step: 0.002}", "step: 0.002, method: newton}"))
-          .find("solver.method: expected levenberg_marquardt or gauss_newton"),
+          .find("solver.method: expected levenberg_marquardt, gauss_newton "
+                "or filter_error"),
       std::string::npos);
+}
+
+TEST(Config, ProcessNoiseForTheFilterErrorMethod) {
+  const std::string filter =
+      Replace(kValid, "step: 0.002}", "step: 0.002, method: filter_error}");
+  const Case c =
+      Parse(filter + "process_noise: {roll: auto, pitch: 2.5, yaw: auto}\n");
+  EXPECT_EQ(c.solver.method, FitMethod::kFilterError);
+  EXPECT_TRUE(c.process_noise.estimated[0]);
+  EXPECT_FALSE(c.process_noise.estimated[1]);
+  EXPECT_DOUBLE_EQ(c.process_noise.intensity[1], 2.5);
+  EXPECT_TRUE(c.process_noise.estimated[2]);
+  EXPECT_EQ(Parse(CaseToYaml(c)), c);
+  // The method needs the block, the block the method; bad values named.
+  EXPECT_NE(Error(filter).find("filter_error needs process_noise"),
+            std::string::npos);
+  EXPECT_NE(Error(std::string(kValid) + "process_noise: {pitch: auto}\n")
+                .find("process_noise: used only by solver: {method: "
+                      "filter_error}"),
+            std::string::npos);
+  EXPECT_NE(Error(filter + "process_noise: {pich: auto}\n").find("pich"),
+            std::string::npos);
+  EXPECT_NE(Error(filter + "process_noise: {pitch: -1}\n")
+                .find("process_noise.pitch"),
+            std::string::npos);
+  EXPECT_NE(Error(filter + "process_noise: {pitch: lots}\n")
+                .find("process_noise.pitch"),
+            std::string::npos);
 }
 
 TEST(Config, DensityGivesTheDynamicPressure) {

@@ -2,9 +2,11 @@
 
 #include "fit3dof/motion_model.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -252,11 +254,12 @@ struct FilterCase {
   std::vector<double> measured;     // 3 per sample, deg
   std::vector<double> reset_gains;  // angles set to the readings
 
-  explicit FilterCase(double rms_moment) {
+  explicit FilterCase(double rms_moment, double correlation_time = 0.05) {
     for (int i = 0; i <= 200; ++i) times.push_back(0.02 * i);
     MotionModel truth(spec, ActiveParameters(values, {}));
     ProcessNoiseOptions noise;
     noise.rms = {0.0, rms_moment, rms_moment};
+    noise.correlation_time = correlation_time;
     noise.seed = 7;
     truth.set_random_moment(std::make_shared<const RandomMoment>(
         noise, times.front(), times.back(), spec.max_step));
@@ -275,6 +278,15 @@ struct FilterCase {
     }
   }
   int n() const { return static_cast<int>(times.size()); }
+
+  // The readings with white noise of `sigma` deg added.
+  std::vector<double> Noisy(double sigma, unsigned seed) const {
+    std::mt19937 generator(seed);
+    std::normal_distribution<double> normal(0.0, sigma);
+    std::vector<double> noisy = measured;
+    for (double& m : noisy) m += normal(generator);
+    return noisy;
+  }
 };
 
 double Rms(const std::vector<double>& v, int channel) {
@@ -390,6 +402,119 @@ TEST(MotionModelFiltered, JetsGiveTheHeldGainDerivatives) {
           << "parameter " << wrt[d] << " row " << i;
     }
   }
+}
+
+// The extended Kalman filter (Filter): a fit that holds its gains sees its
+// innovations exactly; without process noise it is output error (no gain,
+// S = R); and at the random moment's own intensity its innovations are
+// white with the covariance it claims, where the deviance is least.
+constexpr double kSigma = 0.01;  // deg
+
+MotionModel::FilterRun RunFilter(const MotionModel& model,
+                                 const FilterCase& f,
+                                 const std::vector<double>& measured,
+                                 double intensity) {
+  MotionModel::FilterRun run;
+  EXPECT_TRUE(model.Filter(f.values.data(),
+                           f.times.data(),
+                           f.n(),
+                           measured.data(),
+                           {0.0, intensity, intensity},
+                           {kSigma, kSigma, kSigma},
+                           &run,
+                           nullptr));
+  return run;
+}
+
+TEST(MotionModelFilter, HeldGainsReproduceItsInnovations) {
+  FilterCase f(3e-4);
+  const MotionModel model(f.spec, ActiveParameters(f.values, {}));
+  const std::vector<double> measured = f.Noisy(kSigma, 3);
+  const MotionModel::FilterRun run = RunFilter(model, f, measured, 2.0);
+  std::vector<double> innovations(3 * f.n());
+  ASSERT_TRUE(model.EvaluateFiltered(f.values.data(),
+                                     f.times.data(),
+                                     f.n(),
+                                     measured.data(),
+                                     run.gains.data(),
+                                     innovations.data(),
+                                     nullptr));
+  for (int i = 0; i < 3 * f.n(); ++i) {
+    EXPECT_EQ(innovations[i], run.innovations[i]) << i;
+  }
+  double largest_gain = 0.0;
+  for (double g : run.gains) largest_gain = std::max(largest_gain, std::abs(g));
+  EXPECT_GT(largest_gain, 0.01 * kDegree);
+}
+
+TEST(MotionModelFilter, WithoutProcessNoiseItIsOutputError) {
+  FilterCase f(3e-4);
+  const MotionModel model(f.spec, ActiveParameters(f.values, {}));
+  const std::vector<double> measured = f.Noisy(kSigma, 4);
+  const MotionModel::FilterRun run = RunFilter(model, f, measured, 0.0);
+  std::vector<double> angles(3 * f.n());
+  ASSERT_TRUE(model.Evaluate(
+      f.values.data(), f.times.data(), f.n(), angles.data(), nullptr));
+  double deviance = 0.0;
+  for (int i = 0; i < 3 * f.n(); ++i) {
+    double expected = measured[i] - angles[i];
+    if (i % 3 == 0) expected -= 360.0 * std::round(expected / 360.0);
+    EXPECT_EQ(run.innovations[i], expected) << i;
+    deviance +=
+        expected * expected / (kSigma * kSigma) + std::log(kSigma * kSigma);
+  }
+  EXPECT_NEAR(run.deviance, deviance, 1e-9 * std::abs(deviance));
+  for (double g : run.gains) EXPECT_EQ(g, 0.0);
+}
+
+// The random moment's intensity as the filter's white acceleration: the
+// spectral density at zero frequency of a Gauss-Markov process of RMS s
+// and correlation time tau is 2 s^2 tau, turned into deg/s^2 by qSd/I.
+double TrueIntensity(const ModelSpec& spec, double rms, double tau) {
+  const double per_coefficient = spec.flow.dynamic_pressure * spec.body.area *
+                                 spec.body.diameter / spec.body.Iy;
+  return std::sqrt(2.0 * tau) * rms * per_coefficient * kDegreesPerRadian;
+}
+
+TEST(MotionModelFilter, InnovationsAreWhiteAtTheTrueIntensity) {
+  // A correlation time well below the sample interval: the moment is
+  // white as the filter models it.
+  const double rms = 1e-3, tau = 0.002;
+  FilterCase f(rms, tau);
+  const MotionModel model(f.spec, ActiveParameters(f.values, {}));
+  const double truth = TrueIntensity(f.spec, rms, tau);
+  double best = 0.0, least = INFINITY;
+  for (double factor = 0.25; factor < 4.01; factor *= std::sqrt(2.0)) {
+    double deviance = 0.0;
+    for (unsigned seed = 0; seed < 4; ++seed) {
+      deviance +=
+          RunFilter(model, f, f.Noisy(kSigma, seed), truth * factor).deviance;
+    }
+    if (deviance < least) {
+      least = deviance;
+      best = factor;
+    }
+  }
+  EXPECT_GE(best, 0.7);
+  EXPECT_LE(best, 1.42);
+  // Normalized innovations e^T S^-1 e average 3 (their dimension), and
+  // neighbours are uncorrelated.
+  const MotionModel::FilterRun run =
+      RunFilter(model, f, f.Noisy(kSigma, 9), truth);
+  double sum = 0.0, lag1 = 0.0, power = 0.0;
+  std::vector<double> theta(f.n());
+  for (int i = 0; i < f.n(); ++i) {
+    const Eigen::Map<const Eigen::Matrix3d> s(&run.covariance[9 * i]);
+    const Eigen::Map<const Eigen::Vector3d> e(&run.innovations[3 * i]);
+    sum += e.dot(s.inverse() * e);
+    theta[i] = e[1] / std::sqrt(s(1, 1));
+  }
+  for (int i = 1; i < f.n(); ++i) {
+    lag1 += theta[i] * theta[i - 1];
+    power += theta[i] * theta[i];
+  }
+  EXPECT_NEAR(sum / f.n(), 3.0, 0.45);
+  EXPECT_LT(std::abs(lag1 / power), 0.2);
 }
 
 }  // namespace

@@ -75,7 +75,25 @@ struct NoiseOptions {
 enum class FitMethod {
   kLevenbergMarquardt,  // damped, with continuation and multi-start
   kGaussNewton,         // the 1978 program's undamped full step
+  kFilterError,         // process noise modelled (filter_error.h)
 };
+
+// process_noise: the random angular acceleration per axis that the
+// filter-error fit allows for (filter_error.h), entering the motion as
+// simulate's random moments do (MotionModel::Filter).
+struct ProcessNoiseModel {
+  // Per axis (roll, pitch, yaw): the intensity, the square root of the
+  // acceleration's spectral density in deg/s^1.5 (over a time dt the rate
+  // wanders by intensity sqrt(dt) deg/s); 0 for an axis left out.
+  std::array<double, 3> intensity{{0.0, 0.0, 0.0}};
+  std::array<bool, 3> estimated{{false, false, false}};  // auto
+
+  bool enabled() const {
+    return estimated[0] || estimated[1] || estimated[2] || intensity[0] > 0.0 ||
+           intensity[1] > 0.0 || intensity[2] > 0.0;
+  }
+};
+bool operator==(const ProcessNoiseModel& a, const ProcessNoiseModel& b);
 
 // "levenberg_marquardt" | "gauss_newton"; the config's spelling.
 const char* FitMethodToString(FitMethod method);
@@ -130,6 +148,7 @@ struct Case {
   std::array<bool, 3> sigma_auto{{false, false, false}};
   NoiseOptions noise;
   SolverOptions solver;
+  ProcessNoiseModel process_noise;  // with solver.method: filter_error
   SimulateOptions simulate;
 
   ModelSpec Spec() const;

@@ -99,6 +99,16 @@ struct Outlier {
   bool after_fit = false;  // found among the residuals, not in the raw data
 };
 
+// A process-noise intensity of the filter-error fit (filter_error.h):
+// deg/s^1.5, the root of the random angular acceleration's spectral
+// density.
+struct ProcessNoiseEstimate {
+  std::string axis;  // roll, pitch, yaw
+  double intensity = 0.0;
+  double standard_error = 0.0;  // NaN when given, not estimated
+  bool estimated = false;
+};
+
 struct FitResult {
   std::string name;
   ModelKind model = ModelKind::kSymmetric;
@@ -136,6 +146,8 @@ struct FitResult {
   double seconds = 0.0;
   // Set by Fit (FitSamples reads no files and leaves it empty).
   Provenance provenance;
+  // solver.method: filter_error only: the intensities per axis.
+  std::vector<ProcessNoiseEstimate> process_noise;
 };
 
 // Fits the case's data. Wild points are screened for before the fit (in the

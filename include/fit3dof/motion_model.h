@@ -122,6 +122,37 @@ class MotionModel {
                         T* innovations,
                         IntegrationFailure* failure) const;
 
+  // The extended Kalman filter of the filter-error fit (motion_filter.cc):
+  // the motion predicted from sample to sample by the same RK4 steps, its
+  // covariance P by the state-transition matrix (from 6-lane Jets through
+  // those steps) plus the process noise, and corrected at each sample by
+  // the innovation. The process noise is a white random angular
+  // acceleration per axis, entering the equations as simulate's random
+  // moments do (pitch and yaw about tunnel-fixed axes, roll about the
+  // body's; random_moment.h), `process` its intensity in deg/s^1.5 per
+  // axis (roll, pitch, yaw): the root of its spectral density, so that
+  // over a time dt the rate wanders by intensity sqrt(dt) deg/s. The
+  // measurement noise is white with standard deviations `sigma` (deg). The
+  // initial state is known (a parameter): P(0) = 0. Returns false like
+  // Evaluate.
+  struct FilterRun {
+    std::vector<double> gains;        // 18 n: K_i, 6 x 3 row-major
+    std::vector<double> covariance;   // 9 n: S_i = H P H^T + R (deg^2)
+    std::vector<double> innovations;  // 3 n: e_i (deg)
+    // sum over samples of e^T S^-1 e + log det S: twice the negative log
+    // likelihood, less a constant; and of e^T S^-1 e alone.
+    double deviance = 0.0;
+    double normalized_sum = 0.0;
+  };
+  bool Filter(const double* values,
+              const double* times,
+              int n,
+              const double* measured,
+              const std::array<double, 3>& process,
+              const std::array<double, 3>& sigma,
+              FilterRun* run,
+              IntegrationFailure* failure) const;
+
   // Process noise for simulation (random_moment.h): Evaluate and
   // EvaluateStates add the random moments, held over each RK4 step at
   // their value at its midpoint. Not for fitting: sensitivities CHECK that

@@ -86,6 +86,16 @@
 
 namespace fit3dof {
 
+// The filter-error fit's weights (filter_error.h): the residuals become
+// the innovations of a filter whose gains are held, whitened by their
+// covariances: r_i = L_i^-1 (h(x-_i) - y_i), S_i = L_i L_i^T, with x-_i
+// the state predicted from the previous sample's corrected one (as
+// MotionModel::EvaluateFiltered computes it).
+struct InnovationWeights {
+  std::vector<double> gains;      // 18 n: K_i, 6 x 3 row-major
+  std::vector<double> whitening;  // 9 n: L_i^-1, 3 x 3 row-major (1/deg)
+};
+
 class SegmentCostFunction : public ceres::CostFunction {
  public:
   // base: the full parameter vector (report units) with the frozen values
@@ -105,11 +115,17 @@ class SegmentCostFunction : public ceres::CostFunction {
                 double* residuals,
                 double** jacobians) const override;
 
+  // Makes the residuals innovations (InnovationWeights; the sigmas then
+  // serve only as the reported noise levels); null returns to output
+  // error. Jacobians then come from Jet lanes.
+  void set_innovation_weights(std::shared_ptr<const InnovationWeights> w);
+
   // The full parameter vector for the blocks' current values.
   std::vector<double> FullValues(double const* const* parameters) const;
 
   // Computed measured angles (deg, 3 per sample) for a full parameter
-  // vector; the roll angle on the branch nearest the measurement.
+  // vector; the roll angle on the branch nearest the measurement. With
+  // innovation weights, the filter's one-step predictions.
   bool ComputeAngles(const std::vector<double>& full,
                      std::vector<double>* angles,
                      IntegrationFailure* failure) const;
@@ -163,6 +179,15 @@ class SegmentCostFunction : public ceres::CostFunction {
                           int c,
                           double computed,
                           double inv_sigma) const;
+  // The computed angles (3 n) for a full parameter vector: the motion's,
+  // or with innovation weights the filter's one-step predictions (on the
+  // measurement's roll branch). T: double or a Jet.
+  template <typename T>
+  bool Predict(const T* full, T* angles, IntegrationFailure* failure) const;
+  // Sample i's three residuals with innovation weights: L_i^-1 (computed
+  // - measured).
+  template <typename T>
+  void WhitenedResiduals(int i, const T* computed, T* residuals) const;
   // Block and column of free coordinate j.
   void Locate(int j, int* block, int* column) const;
 
@@ -174,6 +199,8 @@ class SegmentCostFunction : public ceres::CostFunction {
   TimeHistory data_;
   ChannelValues sigma_;
   JacobianMethod method_ = JacobianMethod::kAuto;
+  std::shared_ptr<const InnovationWeights> innovation_weights_;
+  std::vector<double> measured_;  // 3 n, for the filter
   mutable std::atomic<int> failures_{0};
 };
 

@@ -1,0 +1,371 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The filter-error fit's relaxation (filter_error.h): noise levels by
+// maximum likelihood, the filter's gains, Levenberg-Marquardt with the
+// gains held; round after round.
+
+#include "filter_error.h"
+
+#include <glog/logging.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "assembly.h"
+#include "fit3dof/interrupt.h"
+#include "format.h"
+#include "stage_solver.h"
+
+namespace fit3dof {
+namespace {
+
+constexpr int kMaxRounds = 20;
+// Rounds end when the deviance (twice the negative log likelihood) moves
+// by less than this between them: a likelihood ratio of 1.005.
+constexpr double kDevianceTolerance = 0.01;
+// The first search for an auto intensity goes up to this factor of the
+// reference intensity (IntensityScales); later rounds search this factor
+// either side of the last value, and down to the lowest intensity always.
+constexpr double kFirstHigh = 30.0;
+constexpr double kLaterSpan = 3.0;
+// Golden-section searches stop at this width in the logarithm (0.5%).
+constexpr double kSearchWidth = 0.005;
+
+const char* const kAxes[3] = {"roll", "pitch", "yaw"};
+const double kInfinity = std::numeric_limits<double>::infinity();
+
+// The levels the filter runs with: per axis the process-noise intensity
+// (deg/s^1.5), per channel the measurement noise (deg, one for all
+// segments). Coordinate i < 3 is an intensity, i >= 3 a sigma.
+struct NoiseLevels {
+  std::array<double, 6> level{};
+  std::array<bool, 6> estimated{};
+  std::array<double, 3> process() const {
+    return {level[0], level[1], level[2]};
+  }
+  std::array<double, 3> sigma() const { return {level[3], level[4], level[5]}; }
+};
+
+// A segment's readings, three per sample.
+std::vector<double> Interleaved(const TimeHistory& d) {
+  std::vector<double> m(3 * d.size());
+  for (int i = 0; i < d.size(); ++i) {
+    m[3 * i] = d.phi[i];
+    m[3 * i + 1] = d.theta[i];
+    m[3 * i + 2] = d.psi[i];
+  }
+  return m;
+}
+
+// What every filter run needs: the segments' parameter vectors at the
+// current values and their readings.
+struct FilterInputs {
+  const FitProblem* problem;
+  std::vector<std::vector<double>> full;
+  std::vector<std::vector<double>> measured;
+
+  FilterInputs(const FitProblem& p, const std::vector<double>& values)
+      : problem(&p) {
+    const Assembly a = Assemble(p.segments,
+                                p.free,
+                                p.model,
+                                values,
+                                std::vector<double>(p.free.size(), 1.0));
+    for (size_t s = 0; s < p.segments.size(); ++s) {
+      full.push_back(SegmentFullValues(a, s));
+      measured.push_back(Interleaved(p.segments[s].data));
+    }
+  }
+
+  // The summed deviance of the filter over every segment at `levels`;
+  // infinity where the motion cannot be followed.
+  double Deviance(const NoiseLevels& levels,
+                  std::vector<MotionModel::FilterRun>* runs) const {
+    runs->resize(full.size());
+    double deviance = 0.0;
+    for (size_t s = 0; s < full.size(); ++s) {
+      const TimeHistory& d = problem->segments[s].data;
+      if (!problem->model->Filter(full[s].data(),
+                                  d.t.data(),
+                                  d.size(),
+                                  measured[s].data(),
+                                  levels.process(),
+                                  levels.sigma(),
+                                  &(*runs)[s],
+                                  nullptr)) {
+        return kInfinity;
+      }
+      deviance += (*runs)[s].deviance;
+    }
+    return deviance;
+  }
+  double Deviance(const NoiseLevels& levels) const {
+    std::vector<MotionModel::FilterRun> runs;
+    return Deviance(levels, &runs);
+  }
+};
+
+// The minimum of f on [lo, hi] by golden section, to kSearchWidth.
+double GoldenSection(const std::function<double(double)>& f,
+                     double lo,
+                     double hi) {
+  const double r = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo);
+  double f1 = f(x1), f2 = f(x2);
+  while (hi - lo > kSearchWidth) {
+    if (f1 <= f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - r * (hi - lo);
+      f1 = f(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + r * (hi - lo);
+      f2 = f(x2);
+    }
+  }
+  return f1 <= f2 ? x1 : x2;
+}
+
+// The range an intensity is sought in. The reference: the intensity at
+// which the angles wander, over one sample interval dt, by the measurement
+// noise (sigma / dt^1.5). The lowest: at which they wander over the longest
+// record T by a thousandth of it (1e-3 sigma / T^1.5): no process noise,
+// for all the filter can tell; an estimate there is reported as none.
+struct IntensityScales {
+  double reference = 0.0;
+  double lowest = 0.0;
+};
+IntensityScales Scales(const FitProblem& p, const NoiseLevels& levels) {
+  const double sigma = (levels.level[4] + levels.level[5]) / 2.0;
+  double dt = std::numeric_limits<double>::infinity(), longest = 0.0;
+  for (const PreparedSegment& segment : p.segments) {
+    const TimeHistory& d = segment.data;
+    const double span = d.t.back() - d.t.front();
+    longest = std::max(longest, span);
+    dt = std::min(dt, span / std::max(1, d.size() - 1));
+  }
+  return {sigma / std::pow(dt, 1.5), 1e-3 * sigma / std::pow(longest, 1.5)};
+}
+
+// The maximum-likelihood levels at the inputs' values: each estimated
+// coordinate by golden section in its logarithm, `sweeps` times over all
+// of them; the first round (`first`) searches intensities from near zero.
+void EstimateLevels(const FilterInputs& inputs,
+                    bool first,
+                    const IntensityScales& scales,
+                    NoiseLevels* levels) {
+  const int sweeps = first ? 2 : 1;
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    for (int i = 0; i < 6; ++i) {
+      if (!levels->estimated[i]) continue;
+      const double x0 = std::log(levels->level[i]);
+      double lo = x0 - std::log(kLaterSpan), hi = x0 + std::log(kLaterSpan);
+      if (i < 3) {
+        // An intensity may always fall to none at all (the data may hold
+        // no process noise; a poor start makes the first rounds' large).
+        lo = std::log(scales.lowest);
+        if (first && sweep == 0) hi = std::log(scales.reference * kFirstHigh);
+      }
+      NoiseLevels trial = *levels;
+      auto deviance = [&](double x) {
+        trial.level[i] = std::exp(x);
+        return inputs.Deviance(trial);
+      };
+      levels->level[i] = std::exp(GoldenSection(deviance, lo, hi));
+    }
+  }
+}
+
+// The weights a segment's residuals take from a filter run: its gains, and
+// L^-1 of each innovation covariance S = L L^T.
+std::shared_ptr<const InnovationWeights> Weights(
+    const MotionModel::FilterRun& run) {
+  auto w = std::make_shared<InnovationWeights>();
+  w->gains = run.gains;
+  const int n = static_cast<int>(run.covariance.size() / 9);
+  w->whitening.resize(9 * n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Map<const Eigen::Matrix3d> s(&run.covariance[9 * i]);
+    const Eigen::Matrix3d inverse =
+        s.llt().matrixL().solve(Eigen::Matrix3d::Identity());
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
+        &w->whitening[9 * i]) = inverse;
+  }
+  return w;
+}
+
+// The estimate of intensity `axis` with its error from the deviance's
+// curvature in the logarithm: var(ln q) = 2 / D''.
+ProcessNoiseEstimate IntensityEstimate(const FilterInputs& inputs,
+                                       const NoiseLevels& levels,
+                                       const IntensityScales& scales,
+                                       int axis) {
+  ProcessNoiseEstimate e;
+  e.axis = kAxes[axis];
+  e.intensity = levels.level[axis];
+  e.estimated = levels.estimated[axis];
+  e.standard_error = std::numeric_limits<double>::quiet_NaN();
+  if (!e.estimated) return e;
+  if (e.intensity < scales.lowest * std::exp(2.0 * kSearchWidth)) {
+    e.intensity = 0.0;  // none found
+    return e;
+  }
+  const double h = 0.1;
+  NoiseLevels plus = levels, minus = levels;
+  plus.level[axis] *= std::exp(h);
+  minus.level[axis] *= std::exp(-h);
+  const double curvature =
+      (inputs.Deviance(plus) - 2.0 * inputs.Deviance(levels) +
+       inputs.Deviance(minus)) /
+      (h * h);
+  if (curvature > 0.0) {
+    e.standard_error = e.intensity * std::sqrt(2.0 / curvature);
+  }
+  return e;
+}
+
+// The starting levels: the config's intensities (auto ones at the
+// reference), the segments' sigmas (the first segment's for all).
+NoiseLevels StartLevels(const Case& c,
+                        const FitProblem& p,
+                        IntensityScales* scales) {
+  NoiseLevels levels;
+  const ChannelValues& sigma = p.segments[0].sigma;
+  levels.level[3] = sigma.phi;
+  levels.level[4] = sigma.theta;
+  levels.level[5] = sigma.psi;
+  for (int ch = 0; ch < 3; ++ch) levels.estimated[3 + ch] = c.sigma_auto[ch];
+  *scales = Scales(p, levels);
+  for (int axis = 0; axis < 3; ++axis) {
+    levels.estimated[axis] = c.process_noise.estimated[axis];
+    levels.level[axis] = levels.estimated[axis]
+                             ? scales->reference
+                             : c.process_noise.intensity[axis];
+  }
+  return levels;
+}
+
+// Sets each segment's weights from `runs` and its sigmas from `levels`.
+void HoldFilter(const std::vector<MotionModel::FilterRun>& runs,
+                const NoiseLevels& levels,
+                FitProblem* p) {
+  for (size_t s = 0; s < p->segments.size(); ++s) {
+    PreparedSegment& segment = p->segments[s];
+    segment.innovation_weights = Weights(runs[s]);
+    segment.sigma = {levels.level[3], levels.level[4], levels.level[5]};
+  }
+}
+
+std::string Describe(const std::vector<ProcessNoiseEstimate>& estimates) {
+  std::string text;
+  for (const ProcessNoiseEstimate& e : estimates) {
+    if (!text.empty()) text += ", ";
+    text += e.axis + " " + FormatNumber("%.3g", e.intensity);
+    if (std::isfinite(e.standard_error)) {
+      text += " +- " + FormatNumber("%.2g", e.standard_error);
+    }
+    if (!e.estimated) text += " (given)";
+  }
+  return text + " deg/s^1.5";
+}
+
+}  // namespace
+
+PipelineOutcome SolveFilterError(const Case& c,
+                                 FitProblem* problem,
+                                 std::vector<double>* values,
+                                 FitResult* result) {
+  PipelineOutcome outcome;
+  *values = problem->values;
+  IntensityScales scales;
+  NoiseLevels levels = StartLevels(c, *problem, &scales);
+  StageSettings settings;
+  settings.tolerance = c.solver.tolerance;
+  settings.max_iterations = c.solver.max_iterations;
+  double previous = kInfinity;
+  std::vector<MotionModel::FilterRun> runs;
+  int round = 0;
+  StageOutcome stage;
+  for (round = 1; round <= kMaxRounds; ++round) {
+    if (StopRequested()) throw Interrupted();
+    const FilterInputs inputs(*problem, *values);
+    EstimateLevels(inputs, round == 1, scales, &levels);
+    const double deviance = inputs.Deviance(levels, &runs);
+    if (!std::isfinite(deviance)) {
+      outcome.integrable = false;
+      outcome.failure = "the filter cannot follow the motion";
+      return outcome;
+    }
+    HoldFilter(runs, levels, problem);
+    VLOG(1) << c.name << ": filter-error round " << round << ": deviance "
+            << deviance;
+    if (round > 1 && std::abs(deviance - previous) < kDevianceTolerance &&
+        stage.converged) {
+      break;
+    }
+    previous = deviance;
+    stage = SolveStage(problem->segments,
+                       problem->free,
+                       problem->model,
+                       problem->names,
+                       settings,
+                       values);
+    if (!stage.integrable) {
+      outcome.integrable = false;
+      outcome.failure = stage.failure;
+      return outcome;
+    }
+    outcome.iterations += stage.iterations;
+    outcome.failed_evaluations += stage.failed_evaluations;
+  }
+  const bool settled = round <= kMaxRounds;
+  if (!settled) {
+    // The last round's solve moved the values: the filter at them.
+    const double deviance =
+        FilterInputs(*problem, *values).Deviance(levels, &runs);
+    if (!std::isfinite(deviance)) {
+      outcome.integrable = false;
+      outcome.failure = "the filter cannot follow the motion";
+      return outcome;
+    }
+    HoldFilter(runs, levels, problem);
+  }
+  outcome.converged = settled && stage.converged;
+  outcome.termination =
+      settled ? stage.termination + "; filter error: " + std::to_string(round) +
+                    " rounds"
+              : "the filter-error rounds did not settle in " +
+                    std::to_string(kMaxRounds);
+  double normalized = 0.0;
+  for (const MotionModel::FilterRun& run : runs) {
+    normalized += run.normalized_sum;
+  }
+  outcome.probable_error =
+      std::sqrt(normalized / (3 * problem->points - problem->free.size()));
+  const FilterInputs inputs(*problem, *values);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (levels.estimated[axis] || levels.level[axis] > 0.0) {
+      result->process_noise.push_back(
+          IntensityEstimate(inputs, levels, scales, axis));
+    }
+  }
+  result->pipeline.push_back("filter error: " + std::to_string(round) +
+                             " rounds; process noise " +
+                             Describe(result->process_noise));
+  return outcome;
+}
+
+}  // namespace fit3dof
