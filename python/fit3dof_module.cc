@@ -232,6 +232,21 @@ PYBIND11_MODULE(_fit3dof, m) {
                              &Parameters,
                              "name -> Parameter (value, standard_error, "
                              "rms_error, units, free)")
+      .def_property_readonly(
+          "process_noise",
+          [](const FitResult& r) {
+            py::dict out;
+            for (const ProcessNoiseEstimate& e : r.process_noise) {
+              py::dict axis;
+              axis["intensity"] = e.intensity;
+              axis["standard_error"] = e.standard_error;
+              axis["estimated"] = e.estimated;
+              out[py::str(e.axis)] = axis;
+            }
+            return out;
+          },
+          "solver.method filter_error: axis -> {intensity (deg/s^1.5), "
+          "standard_error, estimated}")
       .def(
           "to_dict",
           [](const FitResult& r) { return JsonLoads(ReportJson(r)); },

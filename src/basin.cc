@@ -67,11 +67,32 @@ void ApplyMethod(const std::string& method, Case* c) {
     c->solver.method = FitMethod::kLevenbergMarquardt;
     c->solver.continuation = true;
     c->solver.multi_start = true;
+  } else if (method == "filter_error") {
+    // The config's process_noise block, or every axis estimated.
+    c->solver.method = FitMethod::kFilterError;
+    if (!c->process_noise.enabled()) {
+      c->process_noise.estimated = {true, true, true};
+    }
   } else {
     throw InputError("basin: unknown method '" + method +
                      "' (gauss_newton, levenberg_marquardt, continuation, "
-                     "robust)");
+                     "robust, filter_error)");
   }
+}
+
+// The probable error a start must reach with `method`: 1% above that of
+// the reference fit by the same kind of fit (the filter-error fit's
+// residuals are its whitened innovations, output error's its weighted
+// residuals).
+double Target(const Case& c, const std::string& method) {
+  Case reference_case = c;
+  ApplyMethod(method == "filter_error" ? method : "robust", &reference_case);
+  const FitResult reference = Fit(reference_case);
+  if (!reference.converged) {
+    throw InputError(c.source + ": the reference fit does not converge (" +
+                     reference.termination + "); a basin study needs one");
+  }
+  return reference.probable_error * 1.01 + 1e-12;
 }
 
 }  // namespace
@@ -88,13 +109,15 @@ BasinResult RunBasinStudy(const Case& c, const BasinOptions& options) {
   result.name = c.name;
   result.reference_probable_error = reference.probable_error;
   const Case ref = CaseAtSolution(c, reference);
-  const double target = reference.probable_error * 1.01 + 1e-12;
+  const double output_error_target = reference.probable_error * 1.01 + 1e-12;
   for (const std::string& method : options.methods) {
     BasinMethod m;
     m.method = method;
     m.tried = options.starts;
     Case probe = c;
     ApplyMethod(method, &probe);  // validates the name up front
+    const double target =
+        method == "filter_error" ? Target(c, method) : output_error_target;
     // Every method sees the same starts: the same seeded sequence, drawn
     // as the fits need them (start i is the i-th draw), never all held.
     std::mt19937_64 rng(options.seed);

@@ -280,7 +280,7 @@ void AddNamelistBasinAndDiagnose(CLI::App* app, Handlers* handlers) {
   basin->add_option("--methods",
                     FLAGS.methods,
                     "comma-separated: gauss_newton, levenberg_marquardt, "
-                    "robust");
+                    "continuation, robust, filter_error");
   basin->add_option("--out", FLAGS.out, "JSON of the study");
   AddJobs(basin, "fits in parallel (default: one per core)");
   AddData(basin);

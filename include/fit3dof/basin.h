@@ -16,9 +16,12 @@
 //   gauss_newton          the 1978 program: undamped full steps, whole record;
 //   levenberg_marquardt   plain LM on the whole record;
 //   continuation          LM on growing windows, no multi-start;
-//   robust                the default pipeline (continuation, multi-start).
+//   robust                the default pipeline (continuation, multi-start);
+//   filter_error          the filter-error fit (filter_error.h), with the
+//                         config's process_noise or every axis auto.
 // A start reaches the global minimum when the fit converges to a probable
-// error within 1% of the reference.
+// error within 1% of the reference (for filter_error, of a filter-error
+// fit from the config's values).
 
 #ifndef FIT3DOF_BASIN_H_
 #define FIT3DOF_BASIN_H_

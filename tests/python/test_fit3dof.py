@@ -242,3 +242,27 @@ def test_report_records_its_provenance(tmp_path):
     assert data["sha256"] == hashlib.sha256(content).hexdigest()
     assert data["bytes"] == len(content)
     assert provenance["date"].endswith("Z") and provenance["date"][:2] == "20"
+
+
+def test_filter_error_fit_equals_the_command_lines(tmp_path):
+    with open(os.path.join(REPORT, "table6_sigma0.01.yaml")) as f:
+        config = yaml.safe_load(f)
+    config["data"]["file"] = os.path.join(REPORT, config["data"]["file"])
+    config["solver"]["method"] = "filter_error"
+    config["process_noise"] = {"roll": "auto", "pitch": "auto", "yaw": 0.05}
+    path = tmp_path / "filter.yaml"
+    with open(path, "w") as f:
+        yaml.safe_dump(config, f)
+    out = cli("fit", str(path), "--out_dir=" + str(tmp_path / "out"))
+    assert out.returncode in (0, 1), out.stderr
+    with open(tmp_path / "out" / "report.json") as f:
+        expected = json.load(f)
+    result = fit3dof.fit(fit3dof.load_config(str(path)))
+    assert comparable(result.to_dict()) == comparable(expected)
+    noise = result.process_noise
+    assert set(noise) == {"roll", "pitch", "yaw"}
+    assert noise["yaw"] == {"intensity": 0.05,
+                            "standard_error": noise["yaw"]["standard_error"],
+                            "estimated": False}
+    assert noise["pitch"]["estimated"]
+    assert expected["process_noise"]["yaw"]["intensity"] == 0.05
