@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "assembly.h"
+#include "boost/math/tools/minima.hpp"
 #include "fit3dof/interrupt.h"
 #include "format.h"
 #include "stage_solver.h"
@@ -37,8 +38,10 @@ constexpr double kDevianceTolerance = 0.01;
 // either side of the last value, and down to the lowest intensity always.
 constexpr double kFirstHigh = 30.0;
 constexpr double kLaterSpan = 3.0;
-// Golden-section searches stop at this width in the logarithm (0.5%).
-constexpr double kSearchWidth = 0.005;
+// Brent's searches: bits of precision (relative to the log level: 2^-9,
+// 0.2%, of ln q ~ -3 is 0.6%) and most evaluations.
+constexpr int kSearchBits = 10;
+constexpr int kMaxSearchIterations = 40;
 
 const char* const kAxes[3] = {"roll", "pitch", "yaw"};
 const double kInfinity = std::numeric_limits<double>::infinity();
@@ -114,36 +117,22 @@ struct FilterInputs {
   }
 };
 
-// The minimum of f on [lo, hi] by golden section, to kSearchWidth.
-double GoldenSection(const std::function<double(double)>& f,
-                     double lo,
-                     double hi) {
-  const double r = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo);
-  double f1 = f(x1), f2 = f(x2);
-  while (hi - lo > kSearchWidth) {
-    if (f1 <= f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - r * (hi - lo);
-      f1 = f(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + r * (hi - lo);
-      f2 = f(x2);
-    }
-  }
-  return f1 <= f2 ? x1 : x2;
+// The minimum of f on [lo, hi] by Brent's method (golden section with
+// parabolic steps: the deviance is smooth in a log level), to about
+// kSearchBits binary digits of the interval.
+double Minimize(const std::function<double(double)>& f, double lo, double hi) {
+  boost::uintmax_t iterations = kMaxSearchIterations;
+  return boost::math::tools::brent_find_minima(
+             f, lo, hi, kSearchBits, iterations)
+      .first;
 }
 
 // The range an intensity is sought in. The reference: the intensity at
 // which the angles wander, over one sample interval dt, by the measurement
 // noise (sigma / dt^1.5). The lowest: at which they wander over the longest
 // record T by a thousandth of it (1e-3 sigma / T^1.5): no process noise,
-// for all the filter can tell; an estimate there is reported as none.
+// for all the filter can tell; an estimate within 1.5 times it is reported
+// as none.
 struct IntensityScales {
   double reference = 0.0;
   double lowest = 0.0;
@@ -161,7 +150,7 @@ IntensityScales Scales(const FitProblem& p, const NoiseLevels& levels) {
 }
 
 // The maximum-likelihood levels at the inputs' values: each estimated
-// coordinate by golden section in its logarithm, `sweeps` times over all
+// coordinate by Brent's method in its logarithm, `sweeps` times over all
 // of them; the first round (`first`) searches intensities from near zero.
 void EstimateLevels(const FilterInputs& inputs,
                     bool first,
@@ -184,7 +173,7 @@ void EstimateLevels(const FilterInputs& inputs,
         trial.level[i] = std::exp(x);
         return inputs.Deviance(trial);
       };
-      levels->level[i] = std::exp(GoldenSection(deviance, lo, hi));
+      levels->level[i] = std::exp(Minimize(deviance, lo, hi));
     }
   }
 }
@@ -219,7 +208,7 @@ ProcessNoiseEstimate IntensityEstimate(const FilterInputs& inputs,
   e.estimated = levels.estimated[axis];
   e.standard_error = std::numeric_limits<double>::quiet_NaN();
   if (!e.estimated) return e;
-  if (e.intensity < scales.lowest * std::exp(2.0 * kSearchWidth)) {
+  if (e.intensity < 1.5 * scales.lowest) {
     e.intensity = 0.0;  // none found
     return e;
   }

@@ -16,7 +16,7 @@
 //   1. the intensities of the `auto` axes and the sigmas of the auto
 //      channels minimize the deviance D = sum_i e_i^T S_i^-1 e_i +
 //      log det S_i (twice the negative log likelihood) with the
-//      coefficients held: golden section in their logarithms, one
+//      coefficients held: Brent's method in their logarithms, one
 //      coordinate after the other;
 //   2. the filter at those gives the gains K_i and covariances S_i;
 //   3. Levenberg-Marquardt (SolveStage) on the coefficients and initial

@@ -7,7 +7,7 @@ FIT3DOF_PACKAGES=(
   build-essential cmake
   libceres-dev libeigen3-dev libgflags-dev libgoogle-glog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libyaml-cpp-dev nlohmann-json3-dev libfccp-dev libcli11-dev
+  libyaml-cpp-dev nlohmann-json3-dev libfccp-dev libcli11-dev libboost-dev
   libssl-dev pybind11-dev python3-pybind11 python3-dev
   python3 python3-matplotlib python3-numpy python3-pytest python3-yaml
 )
