@@ -278,8 +278,9 @@ Eigen::MatrixXd ColoredInformation(const std::vector<ResidualSeries>& series,
     bracket += LineBracket(s, b, &rest, &corr.lines);
     // Without lines the rest is the whole residual, whose statistics are
     // at hand.
-    bracket += LagBracket(
-        s.jacobian, rest, corr.lines.empty() ? corr : CorrelationOf(rest));
+    SeriesCorrelation of_rest = corr.lines.empty() ? corr : CorrelationOf(rest);
+    of_rest.lag_window = std::max(of_rest.lag_window, s.min_lag_window);
+    bracket += LagBracket(s.jacobian, rest, of_rest);
     if (stats != nullptr) stats->push_back(std::move(corr));
   }
   // Symmetric and positive semidefinite: a truncated, tapered sum of

@@ -66,6 +66,9 @@ struct ResidualSeries {
   Eigen::VectorXd roll;
   Eigen::VectorXd angle;
   int segment = 0;
+  // The least lag window the bracket uses, whatever the residuals' own
+  // (the filter-error fit's, filter_error.h).
+  int min_lag_window = 0;
 };
 
 // A spectral line of a series' residual and what the fit absorbed of it.

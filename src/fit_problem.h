@@ -32,6 +32,9 @@ struct PreparedSegment {
   // The filter-error fit's (filter_error.h): residuals are then the
   // innovations of a filter with these gains; null for output error.
   std::shared_ptr<const InnovationWeights> innovation_weights;
+  // The least lag window of the error bars' residual correlation
+  // (colored_covariance.h); the filter-error fit sets it.
+  int min_lag_window = 0;
 };
 
 // The free coordinates of the whole fit: shared ones, then each segment's

@@ -299,7 +299,8 @@ std::vector<ResidualSeries> SeriesOf(const FitProblem& problem,
           Eigen::Map<const Eigen::VectorXd>(segment.data.t.data(), n),
           fitted[0],
           channel == 0 ? Eigen::VectorXd() : fitted[channel],
-          static_cast<int>(&segment - problem.segments.data())};
+          static_cast<int>(&segment - problem.segments.data()),
+          segment.min_lag_window};
       for (int i = 0; i < n; ++i) {
         const int r = row + 3 * i + channel;
         s.residual(i) = info.residuals[r];
