@@ -288,6 +288,34 @@ std::string Describe(const std::vector<ProcessNoiseEstimate>& estimates) {
   return text + " deg/s^1.5";
 }
 
+// Output error first (continuation, no multi-start): where it explains the
+// motion to the noise level (probable error within
+// solver.max_probable_error), the rounds start from its solution, at which
+// the first round finds little or no process noise and the rounds settle
+// in two or three instead of walking down from a poor start's large
+// intensities; elsewhere they start from the config's values, which the
+// filter tolerates far better than output error does (the basin study).
+void StartFromOutputError(const Case& c,
+                          const FitProblem& problem,
+                          std::vector<double>* values,
+                          FitResult* result) {
+  const double limit = c.solver.max_probable_error;
+  if (!(limit > 0.0)) return;
+  Case plain = c;
+  plain.solver.method = FitMethod::kLevenbergMarquardt;
+  plain.solver.multi_start = false;
+  std::vector<double> trial = *values;
+  const PipelineOutcome o = RunPipeline(plain, problem, &trial);
+  result->iterations += o.iterations;
+  if (o.integrable && o.converged && o.probable_error <= limit) {
+    *values = trial;
+    result->pipeline.push_back(
+        "filter error: started from the output-error solution (probable "
+        "error " +
+        FormatNumber("%.3g", o.probable_error) + ")");
+  }
+}
+
 }  // namespace
 
 PipelineOutcome SolveFilterError(const Case& c,
@@ -296,6 +324,7 @@ PipelineOutcome SolveFilterError(const Case& c,
                                  FitResult* result) {
   PipelineOutcome outcome;
   *values = problem->values;
+  StartFromOutputError(c, *problem, values, result);
   IntensityScales scales;
   NoiseLevels levels = StartLevels(c, *problem, &scales);
   StageSettings settings;

@@ -89,6 +89,41 @@ def python_threads(root, repeats=3):
             "two_threads_seconds": statistics.median(two), "ratio": ratio}
 
 
+def filter_error(root, tmp):
+    """The filter-error fit (solver.method filter_error, every axis auto)
+    against output error on the Table 6 record: clean, and simulated again
+    with random pitch and yaw moments of 3e-5 (correlation time 0.05 s)."""
+    motion = os.path.join(root, "configs", "report", "table6_motion.yaml")
+    with open(motion) as f:
+        text = f.read()
+    noisy_motion = os.path.join(tmp, "noisy_motion.yaml")
+    with open(noisy_motion, "w") as f:
+        f.write(text.replace(
+            "simulate: {dt: 0.06, samples: 800}",
+            "simulate: {dt: 0.06, samples: 800, process_noise: "
+            "{pitch: 3.0e-5, yaw: 3.0e-5, correlation_time: 0.05, seed: 5}}"))
+    noisy_csv = os.path.join(tmp, "noisy.csv")
+    subprocess.run([os.path.join(root, "build", "fit3dof"), "simulate",
+                    noisy_motion, "--out=" + noisy_csv],
+                   check=True, capture_output=True)
+    filter_edits = [("step: 0.01}", "step: 0.01, method: filter_error}\n"
+                     "process_noise: {roll: auto, pitch: auto, yaw: auto}")]
+    rows = []
+    for record, data_edits in (
+            ("clean", []),
+            ("process noise", [(os.path.join(root, "configs", "report", "data",
+                                             "table6_clean.csv"),
+                                noisy_csv)])):
+        oe, _ = time_fit(root, variant(root, tmp, "oe", data_edits))
+        fe, report = time_fit(root, variant(root, tmp, "fe",
+                                            data_edits + filter_edits))
+        rows.append({"record": record, "output_error_seconds": oe,
+                     "filter_error_seconds": fe, "ratio": fe / oe})
+        print(f"  filter error / output error, Table 6 record, {record}: "
+              f"{fe:.2f} s / {oe:.2f} s = {fe / oe:.1f}x")
+    return rows
+
+
 def main():
     root = sys.argv[1]
     quick = "--quick" in sys.argv
@@ -174,6 +209,7 @@ def main():
                   f"({r['iterations']} iterations)")
         result["by_samples"] = by_samples
         result["by_free"] = by_free
+        result["filter_error"] = filter_error(root, tmp)
 
         if not quick:
             print("== SciPy baseline (least_squares + solve_ivp), same fit")
