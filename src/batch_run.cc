@@ -54,6 +54,14 @@ RunResult FromFit(const FitResult& fit) {
     r.values.push_back(parameter);
     if (e.free) r.free.push_back(parameter);
   }
+  // The filter-error fit's intensities join the summary's columns
+  // (process_noise_pitch, _se, _rms: both errors the curvature's).
+  for (const ProcessNoiseEstimate& e : fit.process_noise) {
+    r.free.push_back({"process_noise_" + e.axis,
+                      e.intensity,
+                      e.standard_error,
+                      e.standard_error});
+  }
   return r;
 }
 
@@ -77,6 +85,18 @@ RunResult FromReport(const json& report) {
                                  FromJson(p["standard_error"])};
     r.values.push_back(parameter);
     if (p.value("free", false)) r.free.push_back(parameter);
+  }
+  // As FromFit: roll, pitch, yaw (not the JSON object's key order).
+  for (const char* axis : {"roll", "pitch", "yaw"}) {
+    if (!report.contains("process_noise") ||
+        !report["process_noise"].contains(axis)) {
+      continue;
+    }
+    const json& e = report["process_noise"][axis];
+    r.free.push_back({std::string("process_noise_") + axis,
+                      FromJson(e["intensity"]),
+                      FromJson(e["standard_error"]),
+                      FromJson(e["standard_error"])});
   }
   return r;
 }

@@ -134,6 +134,7 @@ double Minimize(const std::function<double(double)>& f, double lo, double hi) {
 // for all the filter can tell; an estimate within kNone times it is
 // reported as none.
 constexpr double kNone = 1.5;
+constexpr double kSignificantDrop = 2.71;
 struct IntensityScales {
   double reference = 0.0;
   double lowest = 0.0;
@@ -209,8 +210,15 @@ ProcessNoiseEstimate IntensityEstimate(const FilterInputs& inputs,
   e.estimated = levels.estimated[axis];
   e.standard_error = std::numeric_limits<double>::quiet_NaN();
   if (!e.estimated) return e;
-  if (e.intensity < kNone * scales.lowest) {
-    e.intensity = 0.0;  // none found
+  // None detected: at the floor, or not significantly above it (the
+  // likelihood-ratio test of intensity 0, a boundary value: 5% at a
+  // deviance drop of 2.71).
+  const double at_estimate = inputs.Deviance(levels);
+  NoiseLevels floor = levels;
+  floor.level[axis] = scales.lowest;
+  if (e.intensity < kNone * scales.lowest ||
+      inputs.Deviance(floor) - at_estimate < kSignificantDrop) {
+    e.intensity = 0.0;
     return e;
   }
   const double h = 0.1;
@@ -218,8 +226,7 @@ ProcessNoiseEstimate IntensityEstimate(const FilterInputs& inputs,
   plus.level[axis] *= std::exp(h);
   minus.level[axis] *= std::exp(-h);
   const double curvature =
-      (inputs.Deviance(plus) - 2.0 * inputs.Deviance(levels) +
-       inputs.Deviance(minus)) /
+      (inputs.Deviance(plus) - 2.0 * at_estimate + inputs.Deviance(minus)) /
       (h * h);
   if (curvature > 0.0) {
     e.standard_error = e.intensity * std::sqrt(2.0 / curvature);

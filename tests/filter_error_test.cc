@@ -6,9 +6,11 @@
 // the intensities, fits several segments jointly and reports it all.
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "fit3dof/batch.h"
 #include "fit3dof/config.h"
 #include "fit3dof/fit.h"
 #include "fit3dof/fit_report.h"
@@ -171,6 +173,44 @@ TEST(FilterError, FitsSegmentsJointly) {
   EXPECT_LT(Off(r, "Cl_p", kClp), 3.0);
   for (const SegmentFit& s : r.segments) {
     EXPECT_LT(s.rms_residual_deg.theta, 1.5 * 0.01) << s.name;
+  }
+}
+
+TEST(FilterError, BatchSummariesCarryTheIntensities) {
+  const std::string dir = testing::ScratchDirectory("filter_error_batch");
+  SimulateCone(3e-4, testing::kSanitized ? 1.0 : 2.0, 31, dir + "/run.csv");
+  testing::WriteText(dir + "/manifest.yaml",
+                     "defaults:\n"
+                     "  solver: {method: filter_error}\n"
+                     "  process_noise: {roll: auto, pitch: auto, yaw: auto}\n"
+                     "runs:\n  - {name: only, config: fit.yaml}\n");
+  std::string fit = std::string(kCone) +
+                    "parameters: {Cm_alpha: {value: -0.2, free: true}, "
+                    "Cm_q: {value: 0, free: true}, Cm_alpha_delta2: -1.13, "
+                    "phi0: {free: true}, phidot0: {free: true}, "
+                    "theta0: {free: true}, thetadot0: {free: true}, "
+                    "psi0: {free: true}, psidot0: {free: true}}\n"
+                    "initial_conditions: from_data\n"
+                    "data: {file: run.csv}\n"
+                    "sigma: {phi: 0.01, theta: 0.01, psi: 0.01}\n"
+                    "noise: {sigma: {phi: 0.01, theta: 0.01, psi: 0.01}, "
+                    "seed: 3}\nsolver: {step: 0.002}\n";
+  testing::WriteText(dir + "/fit.yaml", fit);
+  BatchOptions options;
+  options.out_dir = dir + "/out";
+  options.jobs = 1;
+  const BatchSummary summary = RunBatch(dir + "/manifest.yaml", options);
+  ASSERT_EQ(summary.runs.size(), 1u);
+  std::map<std::string, double> columns;
+  for (const RunParameter& p : summary.runs[0].free) columns[p.name] = p.value;
+  ASSERT_TRUE(columns.count("process_noise_pitch")) << "no intensity column";
+  EXPECT_GT(columns["process_noise_pitch"], 0.0);
+  // A resumed batch reads them back from report.json in the same order.
+  options.resume = true;
+  const BatchSummary again = RunBatch(dir + "/manifest.yaml", options);
+  ASSERT_EQ(again.runs[0].free.size(), summary.runs[0].free.size());
+  for (size_t i = 0; i < again.runs[0].free.size(); ++i) {
+    EXPECT_EQ(again.runs[0].free[i].name, summary.runs[0].free[i].name);
   }
 }
 
