@@ -43,6 +43,37 @@ Matrix6 Transition(const StateJet* x) {
   return phi;
 }
 
+// The update at sample i with measurement Jacobian hx, innovation e and
+// measurement noise r: S = H P H^T + R and the gain K = P H^T S^-1 go to
+// the run (with e and the deviance's terms), P becomes (I - K H) P
+// (I - K H)^T + K R K^T. False if S is not positive definite.
+bool Update(int i,
+            const Matrix36& hx,
+            const double* e,
+            const Eigen::Matrix3d& r,
+            Matrix6* p,
+            MotionModel::FilterRun* run) {
+  const Eigen::Matrix3d s = hx * *p * hx.transpose() + r;
+  const Eigen::LLT<Eigen::Matrix3d> llt(s);
+  if (llt.info() != Eigen::Success) return false;
+  const Matrix63 gain = llt.solve(hx * *p).transpose();
+  const Eigen::Map<const Eigen::Vector3d> ev(e);
+  const double normalized = ev.dot(llt.solve(ev));
+  run->normalized_sum += normalized;
+  run->deviance +=
+      normalized +
+      2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
+  double* kout = &run->gains[18 * i];
+  for (int j = 0; j < 6; ++j) {
+    for (int c = 0; c < 3; ++c) kout[3 * j + c] = gain(j, c);
+  }
+  Eigen::Map<Eigen::Matrix3d>(&run->covariance[9 * i]) = s;
+  for (int c = 0; c < 3; ++c) run->innovations[3 * i + c] = e[c];
+  const Matrix6 a = Matrix6::Identity() - gain * hx;
+  *p = a * *p * a.transpose() + gain * r * gain.transpose();
+  return true;
+}
+
 }  // namespace
 
 bool MotionModel::Filter(const double* values,
@@ -110,29 +141,13 @@ bool MotionModel::Filter(const double* values,
       e[c] = measured[3 * i + c] - h[c].a;
     }
     e[0] -= WholeTurns(e[0]);
-    const Eigen::Matrix3d s = hx * p * hx.transpose() + r;
-    const Eigen::LLT<Eigen::Matrix3d> llt(s);
-    if (llt.info() != Eigen::Success) {
+    if (!Update(i, hx, e, r, &p, run)) {
       singular = true;
       return;
     }
-    const Matrix63 gain = llt.solve(hx * p).transpose();  // P H^T S^-1
-    const Eigen::Map<const Eigen::Vector3d> ev(e);
-    const double normalized = ev.dot(llt.solve(ev));
-    run->normalized_sum += normalized;
-    run->deviance +=
-        normalized +
-        2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
-    double* kout = &run->gains[18 * i];
-    for (int j = 0; j < 6; ++j) {
-      for (int c = 0; c < 3; ++c) kout[3 * j + c] = gain(j, c);
-    }
-    Eigen::Map<Eigen::Matrix3d>(&run->covariance[9 * i]) = s;
-    for (int c = 0; c < 3; ++c) run->innovations[3 * i + c] = e[c];
-    const Matrix6 a = Matrix6::Identity() - gain * hx;
-    p = a * p * a.transpose() + gain * r * gain.transpose();
     // As EvaluateFiltered corrects the state, term for term; the lanes
     // start again from the identity.
+    const double* kout = &run->gains[18 * i];
     for (int j = 0; j < 6; ++j) {
       const double* kj = kout + 3 * j;
       const double corrected =

@@ -13,6 +13,21 @@
 #include "segment_cost_function_lanes.h"
 
 namespace fit3dof {
+// Compiled in segment_cost_function_jets_N.cc, each width in its own unit
+// (in parallel); this unit needs only Predict and WhitenedResiduals for
+// doubles from the header.
+#define FIT3DOF_JET_WIDTH(N)                                  \
+  extern template bool SegmentCostFunction::EvaluateLanes<N>( \
+      const double*, const int*, int, double*, double**) const;
+FIT3DOF_JET_WIDTH(2)
+FIT3DOF_JET_WIDTH(4)
+FIT3DOF_JET_WIDTH(6)
+FIT3DOF_JET_WIDTH(8)
+FIT3DOF_JET_WIDTH(12)
+#undef FIT3DOF_JET_WIDTH
+}  // namespace fit3dof
+
+namespace fit3dof {
 
 SegmentCostFunction::SegmentCostFunction(
     std::shared_ptr<const MotionModel> model,
@@ -114,15 +129,19 @@ bool SegmentCostFunction::EvaluatePass(const double* u,
                                        double* residuals,
                                        double** jacobians) const {
   CHECK_LE(count, kMaxLanes);
+#ifndef FIT3DOF_FEWER_JET_WIDTHS
   if (count <= 2) {
     return EvaluateLanes<2>(u, lanes, count, residuals, jacobians);
   }
+#endif
   if (count <= 4) {
     return EvaluateLanes<4>(u, lanes, count, residuals, jacobians);
   }
+#ifndef FIT3DOF_FEWER_JET_WIDTHS
   if (count <= 6) {
     return EvaluateLanes<6>(u, lanes, count, residuals, jacobians);
   }
+#endif
   if (count <= 8) {
     return EvaluateLanes<8>(u, lanes, count, residuals, jacobians);
   }

@@ -95,7 +95,7 @@ double Off(const FitResult& r, const std::string& name, double truth) {
 
 TEST(FilterError, WithoutProcessNoiseItIsOutputError) {
   const std::string dir = testing::ScratchDirectory("filter_error_plain");
-  SimulateCone(0.0, testing::kSanitized ? 1.5 : 3.0, 1, dir + "/plain.csv");
+  SimulateCone(0.0, testing::kSanitized ? 1.0 : 3.0, 1, dir + "/plain.csv");
   const std::string data = "data: {file: " + dir + "/plain.csv}\n";
   const FitResult oe = Fit(ConeFit(data, false));
   const FitResult fe = Fit(ConeFit(data, true));
@@ -119,7 +119,7 @@ TEST(FilterError, FindsTheTruthWhereOutputErrorCannot) {
   const std::string dir = testing::ScratchDirectory("filter_error_noise");
   // The sanitized build runs the code paths on a shorter record; the
   // statistics are checked by the plain build.
-  SimulateCone(3e-4, testing::kSanitized ? 2.0 : 8.0, 11, dir + "/noisy.csv");
+  SimulateCone(3e-4, testing::kSanitized ? 1.5 : 8.0, 11, dir + "/noisy.csv");
   const std::string data = "data: {file: " + dir + "/noisy.csv}\n";
   const FitResult oe = Fit(ConeFit(data, false));
   const FitResult fe = Fit(ConeFit(data, true));
@@ -158,7 +158,7 @@ TEST(FilterError, FindsTheTruthWhereOutputErrorCannot) {
 
 TEST(FilterError, FitsSegmentsJointly) {
   const std::string dir = testing::ScratchDirectory("filter_error_segments");
-  const double seconds = testing::kSanitized ? 1.5 : 4.0;
+  const double seconds = testing::kSanitized ? 1.0 : 4.0;
   SimulateCone(3e-4, seconds, 21, dir + "/a.csv");
   SimulateCone(3e-4, seconds, 22, dir + "/b.csv");
   const FitResult r = Fit(
