@@ -277,7 +277,9 @@ PYBIND11_MODULE(_fit3dof, m) {
       .def_readonly("final_case", &Diagnosis::final_case)
       .def_readonly("fits",
                     &Diagnosis::fits,
-                    "the nominal fit, then one per step (and partial step)")
+                    "the nominal fit, then one per step taken (kept, partial "
+                    "or pruned), then one per pruning; final_fit is the "
+                    "final model's")
       .def_property_readonly("final_fit",
                              [](const Diagnosis& d) { return d.FinalFit(); })
       .def(

@@ -62,18 +62,22 @@ json Step(const DiagnosisStep& s) {
     ranking.push_back(
         {{"effect", k.effect}, {"score", k.score}, {"dof", k.dof}});
   }
-  return {{"effect", s.effect},
-          {"description", s.description},
-          {"parameters", Estimates(s.parameters)},
-          {"step_parameters", Estimates(s.step_parameters)},
-          {"statistic",
-           {{"score", s.score},
-            {"bic_drop", s.bic_drop},
-            {"prediction_gain", JsonNumber(s.prediction_gain)},
-            {"ranking", ranking}}},
-          {"contenders", Contenders(s.contenders)},
-          {"rms_residual_deg", JsonChannels(s.after.rms_deg)},
-          {"probable_error", s.after.probable_error}};
+  json step = {{"effect", s.effect},
+               {"description", s.description},
+               {"parameters", Estimates(s.parameters)},
+               {"step_parameters", Estimates(s.step_parameters)},
+               {"statistic",
+                {{"score", s.score},
+                 {"bic_drop", s.bic_drop},
+                 {"prediction_gain", JsonNumber(s.prediction_gain)},
+                 {"ranking", ranking}}},
+               {"contenders", Contenders(s.contenders)},
+               {"rms_residual_deg", JsonChannels(s.after.rms_deg)},
+               {"probable_error", s.after.probable_error}};
+  if (!s.note.empty()) step["note"] = s.note;
+  // The stepN/ directories of the fits before and after it.
+  step["fits"] = {s.fit_before, s.fit_after};
+  return step;
 }
 
 // "name = value +- se units, ...".
@@ -119,6 +123,8 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   for (const DiagnosisStep& s : d.steps) out["steps"].push_back(Step(s));
   out["partial"] = json::array();
   for (const DiagnosisStep& s : d.partial) out["partial"].push_back(Step(s));
+  out["pruned"] = json::array();
+  for (const DiagnosisStep& s : d.pruned) out["pruned"].push_back(Step(s));
   return out.dump(2) + "\n";
 }
 
@@ -140,6 +146,9 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
     out += "  explains part, not adopted: " + s.description + " (" +
            Values(s.parameters) + "); probable error " +
            FormatNumber("%.3g", s.after.probable_error) + "\n";
+  }
+  for (const DiagnosisStep& s : d.pruned) {
+    out += "  dropped again: " + s.description + ": " + s.note + "\n";
   }
   for (const CandidateFit& a : d.ambiguous) {
     out += "  candidate: " + a.effect + " (" + Values(a.parameters) +

@@ -243,6 +243,49 @@ TEST(Diagnose, FindsTwoHiddenEffects) {
   EXPECT_TRUE(d.final.at_noise_level) << d.verdict_text;
 }
 
+// Forward selection is greedy: with a Magnus moment and a nonlinear
+// damping hidden together, a tunnel damping can explain most of both at the
+// first step and the two true effects the rest. The backward check drops
+// what the others make redundant: the final model holds the two, with the
+// truth within 3 standard errors.
+TEST(Diagnose, DropsAnEffectTheOthersMakeRedundant) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "three steps and a pruning round; plain build";
+  }
+  const std::string dir = testing::ScratchDirectory("diagnose_prune");
+  Case truth = Truth();
+  const std::map<std::string, double> hidden = {{"Cm_p_alpha", 0.148},
+                                                {"Cm_q_delta2", 29.15}};
+  for (const auto& [name, value] : hidden) {
+    truth.parameters[FindParameter(truth.model, name)].value = value;
+  }
+  Simulate(truth, dir + "/data.csv", 11);
+  const Diagnosis d =
+      Diagnose(FitConfig(Truth(), dir + "/data.csv"), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("explained")) << text;
+  std::set<std::string> found;
+  for (const DiagnosisStep& s : d.steps) found.insert(s.effect);
+  EXPECT_EQ(found, (std::set<std::string>{"magnus", "nonlinear_damping"}))
+      << text;
+  for (const ParameterEstimate& e : d.final_parameters) {
+    if (!hidden.count(e.name)) continue;
+    EXPECT_LT(std::abs(e.value - hidden.at(e.name)), 3.0 * e.standard_error)
+        << e.name << "\n"
+        << text;
+  }
+  // A pruned step is reported with why, its terms out of the final model.
+  for (const DiagnosisStep& s : d.pruned) {
+    EXPECT_NE(s.note.find("redundant"), std::string::npos) << text;
+    for (const ParameterEstimate& e : s.parameters) {
+      EXPECT_FALSE(e.free) << e.name << "\n" << text;
+      EXPECT_EQ(e.value, 0.0) << e.name << "\n" << text;
+    }
+  }
+  EXPECT_EQ(&d.FinalFit(), &d.fits[d.final_fit]);
+  EXPECT_TRUE(d.final.at_noise_level) << text;
+}
+
 // On clean data it adds nothing (at least 95% of noise seeds).
 TEST(Diagnose, AddsNothingToCleanData) {
   const std::string dir = testing::ScratchDirectory("diagnose_clean");

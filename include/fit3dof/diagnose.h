@@ -59,7 +59,15 @@
 // When two contenders both earn their place and their BICs lie within
 // `ambiguity_bic` (10), the verdict is `ambiguous` and neither is added:
 // both fits are reported with what would separate them (another spin
-// rate, amplitude or dynamic pressure). Segments diagnosed together (runs
+// rate, amplitude or dynamic pressure). A tie that leaves the residuals
+// structured is only part of the story: the search goes on with the
+// better of the two in the model, and if the record then reaches the noise
+// the verdict is `ambiguous` (the final model the one before the tie, the
+// effects found after it reported as partial), else `not_explained`.
+// When the record is explained by several effects, each is checked again
+// with the others in (backward elimination): one whose removal keeps the
+// residuals at the noise level and costs less than `min_bic_drop` of BIC
+// is dropped (Diagnosis::pruned). Segments diagnosed together (runs
 // at different spin rates) separate what one run cannot. When the
 // residuals stay structured and nothing earns its place the verdict is
 // `not_explained`, with a description of what the residuals show (lines
@@ -156,6 +164,11 @@ struct DiagnosisStep {
   std::vector<CandidateScore> ranking;
   std::vector<CandidateFit> contenders;  // every refit of the step
   ResidualCheck after;
+  std::string note;  // why a pruned step was dropped
+  // Diagnosis::fits of the model before and after the step (for a pruned
+  // step: with and without it; `fit3dof diagnose` writes them to stepN/).
+  int fit_before = -1;
+  int fit_after = -1;
 };
 
 enum class Verdict {
@@ -177,6 +190,12 @@ struct Diagnosis {
   // structure may be absorbing it (a drift fitted as a roll-synchronous
   // error), and moves the coefficients by an amount no error bar covers.
   std::vector<DiagnosisStep> partial;
+  // Effects that earned a step but are redundant in the final model: with
+  // the later effects in, removing one keeps the residuals at the noise
+  // level and raises BIC by less than min_bic_drop (a tunnel damping taken
+  // first for what a Magnus moment and a nonlinear damping explain
+  // together). Forward selection is greedy; this is its backward check.
+  std::vector<DiagnosisStep> pruned;
   Verdict verdict = Verdict::kNoiseLevel;
   std::string verdict_text;  // the sentence for people
   // When ambiguous: the effects, their fits, and what would separate them.
@@ -189,12 +208,13 @@ struct Diagnosis {
   // Every parameter of the final model (its free ones with errors).
   std::vector<ParameterEstimate> final_parameters;
   Case final_case;
-  // The fit before the first step, then one per step, then one per
-  // partial step.
+  // The fit before the first step, then one per step the loop took (kept,
+  // partial or pruned, in the order taken), then one per pruning.
   std::vector<FitResult> fits;
+  size_t final_fit = 0;  // which of them is the final model's
 
   // The final model's fit.
-  const FitResult& FinalFit() const { return fits[steps.size()]; }
+  const FitResult& FinalFit() const { return fits[final_fit]; }
 };
 
 ResidualCheck CheckResiduals(const FitResult& fit,

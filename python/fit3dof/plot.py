@@ -259,14 +259,17 @@ def step_dirs(directory):
 def plot_steps(directory, diagnosis, path):
     """Each step's residuals (theta, psi) before and after, side by side."""
     entries = [(s, "added") for s in diagnosis.get("steps", [])] + \
-        [(s, "partial: not adopted") for s in diagnosis.get("partial", [])]
+        [(s, "partial: not adopted") for s in diagnosis.get("partial", [])] + \
+        [(s, "dropped again: redundant")
+         for s in diagnosis.get("pruned", [])]
     if not entries:
         return None
     fig, axes = plt.subplots(len(entries), 2,
                              figsize=(12, 3.2 * len(entries) + 0.8),
                              squeeze=False, sharey="row")
     for i, (step, how) in enumerate(entries):
-        for col, k in enumerate((i, i + 1)):
+        # Older diagnosis.json files lack "fits": the steps in order then.
+        for col, k in enumerate(step.get("fits", (i, i + 1))):
             ax = axes[i][col]
             fit_csv = os.path.join(directory, f"step{k}", "fit.csv")
             if not os.path.exists(fit_csv):
