@@ -22,6 +22,7 @@ json Check(const ResidualCheck& r) {
           {"lag1_autocorrelation", JsonChannels(r.lag1)},
           {"spectrum",
            {{"peak_over_mean", r.peak_ratio},
+            {"peak_over_neighbours", r.line_ratio},
             {"peak_frequency_hz", r.peak_frequency_hz}}},
           {"at_noise_level", r.at_noise_level}};
 }

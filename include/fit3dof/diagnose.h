@@ -9,7 +9,9 @@
 // error (Eq. 26, residuals in units of the configured sigma) is below
 // `noise_limit` (1.1), no channel's residual has a lag-1 autocorrelation
 // above `whiteness_limit` (0.3), and the periodogram of theta + i psi has
-// no line above `spectral_limit` (4 ln N) times its mean: measurement noise
+// no line above `spectral_limit` (4 ln N) times its mean, nor above what
+// noise reaches with chance 1e-3 against the mean of the line's own
+// neighbourhood (a line out of a colored spectrum): measurement noise
 // is white with a flat spectrum, a missing effect leaves slow, structured
 // residuals with lines near the motion's frequencies. On short records the
 // first two limits rise to what noise reaches with chance 1e-3:
@@ -131,6 +133,9 @@ struct ResidualCheck {
   // frequencies.
   double peak_ratio = 0.0;
   double peak_frequency_hz = 0.0;
+  // The same peak over the mean of its neighbours: a line standing out of
+  // a colored spectrum (residual_check.cc).
+  double line_ratio = 0.0;
   bool at_noise_level = false;
 };
 
