@@ -22,6 +22,9 @@
 namespace fit3dof {
 namespace {
 
+// The id of a roll-locked effect's rival outside the catalog (diagnose.h).
+constexpr char kDriftInTime[] = "drift_in_time";
+
 double Bic(const FitResult& r) {
   const double n = 3.0 * r.points;
   const double rss = std::max(r.sum_of_residuals * r.sum_of_residuals, 1e-300);
@@ -320,6 +323,42 @@ std::string Described(const std::vector<DiagnosisStep>& steps) {
   return text;
 }
 
+// The largest roll angle any segment sweeps (deg).
+double RollSpan(const std::vector<TimeHistory>& data) {
+  double span = 0.0;
+  for (const TimeHistory& h : data) {
+    if (h.size() == 0) continue;
+    const auto [lo, hi] = std::minmax_element(h.phi.begin(), h.phi.end());
+    span = std::max(span, *hi - *lo);
+  }
+  return span;
+}
+
+// Whether a roll-locked signature can be told from a drift in time: a
+// segment sweeps a revolution of roll, or two segments roll at rates that
+// differ by more than a fifth (the same roll angle at different times).
+bool RollSeparates(const std::vector<TimeHistory>& data) {
+  if (RollSpan(data) >= 360.0) return true;
+  std::vector<double> rates;
+  for (const TimeHistory& h : data) {
+    if (h.size() < 2 || h.t.back() <= h.t.front()) continue;
+    rates.push_back(std::abs(h.phi.back() - h.phi.front()) /
+                    (h.t.back() - h.t.front()));
+  }
+  if (rates.size() < 2) return false;
+  const auto [lo, hi] = std::minmax_element(rates.begin(), rates.end());
+  return *hi > 1.2 * *lo;
+}
+
+// The rival of a roll-locked effect on a record shorter than a revolution
+// of roll: outside the catalog, not fitted.
+CandidateFit DriftInTime() {
+  CandidateFit drift;
+  drift.effect = kDriftInTime;
+  drift.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+  return drift;
+}
+
 // The effect ids of `steps` but the one at `skip`, comma separated.
 std::string Others(const std::vector<DiagnosisStep>& steps, int skip) {
   std::string text;
@@ -329,18 +368,30 @@ std::string Others(const std::vector<DiagnosisStep>& steps, int skip) {
   return text;
 }
 
+std::string Describe(const std::string& id) {
+  if (id == kDriftInTime) {
+    return "a slow drift of the readings or of the flow in time (outside "
+           "the catalog)";
+  }
+  return FindEffect(id)->description;
+}
+
 void Conclude(Diagnosis* d) {
   const ResidualCheck& check = d->final;
   if (!d->ambiguous.empty()) {
     d->verdict = Verdict::kAmbiguous;
-    const Effect* a = FindEffect(d->ambiguous[0].effect);
-    const Effect* b = FindEffect(d->ambiguous[1].effect);
+    const CandidateFit& a = d->ambiguous[0];
+    const CandidateFit& b = d->ambiguous[1];
     d->verdict_text =
-        "ambiguous: " + a->description + " or " + b->description +
-        " explain the residual alike (BIC lower by " +
-        FormatNumber("%.1f", d->ambiguous[0].bic_drop) + " and " +
-        FormatNumber("%.1f", d->ambiguous[1].bic_drop) + "); neither added; " +
-        d->separated_by + " would separate them" +
+        "ambiguous: " + Describe(a.effect) + " or " + Describe(b.effect) +
+        (b.effect == kDriftInTime
+             ? " (the first lowers BIC by " + FormatNumber("%.1f", a.bic_drop) +
+                   "; over this record's roll its signature is a slow change "
+                   "in time)"
+             : " explain the residual alike (BIC lower by " +
+                   FormatNumber("%.1f", a.bic_drop) + " and " +
+                   FormatNumber("%.1f", b.bic_drop) + ")") +
+        "; neither added; " + d->separated_by + " would separate them" +
         (d->partial.size() > 1
              ? "; with the first in the model, " +
                    Described({d->partial.begin() + 1, d->partial.end()}) +
@@ -530,13 +581,20 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
       break;
     }
     const Contender& best = contenders[earned[0]];
-    if (earned.size() > 1 && tie < 0) {
+    if (tie < 0 && earned.size() > 1) {
       // Go on with the better of the two: whether the rest of the record
       // is explained decides between `ambiguous` and `not_explained`.
       const Contender& rival = contenders[earned[1]];
       d.ambiguous = {best.record, rival.record};
       d.separated_by =
           Separation(*best.candidate->effect, *rival.candidate->effect);
+      tie = static_cast<int>(d.steps.size());
+    } else if (tie < 0 && best.candidate->effect->roll_locked &&
+               !RollSeparates(data)) {
+      d.ambiguous = {best.record, DriftInTime()};
+      d.separated_by = "a record spanning a revolution of roll (this one: " +
+                       FormatNumber("%.0f", RollSpan(data)) +
+                       " deg) or a run at another spin rate";
       tie = static_cast<int>(d.steps.size());
     }
     DiagnosisStep record = Step(best, contenders);

@@ -403,6 +403,36 @@ TEST(Diagnose, AmbiguityIsAVerdictAndTwoSpinRatesSeparate) {
   EXPECT_EQ(two.steps[0].effect, "trim_moment") << both;
 }
 
+// Over 90 deg of roll a pitch reading drifting 0.05 deg in 3 s and a
+// roll-synchronous reading error look alike: the reading error is not
+// adopted, and the verdict names the drift outside the catalog as its
+// rival (or finds nothing that explains the record).
+TEST(Diagnose, ARollLockedEffectTiesWithADriftOnLessThanARevolution) {
+  const std::string dir = testing::ScratchDirectory("diagnose_short_drift");
+  Case truth = ShortTruth(30.0);
+  truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
+  truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
+  SimulateShort(truth, dir + "/clean.csv", 12);
+  TimeHistory data = ReadTimeHistory(dir + "/clean.csv");
+  for (int i = 0; i < data.size(); ++i) data.theta[i] += 0.016 * data.t[i];
+  WriteTimeHistory(dir + "/data.csv", data);
+  const Diagnosis d =
+      Diagnose(ShortConfig({dir + "/data.csv"}), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.steps.empty()) << text;
+  const std::string verdict = VerdictToString(d.verdict);
+  if (verdict == "ambiguous") {
+    ASSERT_EQ(d.ambiguous.size(), 2u) << text;
+    EXPECT_EQ(d.ambiguous[1].effect, "drift_in_time") << text;
+    EXPECT_NE(d.separated_by.find("revolution of roll"), std::string::npos)
+        << text;
+  } else {
+    EXPECT_EQ(verdict, "not_explained") << text;
+  }
+  // The final model is the nominal fit.
+  EXPECT_EQ(&d.FinalFit(), &d.fits.front());
+}
+
 // An effect outside the catalog (a pitch reading that drifts 0.05 deg
 // over the Table 6 record) ends not_explained, with at most one effect
 // added, and the residuals described (the trend) for the engineer.

@@ -66,6 +66,11 @@
 // better of the two in the model, and if the record then reaches the noise
 // the verdict is `ambiguous` (the final model the one before the tie, the
 // effects found after it reported as partial), else `not_explained`.
+// A roll-locked effect (Effect::roll_locked) on records that span less
+// than a revolution of roll ties with a drift in time (`drift_in_time`,
+// outside the catalog): the record is then `ambiguous` at best, and a
+// record spanning a revolution, or a second run at another spin rate,
+// separates them.
 // When the record is explained by several effects, each is checked again
 // with the others in (backward elimination): one whose removal keeps the
 // residuals at the noise level and costs less than `min_bic_drop` of BIC
@@ -103,6 +108,12 @@ struct Effect {
   std::string separated_by;
   // Its plausibility bounds, in words (effect_validation.cc checks them).
   std::string bounds;
+  // Its signature is a first harmonic of roll (a body-fixed trim, a
+  // roll-synchronous reading error): over less than a revolution of roll
+  // it is a slow change in time, which a drift of the readings or of the
+  // flow (outside the catalog) makes as well. On such records it is never
+  // adopted alone (diagnose.h).
+  bool roll_locked = false;
 };
 
 const std::vector<Effect>& EffectCatalog();
