@@ -435,11 +435,7 @@ Case WithoutStep(const Case& at, const DiagnosisStep& step) {
     if (position < 0) continue;
     ParameterSetting& p = without.parameters[position];
     p.free = false;
-    const bool companion =
-        std::any_of(effect->companions.begin(),
-                    effect->companions.end(),
-                    [&](const auto& k) { return k.first == e.name; });
-    if (!companion) p.value = 0.0;
+    if (!IsCompanion(*effect, e.name)) p.value = 0.0;
   }
   return without;
 }
@@ -565,8 +561,11 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
       // The same model, further down: the steps' record follows it.
       d.fits.back() = fit;
       check = CheckResiduals(fit, options);
-      if (d.steps.empty()) d.initial = check;
-      if (!d.steps.empty()) d.steps.back().after = check;
+      if (d.steps.empty()) {
+        d.initial = check;
+      } else {
+        d.steps.back().after = check;
+      }
       if (check.at_noise_level) break;
     }
     const std::vector<Candidate> candidates =

@@ -34,6 +34,9 @@ bool CandidateCase(const Case& at,
                    Case* out,
                    std::vector<std::string>* added);
 
+// Whether `name` is one of the effect's companions (Effect::companions).
+bool IsCompanion(const Effect& effect, const std::string& name);
+
 // The score (Lagrange-multiplier) statistic of the candidate's `added`
 // parameters at the current solution, on the samples the fit used (one
 // record per segment); see diagnose.h.

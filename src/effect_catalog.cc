@@ -143,6 +143,12 @@ void RefitFromSolution(Case* c, double probable_error) {
   c->solver.max_probable_error = 0.0;
 }
 
+bool IsCompanion(const Effect& effect, const std::string& name) {
+  return std::any_of(effect.companions.begin(),
+                     effect.companions.end(),
+                     [&](const auto& c) { return c.first == name; });
+}
+
 bool CandidateCase(const Case& at,
                    const Effect& effect,
                    Case* out,
@@ -179,9 +185,7 @@ bool CandidateCase(const Case& at,
   // candidate.
   const bool own =
       std::any_of(added->begin(), added->end(), [&](const std::string& name) {
-        return std::none_of(effect.companions.begin(),
-                            effect.companions.end(),
-                            [&](const auto& c) { return c.first == name; });
+        return !IsCompanion(effect, name);
       });
   if (!own) return false;
   *out = candidate;
