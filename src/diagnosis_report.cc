@@ -152,8 +152,13 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
     out += "  dropped again: " + s.description + ": " + s.note + "\n";
   }
   for (const CandidateFit& a : d.ambiguous) {
-    out += "  candidate: " + a.effect + " (" + Values(a.parameters) +
-           "), BIC lower by " + FormatNumber("%.1f", a.bic_drop) + "\n";
+    // drift_in_time, a roll-locked effect's rival, has no fit to quote.
+    out += "  candidate: " + a.effect +
+           (a.parameters.empty()
+                ? std::string(" (outside the catalog, not fitted)")
+                : " (" + Values(a.parameters) + "), BIC lower by " +
+                      FormatNumber("%.1f", a.bic_drop)) +
+           "\n";
   }
   for (const CandidateFit& r : d.rejected) {
     out += "  not added: " + r.effect + " (" + Values(r.parameters) +

@@ -426,6 +426,9 @@ TEST(Diagnose, ARollLockedEffectTiesWithADriftOnLessThanARevolution) {
     EXPECT_EQ(d.ambiguous[1].effect, "drift_in_time") << text;
     EXPECT_NE(d.separated_by.find("revolution of roll"), std::string::npos)
         << text;
+    EXPECT_NE(text.find("drift_in_time (outside the catalog, not fitted)"),
+              std::string::npos)
+        << text;
   } else {
     EXPECT_EQ(verdict, "not_explained") << text;
   }
