@@ -42,8 +42,10 @@ BoundContext ContextOf(const FitResult& fit) {
   }
   for (const SegmentFit& s : fit.segments) {
     for (int i = 0; i < s.data.size(); ++i) {
-      b.largest_deg =
-          std::max(b.largest_deg, std::hypot(s.data.theta[i], s.data.psi[i]));
+      const double theta = s.data.theta[i], psi = s.data.psi[i];
+      b.largest_deg = std::max(b.largest_deg, std::hypot(theta, psi));
+      b.largest_theta_deg = std::max(b.largest_theta_deg, std::abs(theta));
+      b.largest_psi_deg = std::max(b.largest_psi_deg, std::abs(psi));
     }
   }
   return b;

@@ -1,0 +1,98 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Implausible (effect_validation.cc): each effect's plausibility bound
+// (Effect::bounds) against fitted values and the record's angles.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "diagnose_internal.h"
+#include "fit3dof/diagnose.h"
+#include "gtest/gtest.h"
+
+namespace fit3dof {
+namespace {
+
+// A fit of the symmetric model with `values` (by name) and one segment
+// whose pitch and yaw readings reach theta_deg and psi_deg.
+FitResult Fitted(const std::vector<std::pair<std::string, double>>& values,
+                 double theta_deg,
+                 double psi_deg) {
+  FitResult fit;
+  fit.model = ModelKind::kSymmetric;
+  for (const auto& [name, value] : values) {
+    ParameterEstimate e;
+    e.name = name;
+    e.value = value;
+    e.free = true;
+    fit.parameters.push_back(e);
+  }
+  SegmentFit s;
+  s.data.Append(0.0, 0.0, theta_deg, 0.0);
+  s.data.Append(0.1, 0.0, 0.0, psi_deg);
+  fit.segments.push_back(s);
+  return fit;
+}
+
+std::string Verdict(const char* effect, const FitResult& fit) {
+  return Implausible(*FindEffect(effect), Case(), fit);
+}
+
+// The calibration error is judged in each channel at that channel's own
+// largest angle: a cubic term of 0.02 deg at 5 deg is 0.035 deg at 6 deg,
+// 0.16 at 10, 1.28 at 20 (the bound is 0.2). Before, the largest angles
+// were never filled in and no calibration term was ever implausible.
+TEST(Implausible, CalibrationAtEachChannelsLargestAngle) {
+  EXPECT_EQ(Verdict("calibration_nonlinearity",
+                    Fitted({{"theta_cal3", 0.02}}, 6.0, 1.0)),
+            "");
+  EXPECT_EQ(Verdict("calibration_nonlinearity",
+                    Fitted({{"theta_cal3", 0.02}}, 10.0, 1.0)),
+            "");
+  const std::string why = Verdict("calibration_nonlinearity",
+                                  Fitted({{"theta_cal3", 0.02}}, 20.0, 1.0));
+  EXPECT_NE(why.find("calibration error at the largest angle of 1.28"),
+            std::string::npos)
+      << why;
+  // A large term in a channel that stays near zero is harmless.
+  EXPECT_EQ(Verdict("calibration_nonlinearity",
+                    Fitted({{"psi_cal3", 5.0}}, 20.0, 0.5)),
+            "");
+  EXPECT_NE(Verdict("calibration_nonlinearity",
+                    Fitted({{"psi_cal3", 5.0}}, 0.5, 20.0)),
+            "");
+}
+
+TEST(Implausible, ReadingErrorTrimAngleAndBearingAngle) {
+  EXPECT_EQ(
+      Verdict(
+          "roll_interaction",
+          Fitted({{"theta_cos_phi", 0.1}, {"theta_sin_phi", 0.1}}, 8.0, 8.0)),
+      "");
+  EXPECT_NE(
+      Verdict("roll_interaction",
+              Fitted({{"psi_cos_phi", 0.2}, {"psi_sin_phi", 0.1}}, 8.0, 8.0)),
+      "");
+  // A trim angle of |(Cm_0, Cn_0)| / |Cm_alpha|: 1.4 deg, then 2.9 deg.
+  EXPECT_EQ(Verdict("trim_moment",
+                    Fitted({{"Cm_alpha", -0.2}, {"Cm_0", 0.005}}, 8.0, 8.0)),
+            "");
+  EXPECT_NE(Verdict("trim_moment",
+                    Fitted({{"Cm_alpha", -0.2}, {"Cm_0", 0.01}}, 8.0, 8.0)),
+            "");
+  const auto bearing = [](double angle) {
+    return Verdict("bearing_moment",
+                   Fitted({{"Cm_alpha", -0.2},
+                           {"Cm_bearing", -0.05},
+                           {"bearing_angle", angle}},
+                          8.0,
+                          0.0));
+  };
+  EXPECT_EQ(bearing(1.0), "");
+  EXPECT_NE(bearing(9.0).find("outside the record's angles"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace fit3dof
