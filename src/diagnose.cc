@@ -215,13 +215,18 @@ class OutOfSample {
 };
 
 // Whether the contender earns its place (diagnose.h): fills
-// record.rejected with why not.
+// record.rejected with why not. `added`: the effects already added.
 void Judge(const FitResult& current,
+           const std::vector<const Effect*>& added,
            const DiagnoseOptions& options,
            OutOfSample* out_of_sample,
            Contender* c) {
   const Candidate& k = *c->candidate;
   std::string why = Implausible(*k.effect, k.c, c->fit);
+  // The newcomer may push an earlier effect out of its bounds (a
+  // roll-synchronous reading error of 0.15 deg to 0.23 once a trim moment
+  // came in beside it): the pair is then no more plausible than that one.
+  if (why.empty()) why = ImplausibleAmong(added, k.c, c->fit);
   // A coefficient may move far only when the new model explains the record
   // down to the noise: a missing effect's bias hides in the fit (the part
   // it absorbs leaves no residual), so no error bar of the fit without it
@@ -248,6 +253,7 @@ void Judge(const FitResult& current,
 // and the next one within ambiguity_bic of it are known; returns the
 // indices of those that earned it.
 std::vector<int> Earned(const FitResult& current,
+                        const std::vector<const Effect*>& added,
                         const DiagnoseOptions& options,
                         OutOfSample* out_of_sample,
                         std::vector<Contender>* contenders) {
@@ -258,7 +264,7 @@ std::vector<int> Earned(const FitResult& current,
         c.bic - (*contenders)[earned[0]].bic >= options.ambiguity_bic) {
       break;
     }
-    Judge(current, options, out_of_sample, &c);
+    Judge(current, added, options, out_of_sample, &c);
     if (c.record.rejected.empty()) earned.push_back(static_cast<int>(i));
   }
   return earned;
@@ -573,8 +579,11 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
     std::vector<Contender> contenders =
         Contenders(candidates, fit, data, options);
     OutOfSample out_of_sample(current, fit, options);
+    std::vector<const Effect*> added;
+    for (const DiagnosisStep& s : d.steps)
+      added.push_back(FindEffect(s.effect));
     const std::vector<int> earned =
-        Earned(fit, options, &out_of_sample, &contenders);
+        Earned(fit, added, options, &out_of_sample, &contenders);
     if (earned.empty()) {
       for (const Contender& k : contenders) d.rejected.push_back(k.record);
       break;

@@ -50,6 +50,11 @@ CandidateScore Score(const Case& candidate,
 std::string Implausible(const Effect& effect,
                         const Case& c,
                         const FitResult& fit);
+// The first of `effects` outside its bounds in `fit`: "<id> (added
+// before): <why>", or empty.
+std::string ImplausibleAmong(const std::vector<const Effect*>& effects,
+                             const Case& c,
+                             const FitResult& fit);
 
 // Why adding the effect's parameters `added` moved a coefficient free in
 // `before` by more than `max_drag` of its standard error there, or empty.

@@ -123,7 +123,8 @@ const std::vector<Effect>& EffectCatalog() {
        false,
        {},
        "amplitude",
-       "up to 0.2 deg at the record's largest angle"},
+       "up to 0.2 deg, or 3% of the angle if more, at each channel's "
+       "largest angle"},
   };
   return catalog;
 }

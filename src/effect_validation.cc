@@ -68,15 +68,25 @@ std::string ReadingError(const BoundContext& v) {
   return "";
 }
 
-// Each channel's error at its own largest angle: a channel that stays near
-// zero leaves its term undetermined, and harmless.
+// Each channel's error at its own largest angle, up to 0.2 deg or 3% of
+// that angle if more: a cubic error is only seen near the largest angles,
+// so a detectable one is larger there than an error present at every
+// angle (a 3% error at 8 deg, 0.24 deg, is 0.06 deg at 5). A channel that
+// stays near zero leaves its term undetermined, and harmless.
 std::string Calibration(const BoundContext& v) {
-  const double worst = std::max(
-      std::abs(v("theta_cal3")) * std::pow(v.largest_theta_deg / 5.0, 3),
-      std::abs(v("psi_cal3")) * std::pow(v.largest_psi_deg / 5.0, 3));
-  if (worst > 0.2) {
-    return Exceeds("a calibration error at the largest angle of", worst, 0.2) +
-           " deg";
+  for (const auto& [name, largest] :
+       {std::pair<const char*, double>{"theta_cal3", v.largest_theta_deg},
+        std::pair<const char*, double>{"psi_cal3", v.largest_psi_deg}}) {
+    const double error = std::abs(v(name)) * std::pow(largest / 5.0, 3);
+    const double bound = std::max(0.2, 0.03 * largest);
+    if (error > bound) {
+      return Exceeds(std::string("a calibration error at the largest angle "
+                                 "of ") +
+                         FormatNumber("%.3g", largest) + " deg of",
+                     error,
+                     bound) +
+             " deg";
+    }
   }
   return "";
 }
@@ -193,6 +203,16 @@ std::string Implausible(const Effect& effect,
   const auto it = Bounds().find(effect.id);
   if (it == Bounds().end()) return "";
   return it->second(context);
+}
+
+std::string ImplausibleAmong(const std::vector<const Effect*>& effects,
+                             const Case& c,
+                             const FitResult& fit) {
+  for (const Effect* e : effects) {
+    const std::string why = Implausible(*e, c, fit);
+    if (!why.empty()) return e->id + " (added before): " + why;
+  }
+  return "";
 }
 
 std::string Drags(const FitResult& before,

@@ -41,8 +41,9 @@ std::string Verdict(const char* effect, const FitResult& fit) {
 
 // The calibration error is judged in each channel at that channel's own
 // largest angle: a cubic term of 0.02 deg at 5 deg is 0.035 deg at 6 deg,
-// 0.16 at 10, 1.28 at 20 (the bound is 0.2). Before, the largest angles
-// were never filled in and no calibration term was ever implausible.
+// 0.16 at 10, 1.28 at 20 (the bound: 0.2 deg, or 3% of the angle, 0.6 deg
+// at 20). Before, the largest angles were never filled in and no
+// calibration term was ever implausible.
 TEST(Implausible, CalibrationAtEachChannelsLargestAngle) {
   EXPECT_EQ(Verdict("calibration_nonlinearity",
                     Fitted({{"theta_cal3", 0.02}}, 6.0, 1.0)),
@@ -52,7 +53,8 @@ TEST(Implausible, CalibrationAtEachChannelsLargestAngle) {
             "");
   const std::string why = Verdict("calibration_nonlinearity",
                                   Fitted({{"theta_cal3", 0.02}}, 20.0, 1.0));
-  EXPECT_NE(why.find("calibration error at the largest angle of 1.28"),
+  EXPECT_NE(why.find("calibration error at the largest angle of 20 deg of 1.28 "
+                     "exceeds 0.6"),
             std::string::npos)
       << why;
   // A large term in a channel that stays near zero is harmless.
@@ -92,6 +94,31 @@ TEST(Implausible, ReadingErrorTrimAngleAndBearingAngle) {
   EXPECT_EQ(bearing(1.0), "");
   EXPECT_NE(bearing(9.0).find("outside the record's angles"),
             std::string::npos);
+}
+
+// A newcomer's fit may push an effect added before past its bound: the
+// model with both is judged by every effect in it.
+TEST(ImplausibleAmong, NamesTheEarlierEffectPushedPastItsBound) {
+  const std::vector<const Effect*> added = {FindEffect("flow_angularity"),
+                                            FindEffect("roll_interaction")};
+  EXPECT_EQ(ImplausibleAmong(added,
+                             Case(),
+                             Fitted({{"theta_T", 0.1},
+                                     {"theta_cos_phi", 0.15},
+                                     {"theta_sin_phi", 0.1}},
+                                    8.0,
+                                    8.0)),
+            "");
+  const std::string why = ImplausibleAmong(
+      added,
+      Case(),
+      Fitted(
+          {{"theta_T", 0.1}, {"theta_cos_phi", 0.15}, {"theta_sin_phi", 0.2}},
+          8.0,
+          8.0));
+  EXPECT_EQ(
+      why.find("roll_interaction (added before): a reading error of 0.25"), 0u)
+      << why;
 }
 
 }  // namespace
