@@ -16,6 +16,7 @@
 #include <limits>
 
 #include "diagnose_internal.h"
+#include "fit3dof/angles.h"
 #include "fit3dof/thread_budget.h"
 #include "format.h"
 
@@ -270,7 +271,35 @@ std::vector<int> Earned(const FitResult& current,
   return earned;
 }
 
-std::string Separation(const Effect& a, const Effect& b) {
+// The pitch frequency of the fit (deg/s): sqrt(-Cm_alpha q S d / I_y);
+// 0 when the fit is not statically stable.
+double PitchFrequency(const Case& c, const FitResult& fit) {
+  for (const ParameterEstimate& e : fit.parameters) {
+    if (e.name != "Cm_alpha" || !e.segment.empty()) continue;
+    const double w2 = -e.value * c.flow.dynamic_pressure * c.body.area *
+                      c.body.diameter / c.body.Iy;
+    return w2 > 0.0 ? std::sqrt(w2) / kDegree : 0.0;
+  }
+  return 0.0;
+}
+
+// What a second run would change to tell effects a and b apart, for a
+// model fitted as `fit`.
+std::string Separation(const Effect& a,
+                       const Effect& b,
+                       const Case& c,
+                       const FitResult& fit) {
+  if (a.roll_locked && b.roll_locked) {
+    // Both are offsets fixed in the body (a trim angle, a reading error
+    // locked to roll): well below the pitch frequency a trim moment's
+    // response follows the roll without lag or growth at any spin rate,
+    // so only a spin near that frequency tells them apart.
+    const double pitch = PitchFrequency(c, fit);
+    return "a run spinning near the pitch frequency (" +
+           (pitch > 0.0 ? FormatNumber("%.0f", pitch) + " deg/s: " : "") +
+           "there a trim moment's response grows and lags, a reading "
+           "error's does not)";
+  }
   if (a.separated_by == b.separated_by)
     return "a run at another " + a.separated_by;
   return "a run at another " + a.separated_by + " or " + b.separated_by;
@@ -595,7 +624,7 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
       const Contender& rival = contenders[earned[1]];
       d.ambiguous = {best.record, rival.record};
       d.separated_by =
-          Separation(*best.candidate->effect, *rival.candidate->effect);
+          Separation(*best.candidate->effect, *rival.candidate->effect, c, fit);
       tie = static_cast<int>(d.steps.size());
     } else if (tie < 0 && best.candidate->effect->roll_locked &&
                !RollSeparates(data)) {
