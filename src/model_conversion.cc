@@ -53,6 +53,8 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"bearing_angle", "bearing_angle", 1.0},
       {"theta_cal3", "theta_cal3", 1.0},
       {"psi_cal3", "psi_cal3", 1.0},
+      {"theta_drift", "theta_drift", 1.0},
+      {"psi_drift", "psi_drift", 1.0},
   };
   return images;
 }

@@ -133,7 +133,7 @@ bool MotionModel::Filter(const double* values,
           0.5 * dt * (phi * q_before * phi.transpose() + density(state));
     }
     StateJet h[3];
-    Measure(y, internal.data(), h);
+    Measure(y, internal.data(), times[i] - times[0], h);
     Matrix36 hx;
     double e[3];
     for (int c = 0; c < 3; ++c) {

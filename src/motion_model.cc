@@ -54,6 +54,7 @@ MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
       active_[ri] || active_[ri + 1] || active_[ri + 2] || active_[ri + 3];
   calibration_ =
       active_[layout_.calibration] || active_[layout_.calibration + 1];
+  drift_ = active_[layout_.drift] || active_[layout_.drift + 1];
   // A moment coefficient as an angular acceleration, as scaling.cc turns
   // Cl_0, Cm and Cn (q S d / I of the axis; one I in the symmetric model).
   const double qsd =

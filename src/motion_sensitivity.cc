@@ -258,14 +258,14 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
   auto observe = [&](int i, const double* y) {
     StateJet xj[6], aj[3];
     SeedState(y, xj);
-    Measure(xj, internal.data(), aj);
+    Measure(xj, internal.data(), times[i] - times[0], aj);
     for (int c = 0; c < 3; ++c) {
       angles[3 * i + c] = aj[c].a;
       RowTimesSensitivity(aj[c].v, y + 6, m, &rows[m * c]);
     }
     passes.ForEach([&](const auto& pass) {
       typename std::decay_t<decltype(pass)>::Jet ap[3];
-      Measure(y, pass.internal.data(), ap);
+      Measure(y, pass.internal.data(), times[i] - times[0], ap);
       for (int c = 0; c < 3; ++c) {
         for (int lane = 0; lane < pass.lanes; ++lane) {
           rows[m * c + pass.first + lane] += ap[c].v[lane];

@@ -165,6 +165,19 @@ std::vector<ParameterInfo> MakeSymmetricTable() {
        "deg",
        S::kAngle,
        "calibration nonlinearity: yaw reading error at 5 deg, cubic"},
+      // A drift of the readings in time (outside diagnose's catalog).
+      {41,
+       "theta_drift",
+       "",
+       "deg/s",
+       S::kAngleRate,
+       "reading drift: pitch reading error growing in time"},
+      {42,
+       "psi_drift",
+       "",
+       "deg/s",
+       S::kAngleRate,
+       "reading drift: yaw reading error growing in time"},
   };
 }
 
@@ -470,6 +483,19 @@ std::vector<ParameterInfo> MakeAsymmetricTable() {
        "deg",
        S::kAngle,
        "calibration nonlinearity: yaw reading error at 5 deg, cubic"},
+      // A drift of the readings in time (outside diagnose's catalog).
+      {81,
+       "theta_drift",
+       "",
+       "deg/s",
+       S::kAngleRate,
+       "reading drift: pitch reading error growing in time"},
+      {82,
+       "psi_drift",
+       "",
+       "deg/s",
+       S::kAngleRate,
+       "reading drift: yaw reading error growing in time"},
   };
 }
 
@@ -532,8 +558,8 @@ std::string SuggestParameter(ModelKind model, std::string_view name) {
 }
 
 const ParameterLayout& Layout(ModelKind model) {
-  static const ParameterLayout symmetric{22, 23, 24, -1, 30, 36, 38};
-  static const ParameterLayout asymmetric{64, 65, 66, 59, 72, 76, 78};
+  static const ParameterLayout symmetric{22, 23, 24, -1, 30, 36, 38, 40};
+  static const ParameterLayout asymmetric{64, 65, 66, 59, 72, 76, 78, 80};
   return model == ModelKind::kSymmetric ? symmetric : asymmetric;
 }
 

@@ -207,6 +207,45 @@ TEST(MotionModel, FlowOffsetsShiftTheMeasurement) {
   }
 }
 
+// theta_drift and psi_drift add a reading error growing from the
+// record's first sample (not from t = 0), and their sensitivities are that
+// elapsed time.
+TEST(MotionModel, ReadingDriftGrowsFromTheFirstSample) {
+  const ModelSpec spec = SymmetricSpec(Incidence::kVelocityRatio);
+  std::vector<double> values(NumParameters(ModelKind::kSymmetric), 0.0);
+  values[0] = -0.236;
+  values[26] = 5.0;
+  const int drift = Layout(ModelKind::kSymmetric).drift;
+  EXPECT_EQ(ParameterTable(ModelKind::kSymmetric)[drift].name, "theta_drift");
+  const std::vector<double> times = {2.0, 2.5, 4.0};
+  std::vector<double> drifting = values;
+  drifting[drift] = 0.01;
+  drifting[drift + 1] = -0.02;
+  const MotionModel model(spec, ActiveParameters(drifting, {}));
+  std::vector<double> a(9), b(9), jacobian(18);
+  ASSERT_TRUE(
+      model.Evaluate(values.data(), times.data(), 3, a.data(), nullptr));
+  const int wrt[2] = {drift, drift + 1};
+  ASSERT_TRUE(model.EvaluateWithSensitivities(drifting.data(),
+                                              wrt,
+                                              2,
+                                              times.data(),
+                                              3,
+                                              b.data(),
+                                              jacobian.data(),
+                                              nullptr));
+  for (int i = 0; i < 3; ++i) {
+    const double elapsed = times[i] - times[0];
+    EXPECT_DOUBLE_EQ(b[3 * i], a[3 * i]);
+    EXPECT_NEAR(b[3 * i + 1] - a[3 * i + 1], 0.01 * elapsed, 1e-12);
+    EXPECT_NEAR(b[3 * i + 2] - a[3 * i + 2], -0.02 * elapsed, 1e-12);
+    // Rows phi, theta, psi of sample i; columns theta_drift, psi_drift.
+    EXPECT_NEAR(jacobian[6 * i + 2], elapsed, 1e-12);
+    EXPECT_NEAR(jacobian[6 * i + 3], 0.0, 1e-12);
+    EXPECT_NEAR(jacobian[6 * i + 5], elapsed, 1e-12);
+  }
+}
+
 TEST(MotionModel, ReportsABlowUp) {
   ModelSpec spec = SymmetricSpec(Incidence::kVelocityRatio);
   std::vector<double> values(NumParameters(ModelKind::kSymmetric), 0.0);

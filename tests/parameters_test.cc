@@ -34,11 +34,11 @@ std::map<int, std::string> DesignNames(const std::string& heading) {
 TEST(Parameters, TablesHaveTheReportsSizeAndOrder) {
   // The report's 30 and 72, then the extensions: the roll interaction
   // (4), the symmetric trim moment (2), the bearing moment (2) and the
-  // calibration nonlinearity (2).
+  // calibration nonlinearity (2) and the reading drift (2).
   EXPECT_EQ(kReportParameters[0], 30);
   EXPECT_EQ(kReportParameters[1], 72);
-  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 40);
-  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 80);
+  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 42);
+  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 82);
   for (ModelKind model : {ModelKind::kSymmetric, ModelKind::kAsymmetric}) {
     const auto& table = ParameterTable(model);
     std::set<std::string> names;

@@ -189,10 +189,14 @@ class MotionModel {
     AsymmetricDerivative(k, asymmetric_, x, trig, dx);
   }
 
-  // The measurement model: the three measured angles (deg) of state x, with
-  // `internal` the parameters in internal units.
+  // The measurement model: the three measured angles (deg) of state x,
+  // `elapsed` (s) after the segment's first sample, with `internal` the
+  // parameters in internal units.
   template <typename Tx, typename Tk, typename T = Promoted<Tx, Tk>>
-  void Measure(const Tx* x, const Tk* internal, T* angles) const;
+  void Measure(const Tx* x,
+               const Tk* internal,
+               double elapsed,
+               T* angles) const;
 
   // The parameters in internal units (REG): values times scale, zeros
   // beyond the model's parameters.
@@ -226,6 +230,7 @@ class MotionModel {
   // (Measure).
   bool roll_interaction_ = false;
   bool calibration_ = false;
+  bool drift_ = false;
   std::shared_ptr<const RandomMoment> random_moment_;
   // Moment coefficient to internal acceleration per axis (roll, pitch,
   // yaw): the scales of Cl_0, t1 and t3.
@@ -252,7 +257,10 @@ void MotionModel::Derivative(const CoefficientView<Tk>& k,
 }
 
 template <typename Tx, typename Tk, typename T>
-void MotionModel::Measure(const Tx* x, const Tk* internal, T* angles) const {
+void MotionModel::Measure(const Tx* x,
+                          const Tk* internal,
+                          double elapsed,
+                          T* angles) const {
   using std::cos;
   using std::sin;
   const Tx& phi = x[state_index_[0]];
@@ -276,6 +284,11 @@ void MotionModel::Measure(const Tx* x, const Tk* internal, T* angles) const {
     const Tx v = x[state_index_[2]] / kCalibrationAngle;
     theta += internal[cal] * (u * u * u);
     psi += internal[cal + 1] * (v * v * v);
+  }
+  // A reading that drifts in time (a zero creeping with temperature).
+  if (drift_) {
+    theta += internal[layout_.drift] * elapsed;
+    psi += internal[layout_.drift + 1] * elapsed;
   }
   angles[0] = T(phi * kDegreesPerRadian);
   angles[1] = theta * kDegreesPerRadian;
@@ -333,7 +346,7 @@ bool MotionModel::Evaluate(const T* values,
                            IntegrationFailure* failure) const {
   std::array<T, kMaxParameters> internal;
   auto observe = [&](int i, const T* x) {
-    Measure(x, internal.data(), angles + 3 * i);
+    Measure(x, internal.data(), times[i] - times[0], angles + 3 * i);
   };
   return Integrate(values, times, n, &internal, observe, failure);
 }
@@ -364,7 +377,7 @@ bool MotionModel::EvaluateFiltered(const T* values,
   std::array<T, kMaxParameters> internal;
   auto observe = [&](int i, T* x) {
     T predicted[3];
-    Measure(x, internal.data(), predicted);
+    Measure(x, internal.data(), times[i] - times[0], predicted);
     T* e = innovations + 3 * i;
     for (int c = 0; c < 3; ++c) e[c] = measured[3 * i + c] - predicted[c];
     // Roll is compared modulo 360 deg, as the output-error residual is.

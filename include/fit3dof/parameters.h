@@ -18,7 +18,10 @@
 //     the form of the pendulum study of Section 5.2 (bearing_moment.h);
 //   - the calibration nonlinearity of Section 5.2 (symmetric 39-40,
 //     asymmetric 79-80): theta_m += theta_cal3 (theta / 5 deg)^3, the
-//     same for psi (the reading error at 5 deg).
+//     same for psi (the reading error at 5 deg);
+//   - a drift of the readings in time (symmetric 41-42, asymmetric 81-82):
+//     theta_m += theta_drift (t - t_0), the same for psi (deg/s, t_0 the
+//     segment's first sample).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -35,7 +38,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 80;
+inline constexpr int kMaxParameters = 82;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};
@@ -105,6 +108,7 @@ struct ParameterLayout {
                            // psi_cos_phi, psi_sin_phi
   int bearing;             // Cm_bearing, then bearing_angle
   int calibration;         // theta_cal3, then psi_cal3
+  int drift;               // theta_drift, then psi_drift
 };
 const ParameterLayout& Layout(ModelKind model);
 
