@@ -26,6 +26,17 @@ namespace {
 // The id of a roll-locked effect's rival outside the catalog (diagnose.h).
 constexpr char kDriftInTime[] = "drift_in_time";
 
+// The probe outside the catalog (diagnose.h): fitted and compared, never
+// adopted.
+const Effect& ReadingDrift() {
+  static const Effect probe{
+      "reading_drift",
+      "a drift of the pitch and yaw readings in time (outside the catalog)",
+      {"theta_drift", "psi_drift"},
+      {"theta_drift", "psi_drift"}};
+  return probe;
+}
+
 double Bic(const FitResult& r) {
   const double n = 3.0 * r.points;
   const double rss = std::max(r.sum_of_residuals * r.sum_of_residuals, 1e-300);
@@ -127,39 +138,61 @@ std::vector<ParameterEstimate> Own(const FitResult& fit,
   return own;
 }
 
+// Candidate k refitted in full from the solution `fit` into *c; false
+// when the fit fails.
+bool Refit(const Candidate& k,
+           const FitResult& fit,
+           const std::vector<TimeHistory>& data,
+           Contender* c) {
+  c->candidate = &k;
+  try {
+    Case refit = k.c;
+    RefitFromSolution(&refit, fit.probable_error);
+    c->fit = FitSamples(refit, data);
+  } catch (const std::exception& e) {
+    LOG(WARNING) << fit.name << ": refit with " << k.effect->id
+                 << " failed: " << e.what();
+    return false;
+  }
+  c->bic = Bic(c->fit);
+  c->record.effect = k.effect->id;
+  c->record.parameters = Own(c->fit, k.added);
+  c->record.bic_drop = Bic(fit) - c->bic;
+  c->record.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+  return true;
+}
+
+// The probe (ReadingDrift) fitted from the solution `fit` of `current`;
+// false when the case already has its parameters free or the fit fails.
+bool FitProbe(const Case& current,
+              const FitResult& fit,
+              const std::vector<TimeHistory>& data,
+              Candidate* k,
+              Contender* c) {
+  k->effect = &ReadingDrift();
+  if (!CandidateCase(
+          CaseAtSolution(current, fit), *k->effect, &k->c, &k->added)) {
+    return false;
+  }
+  return Refit(*k, fit, data, c);
+}
+
 // The best `options.refit` candidates refitted on the first fit's samples:
 // those that lower BIC by more than min_bic_drop, lowest BIC first.
 std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
                                   const FitResult& fit,
                                   const std::vector<TimeHistory>& data,
                                   const DiagnoseOptions& options) {
-  const double bic_now = Bic(fit);
   const int n = std::min<int>(options.refit, candidates.size());
   std::vector<Contender> refits(n);
   std::vector<bool> fitted(n, false);
   ParallelFor(n, [&](int i) {
-    const Candidate& k = candidates[i];
-    Contender& c = refits[i];
-    c.candidate = &k;
-    try {
-      Case refit = k.c;
-      RefitFromSolution(&refit, fit.probable_error);
-      c.fit = FitSamples(refit, data);
-      fitted[i] = true;
-    } catch (const std::exception& e) {
-      LOG(WARNING) << fit.name << ": refit with " << k.effect->id
-                   << " failed: " << e.what();
-    }
+    fitted[i] = Refit(candidates[i], fit, data, &refits[i]);
   });
   std::vector<Contender> contenders;
   for (int i = 0; i < n; ++i) {
     if (!fitted[i]) continue;
     Contender& c = refits[i];
-    c.bic = Bic(c.fit);
-    c.record.effect = c.candidate->effect->id;
-    c.record.parameters = Own(c.fit, c.candidate->added);
-    c.record.bic_drop = bic_now - c.bic;
-    c.record.prediction_gain = std::numeric_limits<double>::quiet_NaN();
     VLOG(1) << fit.name << ": " << c.record.effect << " score "
             << c.candidate->score.score << ", BIC drop " << c.record.bic_drop;
     if (c.record.bic_drop >= options.min_bic_drop) {
@@ -408,6 +441,7 @@ std::string Describe(const std::string& id) {
     return "a slow drift of the readings or of the flow in time (outside "
            "the catalog)";
   }
+  if (id == ReadingDrift().id) return ReadingDrift().description;
   return FindEffect(id)->description;
 }
 
@@ -448,11 +482,18 @@ void Conclude(Diagnosis* d) {
         FormatNumber("%.2f", check.lag1.psi) + ")" +
         (d->steps.empty() ? "" : " after adding " + Described(d->steps)) +
         (d->partial.empty()
-             ? " and no further effect earns its place"
+             ? (d->outside_catalog.effect.empty()
+                    ? " and no further effect earns its place"
+                    : "")
              : "; " + Described(d->partial) + " lowers the probable error to " +
                    FormatNumber("%.3g", d->fits.back().probable_error) +
                    " but leaves the residuals structured: not adopted, the "
-                   "final model is the one before it");
+                   "final model is the one before it") +
+        (d->outside_catalog.effect.empty()
+             ? ""
+             : "; " + ReadingDrift().description +
+                   " explains more than any catalog effect (BIC lower by " +
+                   FormatNumber("%.1f", d->outside_catalog.bic_drop) + ")");
   }
   if (d->verdict != Verdict::kNoiseLevel && d->verdict != Verdict::kExplained) {
     d->residual_description = DescribeResiduals(d->FinalFit());
@@ -613,7 +654,24 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
       added.push_back(FindEffect(s.effect));
     const std::vector<int> earned =
         Earned(fit, added, options, &out_of_sample, &contenders);
-    if (earned.empty()) {
+    // The probe outside the catalog, against the best that earned its
+    // place: better by a margin, and nothing is adopted; within it, a tie.
+    Candidate drift;
+    Contender probe;
+    const bool probed = FitProbe(current, fit, data, &drift, &probe) &&
+                        probe.record.bic_drop >= options.min_bic_drop;
+    if (probed && (earned.empty() || probe.bic < contenders[earned[0]].bic -
+                                                     options.ambiguity_bic)) {
+      d.outside_catalog = probe.record;
+      for (Contender& k : contenders) {
+        if (k.record.rejected.empty()) {
+          k.record.rejected = ReadingDrift().description +
+                              " explains the residual better (BIC lower by " +
+                              FormatNumber("%.1f", k.bic - probe.bic) + ")";
+        }
+      }
+    }
+    if (earned.empty() || !d.outside_catalog.effect.empty()) {
       for (const Contender& k : contenders) d.rejected.push_back(k.record);
       break;
     }
@@ -625,6 +683,14 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
       d.ambiguous = {best.record, rival.record};
       d.separated_by =
           Separation(*best.candidate->effect, *rival.candidate->effect, c, fit);
+      tie = static_cast<int>(d.steps.size());
+    } else if (tie < 0 && probed &&
+               probe.bic < best.bic + options.ambiguity_bic) {
+      d.ambiguous = {best.record, probe.record};
+      d.separated_by =
+          "a second run at another spin rate or amplitude (a drift grows "
+          "with the time of each run, a catalog effect follows what the runs "
+          "differ in)";
       tie = static_cast<int>(d.steps.size());
     } else if (tie < 0 && best.candidate->effect->roll_locked &&
                !RollSeparates(data)) {

@@ -114,6 +114,9 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
     out["residual_description"] = d.residual_description;
   }
   out["rejected"] = Contenders(d.rejected);
+  out["outside_catalog"] = d.outside_catalog.effect.empty()
+                               ? json(nullptr)
+                               : Contender(d.outside_catalog);
   out["final_parameters"] = Estimates(d.final_parameters);
   out["initial_rms_residual_deg"] = JsonChannels(d.initial.rms_deg);
   out["final_rms_residual_deg"] = JsonChannels(d.final.rms_deg);
@@ -159,6 +162,11 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
                 : " (" + Values(a.parameters) + "), BIC lower by " +
                       FormatNumber("%.1f", a.bic_drop)) +
            "\n";
+  }
+  if (!d.outside_catalog.effect.empty()) {
+    out += "  outside the catalog, not adopted: " + d.outside_catalog.effect +
+           " (" + Values(d.outside_catalog.parameters) + "), BIC lower by " +
+           FormatNumber("%.1f", d.outside_catalog.bic_drop) + "\n";
   }
   for (const CandidateFit& r : d.rejected) {
     out += "  not added: " + r.effect + " (" + Values(r.parameters) +

@@ -422,18 +422,73 @@ TEST(Diagnose, ARollLockedEffectTiesWithADriftOnLessThanARevolution) {
   EXPECT_TRUE(d.steps.empty()) << text;
   const std::string verdict = VerdictToString(d.verdict);
   if (verdict == "ambiguous") {
+    // The rival is a drift: the fitted probe (theta_drift near the truth)
+    // or, when the probe falls short, the roll-locked rule's unfitted one.
     ASSERT_EQ(d.ambiguous.size(), 2u) << text;
-    EXPECT_EQ(d.ambiguous[1].effect, "drift_in_time") << text;
-    EXPECT_NE(d.separated_by.find("revolution of roll"), std::string::npos)
-        << text;
-    EXPECT_NE(text.find("drift_in_time (outside the catalog, not fitted)"),
-              std::string::npos)
-        << text;
+    const CandidateFit& rival = d.ambiguous[1];
+    if (rival.effect == "reading_drift") {
+      ASSERT_EQ(rival.parameters.size(), 2u) << text;
+      for (const ParameterEstimate& e : rival.parameters) {
+        if (e.name == "theta_drift") {
+          EXPECT_NEAR(e.value, 0.016, 3.0 * e.standard_error) << text;
+        }
+      }
+      EXPECT_NE(d.separated_by.find("second run"), std::string::npos) << text;
+    } else {
+      EXPECT_EQ(rival.effect, "drift_in_time") << text;
+      EXPECT_NE(d.separated_by.find("revolution of roll"), std::string::npos)
+          << text;
+      EXPECT_NE(text.find("drift_in_time (outside the catalog, not fitted)"),
+                std::string::npos)
+          << text;
+    }
   } else {
     EXPECT_EQ(verdict, "not_explained") << text;
   }
   // The final model is the nominal fit.
   EXPECT_EQ(&d.FinalFit(), &d.fits.front());
+}
+
+// The same drift in two runs (30 deg/s and 8 deg, 60 deg/s and 4 deg): a
+// roll-synchronous reading error cannot follow it in both, the probe
+// outside the catalog (theta_drift, psi_drift) can. Nothing is adopted,
+// the verdict is not_explained and names the drift with its fitted rate.
+TEST(Diagnose, TwoRunsNameADriftOfTheReadingsOutsideTheCatalog) {
+  const std::string dir = testing::ScratchDirectory("diagnose_two_drifts");
+  std::vector<std::string> files;
+  for (const auto& [spin, angle] : {std::pair{30.0, 8.0}, {60.0, 4.0}}) {
+    Case truth = ShortTruth(spin);
+    truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
+    truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
+    truth.parameters[FindParameter(truth.model, "theta0")].value = angle;
+    truth.parameters[FindParameter(truth.model, "theta_drift")].value = 0.02;
+    const std::string path = dir + "/run" + std::to_string(files.size()) +
+                             ".csv";
+    files.push_back(SimulateShort(truth, path, 21 + files.size()));
+  }
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_EQ(&d.FinalFit(), &d.fits.front());
+  ASSERT_EQ(d.outside_catalog.effect, "reading_drift") << text;
+  bool found = false;
+  for (const ParameterEstimate& e : d.outside_catalog.parameters) {
+    if (e.name != "theta_drift") continue;
+    found = true;
+    EXPECT_NEAR(e.value, 0.02, 3.0 * e.standard_error) << text;
+  }
+  EXPECT_TRUE(found) << text;
+  EXPECT_NE(d.verdict_text.find("drift of the pitch and yaw readings"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("outside the catalog, not adopted: reading_drift"),
+            std::string::npos)
+      << text;
+  const nlohmann::json j =
+      nlohmann::json::parse(DiagnosisJson(d, ShortConfig(files)));
+  EXPECT_EQ(j["outside_catalog"]["effect"], "reading_drift");
+  EXPECT_TRUE(j["effects_added"].empty());
 }
 
 // An effect outside the catalog (a pitch reading that drifts 0.05 deg
