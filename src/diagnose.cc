@@ -177,6 +177,18 @@ bool FitProbe(const Case& current,
   return Refit(*k, fit, data, c);
 }
 
+// Every contender not rejected otherwise is rejected for the probe, which
+// explains the residual better.
+void OutdoneByProbe(const Contender& probe,
+                    std::vector<Contender>* contenders) {
+  for (Contender& k : *contenders) {
+    if (!k.record.rejected.empty()) continue;
+    k.record.rejected = ReadingDrift().description +
+                        " explains the residual better (BIC lower by " +
+                        FormatNumber("%.1f", k.bic - probe.bic) + ")";
+  }
+}
+
 // The best `options.refit` candidates refitted on the first fit's samples:
 // those that lower BIC by more than min_bic_drop, lowest BIC first.
 std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
@@ -586,6 +598,8 @@ const char* VerdictToString(Verdict verdict) {
   return "";
 }
 
+namespace {
+
 // A tie (at step `tie`) on the way to a record explained: the pruning
 // (Prune) of every step, the tied one among them. A roll torque tied with a
 // roll damping may only have taken up the roll that a missing pitch
@@ -619,6 +633,50 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
   *current = std::move(model);
   return true;
 }
+
+// Which model the search ends with (diagnose.h), given `check`, the
+// residual check of its last fit, `models`, the case of each of d->fits,
+// and `tie`, the step of the first tie or -1: sets d->final_fit and
+// *current (from `user` when nothing explains the record) and returns the
+// final model's residual check.
+ResidualCheck SettleFinalModel(const Case& user,
+                               const std::vector<TimeHistory>& data,
+                               const DiagnoseOptions& options,
+                               const std::vector<Case>& models,
+                               int tie,
+                               const ResidualCheck& check,
+                               Diagnosis* d,
+                               Case* current) {
+  if (!check.at_noise_level) {
+    // Nothing explains the record: the steps taken are partial and not
+    // adopted (Diagnosis::partial says why), a tie on the way included.
+    d->partial = std::move(d->steps);
+    d->steps.clear();
+    d->ambiguous.clear();
+    d->separated_by.clear();
+    *current = user;
+    d->final_fit = 0;
+    return d->initial;
+  }
+  if (tie >= 0 && TieDissolves(data, options, tie, d, current)) {
+    // The tied effect turned out redundant with the later ones in.
+    return CheckResiduals(d->FinalFit(), options);
+  }
+  if (tie >= 0) {
+    // Explained, but with one of a tied pair: the final model is the one
+    // before the tie, the steps from it on are reported as partial.
+    d->partial.assign(d->steps.begin() + tie, d->steps.end());
+    d->steps.resize(tie);
+    d->final_fit = tie;
+    *current = models[tie];
+    return tie == 0 ? d->initial : d->steps.back().after;
+  }
+  d->final_fit = d->steps.size();
+  Prune(data, options, d, current);
+  return CheckResiduals(d->FinalFit(), options);
+}
+
+}  // namespace
 
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
   Diagnosis d;
@@ -663,13 +721,7 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
     if (probed && (earned.empty() || probe.bic < contenders[earned[0]].bic -
                                                      options.ambiguity_bic)) {
       d.outside_catalog = probe.record;
-      for (Contender& k : contenders) {
-        if (k.record.rejected.empty()) {
-          k.record.rejected = ReadingDrift().description +
-                              " explains the residual better (BIC lower by " +
-                              FormatNumber("%.1f", k.bic - probe.bic) + ")";
-        }
-      }
+      OutdoneByProbe(probe, &contenders);
     }
     if (earned.empty() || !d.outside_catalog.effect.empty()) {
       for (const Contender& k : contenders) d.rejected.push_back(k.record);
@@ -712,31 +764,8 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
     record.after = check;
     d.steps.push_back(record);
   }
-  if (!check.at_noise_level) {
-    // Nothing explains the record: the steps taken are partial and not
-    // adopted (Diagnosis::partial says why), a tie on the way included.
-    d.partial = std::move(d.steps);
-    d.steps.clear();
-    d.ambiguous.clear();
-    d.separated_by.clear();
-    current = c;
-    d.final_fit = 0;
-    check = d.initial;
-  } else if (tie >= 0 && TieDissolves(data, options, tie, &d, &current)) {
-    // The tied effect turned out redundant with the later ones in.
-  } else if (tie >= 0) {
-    // Explained, but with one of a tied pair: the final model is the one
-    // before the tie, the steps from it on are reported as partial.
-    d.partial.assign(d.steps.begin() + tie, d.steps.end());
-    d.steps.resize(tie);
-    d.final_fit = tie;
-    current = models[tie];
-    check = tie == 0 ? d.initial : d.steps.back().after;
-  } else {
-    d.final_fit = d.steps.size();
-    Prune(data, options, &d, &current);
-  }
-  d.final = check;
+  d.final =
+      SettleFinalModel(c, data, options, models, tie, check, &d, &current);
   d.final_case = FinalCase(c, current, d.FinalFit());
   FinalValues(&d);
   Conclude(&d);
