@@ -378,7 +378,10 @@ Case FinalCase(const Case& user, const Case& current, const FitResult& fit) {
 }
 
 // Each step's parameters as the final model has them (a partial step's as
-// the last partial model has them).
+// the last partial model has them). A later step may have switched the
+// model to the asymmetric program, where the effect's terms have other
+// names (a Magnus moment's Cm_p_alpha is Cm_p_beta and Cn_p_alpha there):
+// the effect's own list for that program finds them.
 void FinalValues(Diagnosis* d) {
   d->final_parameters = d->FinalFit().parameters;
   for (std::vector<DiagnosisStep>* steps :
@@ -389,6 +392,13 @@ void FinalValues(Diagnosis* d) {
       std::vector<std::string> names;
       for (const ParameterEstimate& e : step.step_parameters) {
         names.push_back(e.name);
+      }
+      const Effect* effect = FindEffect(step.effect);
+      if (effect != nullptr) {
+        const std::vector<std::string>& own = fit.model == ModelKind::kSymmetric
+                                                  ? effect->symmetric
+                                                  : effect->asymmetric;
+        names.insert(names.end(), own.begin(), own.end());
       }
       step.parameters = Own(fit, names);
     }
