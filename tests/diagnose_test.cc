@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -350,6 +351,26 @@ std::string SimulateShort(const Case& truth,
   return path;
 }
 
+// Two 3-s runs without trim, 30 deg/s at 8 deg and 60 deg/s at 4 deg,
+// each truth changed by `hide` before it is simulated (noise seeds `seed`
+// and seed + 1); the files, dir/run0.csv and dir/run1.csv.
+std::vector<std::string> TwoShortRuns(const std::string& dir,
+                                      std::uint64_t seed,
+                                      const std::function<void(Case*)>& hide) {
+  std::vector<std::string> files;
+  for (const auto& [spin, angle] : {std::pair{30.0, 8.0}, {60.0, 4.0}}) {
+    Case truth = ShortTruth(spin);
+    truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
+    truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
+    truth.parameters[FindParameter(truth.model, "theta0")].value = angle;
+    hide(&truth);
+    const std::string path =
+        dir + "/run" + std::to_string(files.size()) + ".csv";
+    files.push_back(SimulateShort(truth, path, seed + files.size()));
+  }
+  return files;
+}
+
 // A fit config of the short records: Cm_alpha and Cm_q free, the cubic
 // stiffness known, no trim.
 Case ShortConfig(const std::vector<std::string>& files) {
@@ -456,17 +477,9 @@ TEST(Diagnose, ARollLockedEffectTiesWithADriftOnLessThanARevolution) {
 // the verdict is not_explained and names the drift with its fitted rate.
 TEST(Diagnose, TwoRunsNameADriftOfTheReadingsOutsideTheCatalog) {
   const std::string dir = testing::ScratchDirectory("diagnose_two_drifts");
-  std::vector<std::string> files;
-  for (const auto& [spin, angle] : {std::pair{30.0, 8.0}, {60.0, 4.0}}) {
-    Case truth = ShortTruth(spin);
-    truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
-    truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
-    truth.parameters[FindParameter(truth.model, "theta0")].value = angle;
-    truth.parameters[FindParameter(truth.model, "theta_drift")].value = 0.02;
-    const std::string path =
-        dir + "/run" + std::to_string(files.size()) + ".csv";
-    files.push_back(SimulateShort(truth, path, 21 + files.size()));
-  }
+  const std::vector<std::string> files = TwoShortRuns(dir, 21, [](Case* c) {
+    c->parameters[FindParameter(c->model, "theta_drift")].value = 0.02;
+  });
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
@@ -503,18 +516,10 @@ TEST(Diagnose, TwoRunsNameADriftOfTheReadingsOutsideTheCatalog) {
 // (see the note: the symmetric relations are not yet tied).
 TEST(Diagnose, StepsKeepTheirValuesAcrossTheSwitchToTheAsymmetricProgram) {
   const std::string dir = testing::ScratchDirectory("diagnose_yaw_stiffness");
-  std::vector<std::string> files;
-  for (const auto& [spin, angle] : {std::pair{30.0, 8.0}, {60.0, 4.0}}) {
-    Case truth = ShortTruth(spin);
-    truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
-    truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
-    truth.parameters[FindParameter(truth.model, "theta0")].value = angle;
-    truth = ToAsymmetric(truth);
-    truth.parameters[FindParameter(truth.model, "Cn_beta")].value *= 1.003;
-    const std::string path =
-        dir + "/run" + std::to_string(files.size()) + ".csv";
-    files.push_back(SimulateShort(truth, path, 31 + files.size()));
-  }
+  const std::vector<std::string> files = TwoShortRuns(dir, 31, [](Case* c) {
+    *c = ToAsymmetric(*c);
+    c->parameters[FindParameter(c->model, "Cn_beta")].value *= 1.003;
+  });
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.FinalFit().model, ModelKind::kAsymmetric) << text;

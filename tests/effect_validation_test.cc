@@ -45,25 +45,22 @@ std::string Verdict(const char* effect, const FitResult& fit) {
 // at 20). Before, the largest angles were never filled in and no
 // calibration term was ever implausible.
 TEST(Implausible, CalibrationAtEachChannelsLargestAngle) {
-  EXPECT_EQ(Verdict("calibration_nonlinearity",
-                    Fitted({{"theta_cal3", 0.02}}, 6.0, 1.0)),
-            "");
-  EXPECT_EQ(Verdict("calibration_nonlinearity",
-                    Fitted({{"theta_cal3", 0.02}}, 10.0, 1.0)),
-            "");
-  const std::string why = Verdict("calibration_nonlinearity",
-                                  Fitted({{"theta_cal3", 0.02}}, 20.0, 1.0));
+  // The verdict on one cubic term with the channels reaching theta, psi.
+  const auto calibration =
+      [](const char* name, double value, double theta, double psi) {
+        return Verdict("calibration_nonlinearity",
+                       Fitted({{name, value}}, theta, psi));
+      };
+  EXPECT_EQ(calibration("theta_cal3", 0.02, 6.0, 1.0), "");
+  EXPECT_EQ(calibration("theta_cal3", 0.02, 10.0, 1.0), "");
+  const std::string why = calibration("theta_cal3", 0.02, 20.0, 1.0);
   EXPECT_NE(why.find("calibration error at the largest angle of 20 deg of 1.28 "
                      "exceeds 0.6"),
             std::string::npos)
       << why;
   // A large term in a channel that stays near zero is harmless.
-  EXPECT_EQ(Verdict("calibration_nonlinearity",
-                    Fitted({{"psi_cal3", 5.0}}, 20.0, 0.5)),
-            "");
-  EXPECT_NE(Verdict("calibration_nonlinearity",
-                    Fitted({{"psi_cal3", 5.0}}, 0.5, 20.0)),
-            "");
+  EXPECT_EQ(calibration("psi_cal3", 5.0, 20.0, 0.5), "");
+  EXPECT_NE(calibration("psi_cal3", 5.0, 0.5, 20.0), "");
 }
 
 TEST(Implausible, ReadingErrorTrimAngleAndBearingAngle) {
