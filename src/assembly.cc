@@ -46,6 +46,7 @@ Assembly Assemble(const std::vector<PreparedSegment>& segments,
     auto* cost = new SegmentCostFunction(
         model, base, positions, ks, segment_scale, p.data, p.sigma);
     cost->set_innovation_weights(p.innovation_weights);
+    cost->set_ties(free.ties);
     a.problem->AddResidualBlock(cost, nullptr, a.segment_blocks[s]);
     a.costs.push_back(cost);
   }

@@ -5,6 +5,8 @@
 
 #include "fit3dof/case.h"
 
+#include <glog/logging.h>
+
 #include <cmath>
 #include <string>
 #include <tuple>
@@ -55,6 +57,7 @@ std::vector<double> Case::Values() const {
   std::vector<double> values(parameters.size());
   for (size_t i = 0; i < parameters.size(); ++i)
     values[i] = parameters[i].value;
+  ApplyTies(Ties(), values.data());
   return values;
 }
 
@@ -62,6 +65,33 @@ std::vector<bool> Case::FreeFlags() const {
   std::vector<bool> free(parameters.size());
   for (size_t i = 0; i < parameters.size(); ++i) free[i] = parameters[i].free;
   return free;
+}
+
+std::vector<bool> Case::VaryingFlags() const {
+  std::vector<bool> varying = FreeFlags();
+  for (const ParameterTie& tie : Ties()) {
+    varying[tie.image] = parameters[tie.source].free;
+  }
+  return varying;
+}
+
+std::vector<ParameterTie> Case::Ties() const {
+  std::vector<ParameterTie> ties;
+  for (size_t i = 0; i < parameters.size(); ++i) {
+    const ParameterSetting& p = parameters[i];
+    if (!p.tied()) continue;
+    CHECK(p.tied_to < static_cast<int>(parameters.size()) &&
+          !parameters[p.tied_to].tied() && !p.free)
+        << "parameter " << i << " tied to " << p.tied_to;
+    ties.push_back({static_cast<int>(i), p.tied_to, p.tie_factor});
+  }
+  return ties;
+}
+
+void Case::SettleTies() {
+  for (const ParameterTie& tie : Ties()) {
+    parameters[tie.image].value = tie.factor * parameters[tie.source].value;
+  }
 }
 
 namespace {
@@ -74,8 +104,8 @@ auto Tie(const Flow& f) { return std::tie(f.velocity, f.dynamic_pressure); }
 }  // namespace
 
 bool operator==(const ParameterSetting& a, const ParameterSetting& b) {
-  return std::tie(a.value, a.free, a.auto_start) ==
-         std::tie(b.value, b.free, b.auto_start);
+  return std::tie(a.value, a.free, a.auto_start, a.tied_to, a.tie_factor) ==
+         std::tie(b.value, b.free, b.auto_start, b.tied_to, b.tie_factor);
 }
 
 bool operator==(const ChannelValues& a, const ChannelValues& b) {

@@ -46,6 +46,13 @@ class ConfigReader : public NodeReader {
   ParameterSetting ReadParameter(const YAML::Node& node,
                                  const std::string& key,
                                  bool value_optional) const;
+  // `{tied: <name>, factor: <number>}` for the parameter at `position`.
+  ParameterSetting ReadTie(const YAML::Node& node,
+                           const std::string& key,
+                           int position,
+                           const Case& c) const;
+  // Every tie's source free or frozen but itself untied.
+  void CheckTies(const YAML::Node& node, const Case& c) const;
   ChannelValues ReadChannels(const YAML::Node& node,
                              const std::string& path,
                              bool all_required,
@@ -257,12 +264,61 @@ void ConfigReader::ReadParameters(const YAML::Node& node, Case* c) const {
            "given twice (" + table[position].name + " has an alias)");
     }
     const ParameterSetting setting =
-        ReadParameter(item.second, key, IsInitialCondition(c->model, position));
+        item.second.IsMap() && item.second["tied"]
+            ? ReadTie(item.second, key, position, *c)
+            : ReadParameter(
+                  item.second, key, IsInitialCondition(c->model, position));
     if (table[position].scaling == Scaling::kUnused &&
         (setting.value != 0.0 || setting.free)) {
       Fail(item.first, key, "is a spare slot that no equation uses");
     }
     c->parameters[position] = setting;
+  }
+  CheckTies(node, *c);
+  c->SettleTies();
+}
+
+ParameterSetting ConfigReader::ReadTie(const YAML::Node& node,
+                                       const std::string& key,
+                                       int position,
+                                       const Case& c) const {
+  CheckKeys(node, key, {"tied", "factor"});
+  const auto& table = ParameterTable(c.model);
+  const std::string source = String(node["tied"], key + ".tied");
+  ParameterSetting setting;
+  setting.tied_to = FindParameter(c.model, source);
+  if (setting.tied_to < 0) {
+    Fail(node["tied"],
+         key + ".tied",
+         "unknown parameter '" + source + "' of the " + ModelName(c.model) +
+             " model");
+  }
+  if (IsInitialCondition(c.model, position) ||
+      IsInitialCondition(c.model, setting.tied_to)) {
+    Fail(node["tied"],
+         key + ".tied",
+         "initial conditions belong to each segment and cannot be tied");
+  }
+  if (setting.tied_to == position ||
+      table[setting.tied_to].scaling == Scaling::kUnused) {
+    Fail(node["tied"], key + ".tied", "expected another parameter in use");
+  }
+  if (node["factor"]) {
+    setting.tie_factor = Number(node["factor"], key + ".factor");
+  }
+  return setting;
+}
+
+void ConfigReader::CheckTies(const YAML::Node& node, const Case& c) const {
+  const auto& table = ParameterTable(c.model);
+  for (const auto& item : node) {
+    const std::string name = item.first.as<std::string>();
+    const ParameterSetting& p = c.parameters[FindParameter(c.model, name)];
+    if (!p.tied() || !c.parameters[p.tied_to].tied()) continue;
+    Fail(item.second["tied"],
+         "parameters." + name + ".tied",
+         table[p.tied_to].name +
+             " is itself tied; tie to the parameter it follows");
   }
 }
 

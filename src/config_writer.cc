@@ -58,6 +58,17 @@ void Channels(YAML::Emitter& y, const char* key, const ChannelValues& v) {
   y << YAML::EndMap;
 }
 
+// A tied parameter (case.h) is written as its tie, its value following.
+void Tie(YAML::Emitter& y,
+         const std::string& name,
+         const ParameterSetting& p,
+         const std::string& source) {
+  y << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginMap;
+  Word(y, "tied", source);
+  Number(y, "factor", p.tie_factor);
+  y << YAML::EndMap;
+}
+
 void Setting(YAML::Emitter& y,
              const std::string& name,
              const ParameterSetting& p) {
@@ -72,7 +83,7 @@ void Setting(YAML::Emitter& y,
 }
 
 bool IsDefault(const ParameterSetting& p) {
-  return p.value == 0.0 && !p.free && !p.auto_start;
+  return p.value == 0.0 && !p.free && !p.auto_start && !p.tied();
 }
 
 void WriteModel(YAML::Emitter& y, const Case& c) {
@@ -98,7 +109,12 @@ void WriteParameters(YAML::Emitter& y, const Case& c) {
   const auto& table = ParameterTable(c.model);
   y << YAML::Key << "parameters" << YAML::Value << YAML::BeginMap;
   for (int i = 0; i < NumParameters(c.model); ++i) {
-    if (!IsDefault(c.parameters[i])) Setting(y, table[i].name, c.parameters[i]);
+    const ParameterSetting& p = c.parameters[i];
+    if (p.tied()) {
+      Tie(y, table[i].name, p, table[p.tied_to].name);
+    } else if (!IsDefault(p)) {
+      Setting(y, table[i].name, p);
+    }
   }
   y << YAML::EndMap;
 }

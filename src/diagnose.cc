@@ -17,6 +17,8 @@
 
 #include "diagnose_internal.h"
 #include "fit3dof/angles.h"
+#include "fit3dof/model_conversion.h"
+#include "fit3dof/parameters.h"
 #include "fit3dof/thread_budget.h"
 #include "format.h"
 
@@ -522,19 +524,42 @@ void Conclude(Diagnosis* d) {
   }
 }
 
-// The case `at` without the effect that `step` added: its parameters
-// fixed, at zero (a companion keeps its value, inert without them).
+// The position in `model` of a term a step added: a symmetric name in the
+// asymmetric program (the step came before the switch) is its first image,
+// the one ToAsymmetric gave its value and free flag.
+int AddedTermPosition(ModelKind model, const std::string& name) {
+  int position = FindParameter(model, name);
+  if (position >= 0 || model == ModelKind::kSymmetric) return position;
+  for (const CoefficientImage& image : SymmetricImages()) {
+    if (name == image.symmetric) return FindParameter(model, image.asymmetric);
+  }
+  return -1;
+}
+
+// The case `at` without the effect that `step` added: the terms it added
+// fixed at zero (a companion keeps its value, inert without them); an
+// image it had untied (an asymmetric body) tied again.
 Case WithoutStep(const Case& at, const DiagnosisStep& step) {
   Case without = at;
   const Effect* effect = FindEffect(step.effect);
   CHECK(effect != nullptr) << step.effect;
   for (const ParameterEstimate& e : step.step_parameters) {
-    const int position = FindParameter(without.model, e.name);
+    const int position = AddedTermPosition(without.model, e.name);
     if (position < 0) continue;
+    const std::string& name = ParameterTable(without.model)[position].name;
     ParameterSetting& p = without.parameters[position];
+    ParameterTie tie;
+    if (without.model == ModelKind::kAsymmetric && SymmetricTie(name, &tie) &&
+        !without.parameters[tie.source].tied()) {
+      p = ParameterSetting{};
+      p.tied_to = tie.source;
+      p.tie_factor = tie.factor;
+      continue;
+    }
     p.free = false;
     if (!IsCompanion(*effect, e.name)) p.value = 0.0;
   }
+  without.SettleTies();
   return without;
 }
 

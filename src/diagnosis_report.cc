@@ -37,6 +37,10 @@ json Estimates(const std::vector<ParameterEstimate>& estimates) {
                    {"rms_error", JsonNumber(e.rms_error)},
                    {"units", e.units},
                    {"free", e.free}};
+    if (!e.tied_to.empty()) {
+      out[e.name]["tied_to"] = e.tied_to;
+      out[e.name]["tie_factor"] = e.tie_factor;
+    }
   }
   return out;
 }

@@ -47,6 +47,16 @@ const std::vector<Effect>& EffectCatalog() {
        {},
        "spin rate",
        "|I_zx| up to 5% of I_y"},
+      {"asymmetric_body",
+       "a yaw stiffness and damping of the body's own (Cn_beta, Cn_r apart "
+       "from -Cm_alpha, Cm_q; asymmetric program)",
+       {},
+       {"Cn_beta", "Cn_r"},
+       true,
+       {},
+       "spin rate",
+       "|Cn_beta + Cm_alpha| up to 20% of |Cm_alpha|, |Cn_r - Cm_q| up to "
+       "|Cm_q|"},
       {"roll_torque",
        "a roll torque from the gas bearing (Cl_0)",
        {"Cl_0"},
@@ -167,8 +177,23 @@ bool CandidateCase(const Case& at,
                           : effect.asymmetric;
   added->clear();
   for (const std::string& name : names) {
-    const int position = FindParameter(candidate.model, name);
+    int position = FindParameter(candidate.model, name);
     if (position < 0) continue;
+    ParameterSetting& image = candidate.parameters[position];
+    if (image.tied()) {
+      // An image whose source the effect names too keeps following it (a
+      // Magnus moment in the asymmetric program frees Cm_p_beta, Cn_p_alpha
+      // follows); otherwise the effect is the asymmetry itself and frees
+      // the image on its own.
+      const std::string& source =
+          ParameterTable(candidate.model)[image.tied_to].name;
+      if (std::find(names.begin(), names.end(), source) != names.end())
+        continue;
+      image.tied_to = -1;
+      image.free = true;
+      added->push_back(ParameterTable(candidate.model)[position].name);
+      continue;
+    }
     ParameterSetting& p = candidate.parameters[position];
     double start = 0.0;
     for (const auto& [companion, value] : effect.companions) {

@@ -148,6 +148,24 @@ const std::map<std::string, Bound>& Bounds() {
          return angle > 2.0 ? Exceeds("a trim angle of", angle, 2.0) + " deg"
                             : std::string();
        }},
+      {"asymmetric_body",
+       [](const BoundContext& v) {
+         // Yaw stiffness within 20% of the pitch one, yaw damping within a
+         // factor of two of the pitch one: a body that flies on a 3DOF
+         // bearing as one of revolution does.
+         const double pitch = std::abs(v("Cm_alpha"));
+         const double off = std::abs(v("Cn_beta") + v("Cm_alpha"));
+         if (off > 0.2 * pitch) {
+           return Exceeds("|Cn_beta + Cm_alpha|", off, 0.2 * pitch) +
+                  " (20% of |Cm_alpha|)";
+         }
+         const double damping = std::abs(v("Cm_q"));
+         const double damping_off = std::abs(v("Cn_r") - v("Cm_q"));
+         if (damping > 0.0 && damping_off > damping) {
+           return Exceeds("|Cn_r - Cm_q|", damping_off, damping) + " (|Cm_q|)";
+         }
+         return std::string();
+       }},
       {"roll_interaction", ReadingError},
       {"calibration_nonlinearity", Calibration},
       {"nonlinear_stiffness",

@@ -182,6 +182,25 @@ void Judge(const Case& c, const PipelineOutcome& outcome, FitResult* result) {
   }
 }
 
+// A tied parameter's estimate from its source's: the value is already the
+// tie's, the errors scale with the factor.
+void TieEstimate(const ParameterTie& tie,
+                 std::vector<ParameterEstimate>* estimates) {
+  auto at = [&](int position) -> ParameterEstimate* {
+    for (ParameterEstimate& e : *estimates) {
+      if (e.position == position && e.segment.empty()) return &e;
+    }
+    return nullptr;
+  };
+  ParameterEstimate* image = at(tie.image);
+  const ParameterEstimate* source = at(tie.source);
+  if (image == nullptr || source == nullptr) return;
+  image->tied_to = source->name;
+  image->tie_factor = tie.factor;
+  image->rms_error = std::abs(tie.factor) * source->rms_error;
+  image->standard_error = std::abs(tie.factor) * source->standard_error;
+}
+
 // An estimate for every parameter of the model in use; with several
 // segments their own initial conditions follow in FitSegments.
 std::vector<ParameterEstimate> Estimates(const Case& c,
@@ -194,6 +213,7 @@ std::vector<ParameterEstimate> Estimates(const Case& c,
   for (int g = 0; g < free.size(); ++g) {
     if (free.segment[g] < 0) final_values[free.position[g]] = values[g];
   }
+  ApplyTies(free.ties, final_values.data());
   const bool several = problem.segments.size() > 1;
   std::vector<ParameterEstimate> estimates;
   for (int i = 0; i < NumParameters(c.model); ++i) {
@@ -217,6 +237,7 @@ std::vector<ParameterEstimate> Estimates(const Case& c,
     }
     estimates.push_back(e);
   }
+  for (const ParameterTie& tie : free.ties) TieEstimate(tie, &estimates);
   return estimates;
 }
 
@@ -480,6 +501,7 @@ Case CaseAtSolution(const Case& c, const FitResult& r) {
       at.parameters[e.position].auto_start = false;
     }
   }
+  at.SettleTies();
   for (size_t s = 0; s < at.segments.size() && s < r.segments.size(); ++s) {
     at.segments[s].initial_conditions = InitialConditionMode::kGiven;
     for (int j = 0; j < 6; ++j) {

@@ -103,6 +103,7 @@ std::vector<std::string> FreeNames(const Case& c,
 // Shared free parameters first, then each segment's own initial conditions.
 FreeLayout LayOut(const Case& c, const std::vector<PreparedSegment>& segs) {
   FreeLayout free;
+  free.ties = c.Ties();
   for (int i = 0; i < NumParameters(c.model); ++i) {
     if (c.parameters[i].free && !IsInitialCondition(c.model, i)) {
       free.shared.push_back(i);
@@ -167,7 +168,7 @@ FitProblem PrepareProblem(const Case& c, const std::vector<TimeHistory>& data) {
   }
   p.names = FreeNames(c, p.free, p.segments);
   p.model = std::make_shared<const MotionModel>(
-      c.Spec(), ActiveParameters(c.Values(), c.FreeFlags()));
+      c.Spec(), ActiveParameters(c.Values(), c.VaryingFlags()));
   return p;
 }
 

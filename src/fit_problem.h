@@ -44,6 +44,9 @@ struct FreeLayout {
   std::vector<int> own_offset;  // first global index of each segment
   std::vector<int> position;    // position of global index g
   std::vector<int> segment;     // -1 for shared
+  // Parameters that follow others (case.h), free sources or not: every
+  // evaluation applies them.
+  std::vector<ParameterTie> ties;
   int size() const { return static_cast<int>(position.size()); }
 };
 

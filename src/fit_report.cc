@@ -70,11 +70,17 @@ ordered_json ReportObject(const FitResult& r) {
   for (const ParameterEstimate& e : r.parameters) {
     parameters[e.name] = {
         {"value", JsonNumber(e.value)},
-        {"standard_error", e.free ? JsonNumber(e.standard_error) : json()},
-        {"rms_error", e.free ? JsonNumber(e.rms_error) : json()},
+        {"standard_error",
+         e.free || !e.tied_to.empty() ? JsonNumber(e.standard_error) : json()},
+        {"rms_error",
+         e.free || !e.tied_to.empty() ? JsonNumber(e.rms_error) : json()},
         {"free", e.free},
         {"units", e.units}};
     if (!e.segment.empty()) parameters[e.name]["segment"] = e.segment;
+    if (!e.tied_to.empty()) {
+      parameters[e.name]["tied_to"] = e.tied_to;
+      parameters[e.name]["tie_factor"] = e.tie_factor;
+    }
   }
   report["parameters"] = parameters;
   json matrix = json::array();
@@ -185,7 +191,7 @@ namespace {
 
 // An error bar as the table prints it.
 std::string ErrorText(const ParameterEstimate& e, double error) {
-  if (!e.free) return "(frozen)";
+  if (!e.free && e.tied_to.empty()) return "(frozen)";
   if (!std::isfinite(error)) return "undetermined";
   return FormatNumber("%.3g", error);
 }
@@ -228,17 +234,23 @@ std::string FormatFitTable(const FitResult& r) {
                 "units");
   out += line;
   for (const ParameterEstimate& e : r.parameters) {
-    if (!e.free && e.value == 0.0) continue;
+    if (!e.free && e.tied_to.empty() && e.value == 0.0) continue;
     const std::string standard = ErrorText(e, e.standard_error);
     const std::string rms = ErrorText(e, e.rms_error);
+    // A tied parameter says whose value it follows.
+    const std::string units =
+        e.tied_to.empty()
+            ? e.units
+            : e.units + "  (tied: " + FormatNumber("%g", e.tie_factor) + " x " +
+                  e.tied_to + ")";
     std::snprintf(line,
                   sizeof(line),
                   "  %-26s %15.7g %12s %12s  %s\n",
                   e.name.c_str(),
                   e.value,
                   standard.c_str(),
-                  e.free ? rms.c_str() : "",
-                  e.units.c_str());
+                  e.free || !e.tied_to.empty() ? rms.c_str() : "",
+                  units.c_str());
     out += line;
   }
   if (!r.adequacy.empty() && r.adequacy != "white") {

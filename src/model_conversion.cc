@@ -5,8 +5,11 @@
 
 #include "fit3dof/model_conversion.h"
 
+#include <glog/logging.h>
+
 #include <array>
 #include <cmath>
+#include <string>
 
 #include "fit3dof/input_error.h"
 #include "fit3dof/parameters.h"
@@ -72,6 +75,15 @@ const std::vector<const char*>& SymmetricWithoutImage() {
 
 namespace {
 
+// The first image listed of symmetric coefficient `name`.
+const CoefficientImage& FirstImage(const char* name) {
+  for (const CoefficientImage& image : SymmetricImages()) {
+    if (std::string(image.symmetric) == name) return image;
+  }
+  LOG(FATAL) << name << " has no image";
+  return SymmetricImages().front();
+}
+
 // Initial conditions in the symmetric order (phi, phidot, theta, thetadot,
 // psi, psidot) as the asymmetric program's (phi, theta, psi, p, q, r), each
 // with the flags of the symmetric entry it comes from.
@@ -101,6 +113,19 @@ std::array<ParameterSetting, 6> ToBodyRates(
 
 }  // namespace
 
+bool SymmetricTie(const std::string& name, ParameterTie* tie) {
+  for (const CoefficientImage& image : SymmetricImages()) {
+    if (name != image.asymmetric) continue;
+    const CoefficientImage& first = FirstImage(image.symmetric);
+    if (&first == &image) return false;
+    tie->image = FindParameter(ModelKind::kAsymmetric, image.asymmetric);
+    tie->source = FindParameter(ModelKind::kAsymmetric, first.asymmetric);
+    tie->factor = image.sign / first.sign;
+    return true;
+  }
+  return false;
+}
+
 Case ToAsymmetric(const Case& c) {
   if (c.model == ModelKind::kAsymmetric) return c;
   Case a = c;
@@ -118,11 +143,21 @@ Case ToAsymmetric(const Case& c) {
                        " has no image in the asymmetric program");
     }
   }
+  // The first image of each symmetric term takes its setting; the others
+  // are tied to it, so the asymmetric case fits no more parameters than
+  // the symmetric one and keeps the body axisymmetric.
   for (const CoefficientImage& image : SymmetricImages()) {
     ParameterSetting q = from(image.symmetric);
     q.value = image.sign * q.value;
+    ParameterTie tie;
+    if (SymmetricTie(image.asymmetric, &tie)) {
+      q = ParameterSetting{};
+      q.tied_to = tie.source;
+      q.tie_factor = tie.factor;
+    }
     a.parameters[FindParameter(ModelKind::kAsymmetric, image.asymmetric)] = q;
   }
+  a.SettleTies();
   const int sym_first = Layout(ModelKind::kSymmetric).first_initial;
   const int asym_first = Layout(ModelKind::kAsymmetric).first_initial;
   std::array<ParameterSetting, 6> defaults;

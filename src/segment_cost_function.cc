@@ -7,6 +7,7 @@
 
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "fit3dof/angles.h"
@@ -72,7 +73,16 @@ void SegmentCostFunction::GatherFree(double const* const* parameters,
 std::vector<double> SegmentCostFunction::FullFromFree(const double* u) const {
   std::vector<double> full = base_;
   for (size_t j = 0; j < free_.size(); ++j) full[free_[j]] = scale_[j] * u[j];
+  ApplyTies(ties_, full.data());
   return full;
+}
+
+void SegmentCostFunction::set_ties(std::vector<ParameterTie> ties) {
+  for (const ParameterTie& tie : ties) {
+    CHECK(std::find(free_.begin(), free_.end(), tie.image) == free_.end())
+        << "tied parameter " << tie.image << " is free";
+  }
+  ties_ = std::move(ties);
 }
 
 std::vector<double> SegmentCostFunction::FullValues(
@@ -160,10 +170,24 @@ bool SegmentCostFunction::EvaluateSensitivities(const double* u,
     wrt[l] = free_[lanes[l]];
     Locate(lanes[l], &block[l], &column[l]);
   }
-  std::vector<double> angles(3 * n), derivatives(3 * n * m);
+  // A tied image's sensitivity is added to its source's column.
+  struct ImageColumn {
+    int lane;
+    double factor;
+  };
+  std::vector<ImageColumn> images;
+  for (const ParameterTie& tie : ties_) {
+    for (int l = 0; l < m; ++l) {
+      if (wrt[l] != tie.source) continue;
+      images.push_back({l, tie.factor});
+      wrt.push_back(tie.image);
+    }
+  }
+  const int columns = static_cast<int>(wrt.size());
+  std::vector<double> angles(3 * n), derivatives(3 * n * columns);
   if (!model_->EvaluateWithSensitivities(full.data(),
                                          wrt.data(),
-                                         m,
+                                         columns,
                                          data_.t.data(),
                                          n,
                                          angles.data(),
@@ -179,10 +203,13 @@ bool SegmentCostFunction::EvaluateSensitivities(const double* u,
       const double r = WeightedResidual(i, c, angles[row], inv_sigma[c]);
       if (!std::isfinite(r)) return false;
       residuals[row] = r;
+      double* dvalue = &derivatives[row * columns];
+      for (size_t e = 0; e < images.size(); ++e) {
+        dvalue[images[e].lane] += images[e].factor * dvalue[m + e];
+      }
       for (int l = 0; l < m; ++l) {
         // d/du = scale d/dvalue (value = scale u).
-        const double d =
-            derivatives[row * m + l] * scale_[lanes[l]] * inv_sigma[c];
+        const double d = dvalue[l] * scale_[lanes[l]] * inv_sigma[c];
         if (!std::isfinite(d)) return false;
         const int b = block[l];
         jacobians[b][row * parameter_block_sizes()[b] + column[l]] = d;

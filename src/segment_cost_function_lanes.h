@@ -63,6 +63,7 @@ bool SegmentCostFunction::EvaluateLanes(const double* u,
   for (size_t j = 0; j < free_.size(); ++j)
     full[free_[j]] = J(scale_[j] * u[j]);
   for (int l = 0; l < count; ++l) full[free_[lanes[l]]].v[l] = scale_[lanes[l]];
+  ApplyTies(ties_, full.data());
   std::vector<J> angles(3 * n);
   if (!Predict(full.data(), angles.data(), nullptr)) return false;
   const double inv_sigma[3] = {

@@ -27,7 +27,7 @@ TimeHistory Motion(const Case& c,
                           c.solver.step,
                           c.source);
   }
-  MotionModel model(c.Spec(), ActiveParameters(values, c.FreeFlags()));
+  MotionModel model(c.Spec(), ActiveParameters(values, c.VaryingFlags()));
   model.set_random_moment(std::move(random_moment));
   std::vector<double> angles(3 * n);
   IntegrationFailure failure;

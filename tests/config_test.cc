@@ -281,7 +281,43 @@ INSTANTIATE_TEST_SUITE_P(
                 "test.yaml:20: the text is not valid UTF-8"},
         BadCase{"every: 3",
                 "every: 3000000000",
-                "data.every: expected an integer from 1 to 2147483647"}));
+                "data.every: expected an integer from 1 to 2147483647"},
+        // Ties (case.h).
+        BadCase{"Cl_p: -0.0081",
+                "Cl_p: {tied: Cl_pp, factor: 2}",
+                "parameters.Cl_p.tied: unknown parameter 'Cl_pp'"},
+        BadCase{"Cl_p: -0.0081",
+                "Cl_p: {tied: Cl_p}",
+                "parameters.Cl_p.tied: expected another parameter"},
+        BadCase{"Cl_p: -0.0081",
+                "Cl_p: {tied: theta0}",
+                "initial conditions belong to each segment"},
+        BadCase{"Cl_p: -0.0081",
+                "Cl_p: {tied: Cm_q, value: 1}",
+                "parameters.Cl_p.value: unknown key"},
+        BadCase{"Cl_p: -0.0081",
+                "Cl_p: {tied: Cm_q, factor: x}",
+                "parameters.Cl_p.factor: expected a number"},
+        BadCase{"Cl_p: -0.0081",
+                "Cl_p: {tied: t2}\n  t2: {tied: Cm_q}",
+                "is itself tied; tie to the parameter it follows"}));
+
+// A tied parameter holds its factor times its source's value, and follows
+// it as a fit moves it (fit_test, segment_cost_function_test).
+TEST(Config, TiedParameterFollowsItsSource) {
+  const Case c = Parse(
+      Replace(kValid, "Cl_p: -0.0081", "Cl_p: {tied: Cm_q, factor: 0.5}"));
+  const int cl_p = FindParameter(ModelKind::kSymmetric, "Cl_p");
+  const int cm_q = FindParameter(ModelKind::kSymmetric, "Cm_q");
+  ASSERT_TRUE(c.parameters[cl_p].tied());
+  EXPECT_EQ(c.parameters[cl_p].tied_to, cm_q);
+  EXPECT_FALSE(c.parameters[cl_p].free);
+  EXPECT_EQ(c.Values()[cl_p], 0.5 * c.Values()[cm_q]);
+  EXPECT_EQ(c.parameters[cl_p].value, 0.5 * c.parameters[cm_q].value);
+  EXPECT_EQ(c.VaryingFlags()[cl_p], c.parameters[cm_q].free);
+  ASSERT_EQ(c.Ties().size(), 1u);
+  EXPECT_EQ(c.Ties()[0].factor, 0.5);
+}
 
 TEST(Config, AsymmetricNeedsIzAndAValidProductOfInertia) {
   std::string text = Replace(kValid, "model: symmetric", "model: asymmetric");

@@ -57,6 +57,20 @@ TEST(ConfigWriter, TheDeckCaseReadsBackAsTheSameCase) {
   EXPECT_TRUE(RoundTrip(c, dir) == c) << CaseToYaml(c);
 }
 
+// The asymmetric image of a symmetric case keeps its symmetric relations as
+// ties (model_conversion.h), written as such and read back.
+TEST(ConfigWriter, TiesReadBack) {
+  const std::string dir = testing::ScratchDirectory("config_writer_ties");
+  const Case c = ToAsymmetric(
+      LoadConfig(testing::SourcePath("configs/report/table6_motion.yaml")));
+  const std::string text = CaseToYaml(c);
+  EXPECT_NE(text.find("Cn_beta: {tied: Cm_alpha, factor: -1.0}"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("Cn_r: {tied: Cm_q, factor: 1.0}"), std::string::npos);
+  EXPECT_TRUE(RoundTrip(c, dir) == c) << text;
+}
+
 TEST(ConfigWriter, NamesAndPathsThatLookLikeYamlSurvive) {
   const std::string dir = testing::ScratchDirectory("config_writer_quoting");
   Case c =

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fit3dof/config.h"
+#include "fit3dof/parameters.h"
 #include "fit3dof/simulator.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
@@ -25,7 +26,8 @@ Block Make(ModelKind model,
            const std::vector<int>& shared,
            const std::vector<int>& own,
            std::vector<double> scale = {},
-           Incidence incidence = Incidence::kVelocityRatio) {
+           Incidence incidence = Incidence::kVelocityRatio,
+           const std::vector<ParameterTie>& ties = {}) {
   Case c = LoadConfig(testing::SourcePath(
       model == ModelKind::kSymmetric ? "configs/report/table6_motion.yaml"
                                      : "configs/report/check_case_1.yaml"));
@@ -39,6 +41,7 @@ Block Make(ModelKind model,
     }
     values[59] = 0.001;
   }
+  ApplyTies(ties, values.data());
   std::vector<double> times;
   for (int i = 0; i < 60; ++i) times.push_back(0.05 * i);
   TimeHistory data = SimulateAt(c, values, times);
@@ -47,6 +50,7 @@ Block Make(ModelKind model,
   free.insert(free.end(), own.begin(), own.end());
   std::vector<bool> flags(values.size(), false);
   for (int i : free) flags[i] = true;
+  for (const ParameterTie& tie : ties) flags[tie.image] = flags[tie.source];
   if (scale.empty()) scale.assign(free.size(), 1.0);
   auto motion = std::make_shared<const MotionModel>(
       c.Spec(), ActiveParameters(values, flags));
@@ -59,6 +63,7 @@ Block Make(ModelKind model,
                                             scale,
                                             data,
                                             ChannelValues{1.0, 0.01, 0.02});
+  s.cost->set_ties(ties);
   std::vector<double> a, b;
   for (size_t j = 0; j < shared.size(); ++j)
     a.push_back(values[shared[j]] / scale[j]);
@@ -209,6 +214,55 @@ TEST(SegmentCostFunction, SensitivitiesEqualJetLanes) {
               << " residual " << r;
         }
       }
+    }
+  }
+}
+
+// The asymmetric program with the symmetric relations tied
+// (model_conversion.h): each image follows its source, whose Jacobian
+// column then carries the image's too, alike by Jet lanes and by
+// sensitivities and equal to differences of the residuals.
+TEST(SegmentCostFunction, TiedImagesFollowTheirSources) {
+  const ModelKind a = ModelKind::kAsymmetric;
+  auto at = [&](const char* name) { return FindParameter(a, name); };
+  const std::vector<ParameterTie> ties = {
+      {at("Cn_beta"), at("Cm_alpha"), -1.0},
+      {at("Cn_r"), at("Cm_q"), 1.0},
+      {at("Cn_p_alpha"), at("Cm_p_beta"), 1.0},
+      {at("psi_cos_phi"), at("theta_cos_phi"), 0.5},
+      {at("Cn_beta3"), at("Cm_alpha3"), -1.0}};  // a frozen source
+  const std::vector<int> shared = {
+      at("Cm_alpha"), at("Cm_q"), at("Cm_p_beta"), at("theta_cos_phi")};
+  const std::vector<int> initial = {66, 67, 68, 69, 70, 71};
+  for (auto method : {SegmentCostFunction::JacobianMethod::kJetLanes,
+                      SegmentCostFunction::JacobianMethod::kSensitivities}) {
+    Block s = Make(a, shared, initial, {}, Incidence::kVelocityRatio, ties);
+    s.cost->set_jacobian_method(method);
+    CheckGradient(s);
+    // Moving a source moves its image: the full vector follows the tie.
+    s.blocks[0][0] += 0.01;
+    const double* p[2] = {s.blocks[0].data(), s.blocks[1].data()};
+    const std::vector<double> full = s.cost->FullValues(p);
+    EXPECT_EQ(full[at("Cn_beta")], -full[at("Cm_alpha")]);
+    EXPECT_EQ(full[at("psi_cos_phi")], 0.5 * full[at("theta_cos_phi")]);
+    EXPECT_EQ(full[at("Cn_beta3")], -full[at("Cm_alpha3")]);
+  }
+  Block jets = Make(a, shared, initial, {}, Incidence::kVelocityRatio, ties);
+  Block sensitivities =
+      Make(a, shared, initial, {}, Incidence::kVelocityRatio, ties);
+  std::vector<double> r_jet, r_sens;
+  std::vector<std::vector<double>> j_jet, j_sens;
+  EvaluateBy(
+      jets, SegmentCostFunction::JacobianMethod::kJetLanes, &r_jet, &j_jet);
+  EvaluateBy(sensitivities,
+             SegmentCostFunction::JacobianMethod::kSensitivities,
+             &r_sens,
+             &j_sens);
+  ASSERT_EQ(r_jet, r_sens);
+  for (size_t b = 0; b < j_jet.size(); ++b) {
+    for (size_t i = 0; i < j_jet[b].size(); ++i) {
+      ASSERT_NEAR(
+          j_sens[b][i], j_jet[b][i], 1e-9 * (1.0 + std::abs(j_jet[b][i])));
     }
   }
 }

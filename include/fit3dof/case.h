@@ -27,7 +27,33 @@ struct ParameterSetting {
   bool free = false;        // the report's NCON(i) = 1
   bool auto_start = false;  // free without a value (or value: auto): the
                             // fit estimates a starting value from the data
+  // A parameter tied to another (config: `Cn_beta: {tied: Cm_alpha,
+  // factor: -1}`): it is not free and always holds tie_factor times the
+  // value of the parameter at position tied_to, which is neither tied nor
+  // an initial condition. The symmetric relations of an axisymmetric body
+  // in the asymmetric program (model_conversion.h) are such ties: the
+  // asymmetric fit then costs no more parameters than the symmetric one.
+  int tied_to = -1;
+  double tie_factor = 1.0;
+
+  bool tied() const { return tied_to >= 0; }
 };
+
+// A tie as the fitter applies it: values[image] = factor * values[source].
+struct ParameterTie {
+  int image = 0;
+  int source = 0;
+  double factor = 1.0;
+};
+
+// values[image] = factor * values[source] for every tie. T: double or a
+// ceres::Jet, whose derivatives then follow the source's.
+template <typename T>
+void ApplyTies(const std::vector<ParameterTie>& ties, T* values) {
+  for (const ParameterTie& tie : ties) {
+    values[tie.image] = tie.factor * values[tie.source];
+  }
+}
 
 // Per-channel numbers: sigma weights, noise levels, biases (degrees).
 struct ChannelValues {
@@ -152,8 +178,17 @@ struct Case {
   SimulateOptions simulate;
 
   ModelSpec Spec() const;
+  // Every parameter's value, tied ones as their tie makes them.
   std::vector<double> Values() const;
   std::vector<bool> FreeFlags() const;
+  // Free, or tied to a free parameter: the terms a fit varies (the active
+  // set of the model it fits, motion_model.h).
+  std::vector<bool> VaryingFlags() const;
+  // The ties among the parameters.
+  std::vector<ParameterTie> Ties() const;
+  // Sets each tied parameter's stored value from its source's (after the
+  // sources' values changed, e.g. at a fit's solution).
+  void SettleTies();
 };
 
 // Member-wise equality; a Case's `source` (where it was read from) is not

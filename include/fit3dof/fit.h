@@ -52,6 +52,10 @@ struct ParameterEstimate {
   double standard_error = 0.0;
   bool free = false;
   std::string units;
+  // A tied parameter (case.h): the name of its source, and the factor.
+  // Its value and errors are the source's times the factor (in size).
+  std::string tied_to;
+  double tie_factor = 1.0;
 };
 
 // A spectral line of a channel's error that the standard errors count

@@ -13,6 +13,7 @@
 #ifndef FIT3DOF_MODEL_CONVERSION_H_
 #define FIT3DOF_MODEL_CONVERSION_H_
 
+#include <string>
 #include <vector>
 
 #include "fit3dof/angles.h"
@@ -38,8 +39,15 @@ const std::vector<CoefficientImage>& SymmetricImages();
 // Cm_p_alpha_delta2, Cm_alphadot).
 const std::vector<const char*>& SymmetricWithoutImage();
 
+// The tie ToAsymmetric gives the asymmetric coefficient `name` (to the
+// first image of the same symmetric term, e.g. Cn_beta: -1 x Cm_alpha);
+// false for a first image and for a name no symmetric term maps to.
+bool SymmetricTie(const std::string& name, ParameterTie* tie);
+
 // The same motion in the asymmetric program (body axes, I_zx): every
-// symmetric term mapped to its images, free flags with them, I_z = I_y.
+// symmetric term mapped to its images, the first image listed taking its
+// value and free flag and the others tied to it (case.h: Cn_beta follows
+// -Cm_alpha, Cn_r follows Cm_q, ...), I_z = I_y.
 // Throws InputError when the case uses a term without an image. Initial
 // conditions are converted from Euler rates to body rates.
 Case ToAsymmetric(const Case& c);

@@ -120,6 +120,11 @@ class SegmentCostFunction : public ceres::CostFunction {
   // error. Jacobians then come from Jet lanes.
   void set_innovation_weights(std::shared_ptr<const InnovationWeights> w);
 
+  // Ties among the parameters (ParameterTie, case.h): each image follows
+  // its source in every evaluation, and a free source's derivative counts
+  // its images' (d/d source + factor d/d image). Images are never free.
+  void set_ties(std::vector<ParameterTie> ties);
+
   // The full parameter vector for the blocks' current values.
   std::vector<double> FullValues(double const* const* parameters) const;
 
@@ -200,6 +205,7 @@ class SegmentCostFunction : public ceres::CostFunction {
   ChannelValues sigma_;
   JacobianMethod method_ = JacobianMethod::kAuto;
   std::shared_ptr<const InnovationWeights> innovation_weights_;
+  std::vector<ParameterTie> ties_;
   std::vector<double> measured_;  // 3 n, for the filter
   mutable std::atomic<int> failures_{0};
 };
