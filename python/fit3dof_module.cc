@@ -114,20 +114,28 @@ void SetParameter(Case* c,
                      ModelName(c->model) + " model" +
                      (hint.empty() ? "" : " (did you mean " + hint + "?)"));
   }
+  // A tied parameter given a value or a freedom of its own is untied: it
+  // would otherwise silently keep following its source.
+  if (!value.is_none() || !free.is_none()) c->parameters[i].tied_to = -1;
   if (!value.is_none()) {
     c->parameters[i].value = value.cast<double>();
     c->parameters[i].auto_start = false;
   }
   if (!free.is_none()) c->parameters[i].free = free.cast<bool>();
+  c->SettleTies();
 }
 
 py::dict CaseParameters(const Case& c) {
   py::dict out;
   const auto& table = ParameterTable(c.model);
   for (size_t i = 0; i < table.size(); ++i) {
-    out[table[i].name.c_str()] =
-        py::dict(py::arg("value") = c.parameters[i].value,
-                 py::arg("free") = c.parameters[i].free);
+    const ParameterSetting& p = c.parameters[i];
+    py::dict entry(py::arg("value") = p.value, py::arg("free") = p.free);
+    if (p.tied()) {
+      entry["tied_to"] = table[p.tied_to].name;
+      entry["tie_factor"] = p.tie_factor;
+    }
+    out[table[i].name.c_str()] = entry;
   }
   return out;
 }
@@ -163,13 +171,15 @@ PYBIND11_MODULE(_fit3dof, m) {
           [](const Case& c) { return std::string(ModelName(c.model)); })
       .def_property_readonly("parameters",
                              &CaseParameters,
-                             "name -> {'value', 'free'}, every parameter")
+                             "name -> {'value', 'free'} (and 'tied_to', "
+                             "'tie_factor' for a tied one), every parameter")
       .def("set_parameter",
            &SetParameter,
            py::arg("name"),
            py::arg("value") = py::none(),
            py::arg("free") = py::none(),
-           "Sets a parameter's starting (or fixed) value and/or freedom.")
+           "Sets a parameter's starting (or fixed) value and/or freedom "
+           "(a tied parameter is untied).")
       .def("to_yaml", &CaseToYaml, "The config as YAML (loads back equal).")
       .def("__eq__", [](const Case& a, const Case& b) { return a == b; })
       .def("__repr__", [](const Case& c) {
@@ -185,11 +195,16 @@ PYBIND11_MODULE(_fit3dof, m) {
       .def_readonly("rms_error", &ParameterEstimate::rms_error)
       .def_readonly("units", &ParameterEstimate::units)
       .def_readonly("free", &ParameterEstimate::free)
+      .def_readonly("tied_to", &ParameterEstimate::tied_to)
+      .def_readonly("tie_factor", &ParameterEstimate::tie_factor)
       .def("__repr__", [](const ParameterEstimate& e) {
         std::ostringstream out;
         out.precision(6);
         out << "<" << e.name << " = " << e.value;
-        if (e.free) out << " +- " << e.standard_error;
+        if (e.free || !e.tied_to.empty()) out << " +- " << e.standard_error;
+        if (!e.tied_to.empty()) {
+          out << " (tied: " << e.tie_factor << " x " << e.tied_to << ")";
+        }
         out << (e.units.empty() ? "" : " ") << e.units << ">";
         return out.str();
       });

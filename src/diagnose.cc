@@ -711,9 +711,13 @@ ResidualCheck SettleFinalModel(const Case& user,
   return CheckResiduals(d->FinalFit(), options);
 }
 
-}  // namespace
-
-Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
+// The forward search (diagnose.h) with `options`' catalog; *tied_first
+// gets the effect it followed at a tie of two catalog effects (empty if
+// none).
+Diagnosis Search(const Case& c,
+                 const DiagnoseOptions& options,
+                 std::string* tied_first) {
+  tied_first->clear();
   Diagnosis d;
   Case current = c;
   FitResult fit = Fit(current);
@@ -771,6 +775,7 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
       d.separated_by =
           Separation(*best.candidate->effect, *rival.candidate->effect, c, fit);
       tie = static_cast<int>(d.steps.size());
+      *tied_first = best.record.effect;
     } else if (tie < 0 && probed &&
                probe.bic < best.bic + options.ambiguity_bic) {
       d.ambiguous = {best.record, probe.record};
@@ -805,6 +810,48 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
   FinalValues(&d);
   Conclude(&d);
   return d;
+}
+
+// The tied effect `first` as the search that followed it found it: its
+// record from the first step that had it among the contenders.
+CandidateFit FollowedFirst(const Diagnosis& d, const std::string& first) {
+  for (const DiagnosisStep& s : d.partial) {
+    for (const CandidateFit& k : s.contenders) {
+      if (k.effect == first) return k;
+    }
+  }
+  CandidateFit none;
+  none.effect = first;
+  return none;
+}
+
+}  // namespace
+
+// A tie followed down the better branch that leaves the record unexplained
+// is followed down the other: a Magnus moment and an asymmetric body lower
+// BIC alike on one short run, but only with the Magnus moment do the
+// other effects in the record bring the residuals to the noise level.
+Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
+  std::string first;
+  Diagnosis d = Search(c, options, &first);
+  if (d.verdict != Verdict::kNotExplained || first.empty()) return d;
+  DiagnoseOptions without = options;
+  without.effects.clear();
+  for (const Effect& e : EffectCatalog()) {
+    if (Wanted(options, e) && e.id != first) without.effects.push_back(e.id);
+  }
+  std::string unused;
+  Diagnosis other = Search(c, without, &unused);
+  if (other.verdict != Verdict::kExplained) return d;
+  CandidateFit followed = FollowedFirst(d, first);
+  followed.rejected =
+      "as good at its step as the effect that replaced it, but whatever "
+      "followed it the residuals stayed structured";
+  other.rejected.push_back(followed);
+  other.verdict_text += "; " + Describe(first) +
+                        ", as good at one step, leaves the residuals "
+                        "structured whatever follows it";
+  return other;
 }
 
 }  // namespace fit3dof

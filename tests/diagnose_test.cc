@@ -546,6 +546,46 @@ TEST(Diagnose, NamesABodyFixedYawAsymmetryInTheAsymmetricProgram) {
   EXPECT_EQ(text.find("()"), std::string::npos) << text;
 }
 
+// Three effects on one short run (a Magnus moment, a nonlinear damping, a
+// calibration nonlinearity): at the first step an asymmetric body lowers
+// BIC as much as the Magnus moment does. Followed first, it leaves the
+// record unexplained whatever comes after; the other branch of the tie,
+// the Magnus moment, explains the record with the other two, and is what
+// the diagnosis gives, the branch left named among the rejected (without
+// the second branch: not_explained). The noise decides which branches get
+// through: of seeds 1-24 of this record, most end `ambiguous` (either
+// branch explains it with the other two: at one spin rate the two are
+// alike), a few end not_explained (neither does); seed 21 is one where
+// only the second does.
+TEST(Diagnose, FollowsTheOtherBranchOfATieThatLeavesTheRecordUnexplained) {
+  const std::string dir = testing::ScratchDirectory("diagnose_tie_branch");
+  Case truth = ShortTruth(30.0);
+  const std::vector<std::pair<const char*, double>> hidden = {
+      {"Cm_0", 0.0},
+      {"Cn_0", 0.0},
+      {"Cm_p_alpha", 2.9},
+      {"Cm_q_delta2", 494.0},
+      {"theta_cal3", 0.027},
+      {"psi_cal3", -0.027}};
+  for (const auto& [name, value] : hidden) {
+    truth.parameters[FindParameter(truth.model, name)].value = value;
+  }
+  const std::string data = SimulateShort(truth, dir + "/data.csv", 21);
+  const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("explained")) << text;
+  std::set<std::string> added;
+  for (const DiagnosisStep& s : d.steps) added.insert(s.effect);
+  EXPECT_TRUE(added.count("magnus")) << text;
+  EXPECT_FALSE(added.count("asymmetric_body")) << text;
+  bool left = false;
+  for (const CandidateFit& k : d.rejected) {
+    left |= k.effect == "asymmetric_body" &&
+            k.rejected.find("whatever followed it") != std::string::npos;
+  }
+  EXPECT_TRUE(left) << text;
+}
+
 // An effect outside the catalog (a pitch reading that drifts 0.05 deg
 // over the Table 6 record) ends not_explained, with at most one effect
 // added, and the residuals described (the trend) for the engineer.

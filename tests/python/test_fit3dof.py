@@ -122,6 +122,25 @@ def test_case_from_dict_equals_the_yaml_file():
     assert from_dict.parameters["Cm_alpha"] == {"value": -0.3, "free": False}
 
 
+def test_tied_parameters_follow_and_untie_when_set():
+    path = os.path.join(REPORT, "table6_sigma0.01.yaml")
+    with open(path) as f:
+        config = yaml.safe_load(f)
+    # Cl_p follows Cm_q; at the truth (-4.0) it is the truth's -0.0081.
+    k = 0.002025
+    config["parameters"]["Cl_p"] = {"tied": "Cm_q", "factor": k}
+    case = fit3dof.Case.from_dict(config, base_dir=REPORT)
+    cm_q = case.parameters["Cm_q"]["value"]
+    assert case.parameters["Cl_p"] == {"value": k * cm_q, "free": False,
+                                       "tied_to": "Cm_q", "tie_factor": k}
+    result = fit3dof.fit(case)
+    cl_p, fitted = result.parameters["Cl_p"], result.parameters["Cm_q"]
+    assert cl_p.tied_to == "Cm_q" and cl_p.value == k * fitted.value
+    assert cl_p.standard_error == k * fitted.standard_error
+    case.set_parameter("Cl_p", value=-0.008)
+    assert case.parameters["Cl_p"] == {"value": -0.008, "free": False}
+
+
 def test_bad_input_raises_value_error_with_the_command_lines_message(
         tmp_path):
     good = os.path.join(REPORT, "table6_sigma0.01.yaml")
