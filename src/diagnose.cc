@@ -528,12 +528,10 @@ void Conclude(Diagnosis* d) {
 // asymmetric program (the step came before the switch) is its first image,
 // the one ToAsymmetric gave its value and free flag.
 int AddedTermPosition(ModelKind model, const std::string& name) {
-  int position = FindParameter(model, name);
+  const int position = FindParameter(model, name);
   if (position >= 0 || model == ModelKind::kSymmetric) return position;
-  for (const CoefficientImage& image : SymmetricImages()) {
-    if (name == image.symmetric) return FindParameter(model, image.asymmetric);
-  }
-  return -1;
+  const CoefficientImage* first = FirstImage(name);
+  return first == nullptr ? -1 : FindParameter(model, first->asymmetric);
 }
 
 // The case `at` without the effect that `step` added: the terms it added
@@ -551,9 +549,7 @@ Case WithoutStep(const Case& at, const DiagnosisStep& step) {
     ParameterTie tie;
     if (without.model == ModelKind::kAsymmetric && SymmetricTie(name, &tie) &&
         !without.parameters[tie.source].tied()) {
-      p = ParameterSetting{};
-      p.tied_to = tie.source;
-      p.tie_factor = tie.factor;
+      p = ParameterSetting::Tied(tie);
       continue;
     }
     p.free = false;
@@ -711,16 +707,18 @@ ResidualCheck SettleFinalModel(const Case& user,
   return CheckResiduals(d->FinalFit(), options);
 }
 
-// The forward search (diagnose.h) with `options`' catalog; *tied_first
+// The forward search (diagnose.h) from `nominal`, the fit of `c`, with
+// `options`' catalog; *tied_first
 // gets the effect it followed at a tie of two catalog effects (empty if
 // none).
 Diagnosis Search(const Case& c,
+                 const FitResult& nominal,
                  const DiagnoseOptions& options,
                  std::string* tied_first) {
   tied_first->clear();
   Diagnosis d;
   Case current = c;
-  FitResult fit = Fit(current);
+  FitResult fit = nominal;
   const std::vector<TimeHistory> data = FittedData(fit);
   d.fits.push_back(fit);
   std::vector<Case> models = {current};  // the model of each of d.fits
@@ -832,8 +830,9 @@ CandidateFit FollowedFirst(const Diagnosis& d, const std::string& first) {
 // BIC alike on one short run, but only with the Magnus moment do the
 // other effects in the record bring the residuals to the noise level.
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
+  const FitResult nominal = Fit(c);
   std::string first;
-  Diagnosis d = Search(c, options, &first);
+  Diagnosis d = Search(c, nominal, options, &first);
   if (d.verdict != Verdict::kNotExplained || first.empty()) return d;
   DiagnoseOptions without = options;
   without.effects.clear();
@@ -841,7 +840,7 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
     if (Wanted(options, e) && e.id != first) without.effects.push_back(e.id);
   }
   std::string unused;
-  Diagnosis other = Search(c, without, &unused);
+  Diagnosis other = Search(c, nominal, without, &unused);
   if (other.verdict != Verdict::kExplained) return d;
   CandidateFit followed = FollowedFirst(d, first);
   followed.rejected =

@@ -175,26 +175,25 @@ bool CandidateCase(const Case& at,
   const auto& names = candidate.model == ModelKind::kSymmetric
                           ? effect.symmetric
                           : effect.asymmetric;
+  const auto& table = ParameterTable(candidate.model);
   added->clear();
   for (const std::string& name : names) {
-    int position = FindParameter(candidate.model, name);
+    const int position = FindParameter(candidate.model, name);
     if (position < 0) continue;
-    ParameterSetting& image = candidate.parameters[position];
-    if (image.tied()) {
+    ParameterSetting& p = candidate.parameters[position];
+    if (p.tied()) {
       // An image whose source the effect names too keeps following it (a
       // Magnus moment in the asymmetric program frees Cm_p_beta, Cn_p_alpha
       // follows); otherwise the effect is the asymmetry itself and frees
       // the image on its own.
-      const std::string& source =
-          ParameterTable(candidate.model)[image.tied_to].name;
+      const std::string& source = table[p.tied_to].name;
       if (std::find(names.begin(), names.end(), source) != names.end())
         continue;
-      image.tied_to = -1;
-      image.free = true;
-      added->push_back(ParameterTable(candidate.model)[position].name);
+      p.tied_to = -1;
+      p.free = true;
+      added->push_back(table[position].name);
       continue;
     }
-    ParameterSetting& p = candidate.parameters[position];
     double start = 0.0;
     for (const auto& [companion, value] : effect.companions) {
       if (companion == name) start = value;
@@ -205,7 +204,7 @@ bool CandidateCase(const Case& at,
     p.free = true;
     if (p.value == 0.0) p.value = start;
     p.auto_start = false;
-    added->push_back(ParameterTable(candidate.model)[position].name);
+    added->push_back(table[position].name);
   }
   // Companions alone (the effect's own terms already in the model) are no
   // candidate.

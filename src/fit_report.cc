@@ -50,6 +50,12 @@ json ResidualsJson(const SegmentFit& s) {
   return out;
 }
 
+// Whether an estimate has error bars: free, or tied to a free parameter
+// (its source's, times the factor).
+bool HasErrorBars(const ParameterEstimate& e) {
+  return e.free || !e.tied_to.empty();
+}
+
 }  // namespace
 
 ordered_json ReportObject(const FitResult& r) {
@@ -71,9 +77,8 @@ ordered_json ReportObject(const FitResult& r) {
     parameters[e.name] = {
         {"value", JsonNumber(e.value)},
         {"standard_error",
-         e.free || !e.tied_to.empty() ? JsonNumber(e.standard_error) : json()},
-        {"rms_error",
-         e.free || !e.tied_to.empty() ? JsonNumber(e.rms_error) : json()},
+         HasErrorBars(e) ? JsonNumber(e.standard_error) : json()},
+        {"rms_error", HasErrorBars(e) ? JsonNumber(e.rms_error) : json()},
         {"free", e.free},
         {"units", e.units}};
     if (!e.segment.empty()) parameters[e.name]["segment"] = e.segment;
@@ -191,7 +196,7 @@ namespace {
 
 // An error bar as the table prints it.
 std::string ErrorText(const ParameterEstimate& e, double error) {
-  if (!e.free && e.tied_to.empty()) return "(frozen)";
+  if (!HasErrorBars(e)) return "(frozen)";
   if (!std::isfinite(error)) return "undetermined";
   return FormatNumber("%.3g", error);
 }
@@ -234,7 +239,7 @@ std::string FormatFitTable(const FitResult& r) {
                 "units");
   out += line;
   for (const ParameterEstimate& e : r.parameters) {
-    if (!e.free && e.tied_to.empty() && e.value == 0.0) continue;
+    if (!HasErrorBars(e) && e.value == 0.0) continue;
     const std::string standard = ErrorText(e, e.standard_error);
     const std::string rms = ErrorText(e, e.rms_error);
     // A tied parameter says whose value it follows.
@@ -249,7 +254,7 @@ std::string FormatFitTable(const FitResult& r) {
                   e.name.c_str(),
                   e.value,
                   standard.c_str(),
-                  e.free || !e.tied_to.empty() ? rms.c_str() : "",
+                  HasErrorBars(e) ? rms.c_str() : "",
                   units.c_str());
     out += line;
   }

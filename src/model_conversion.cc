@@ -5,8 +5,6 @@
 
 #include "fit3dof/model_conversion.h"
 
-#include <glog/logging.h>
-
 #include <array>
 #include <cmath>
 #include <string>
@@ -75,15 +73,6 @@ const std::vector<const char*>& SymmetricWithoutImage() {
 
 namespace {
 
-// The first image listed of symmetric coefficient `name`.
-const CoefficientImage& FirstImage(const char* name) {
-  for (const CoefficientImage& image : SymmetricImages()) {
-    if (std::string(image.symmetric) == name) return image;
-  }
-  LOG(FATAL) << name << " has no image";
-  return SymmetricImages().front();
-}
-
 // Initial conditions in the symmetric order (phi, phidot, theta, thetadot,
 // psi, psidot) as the asymmetric program's (phi, theta, psi, p, q, r), each
 // with the flags of the symmetric entry it comes from.
@@ -113,14 +102,21 @@ std::array<ParameterSetting, 6> ToBodyRates(
 
 }  // namespace
 
+const CoefficientImage* FirstImage(const std::string& symmetric) {
+  for (const CoefficientImage& image : SymmetricImages()) {
+    if (symmetric == image.symmetric) return &image;
+  }
+  return nullptr;
+}
+
 bool SymmetricTie(const std::string& name, ParameterTie* tie) {
   for (const CoefficientImage& image : SymmetricImages()) {
     if (name != image.asymmetric) continue;
-    const CoefficientImage& first = FirstImage(image.symmetric);
-    if (&first == &image) return false;
+    const CoefficientImage* first = FirstImage(image.symmetric);
+    if (first == &image) return false;
     tie->image = FindParameter(ModelKind::kAsymmetric, image.asymmetric);
-    tie->source = FindParameter(ModelKind::kAsymmetric, first.asymmetric);
-    tie->factor = image.sign / first.sign;
+    tie->source = FindParameter(ModelKind::kAsymmetric, first->asymmetric);
+    tie->factor = image.sign / first->sign;
     return true;
   }
   return false;
@@ -150,11 +146,7 @@ Case ToAsymmetric(const Case& c) {
     ParameterSetting q = from(image.symmetric);
     q.value = image.sign * q.value;
     ParameterTie tie;
-    if (SymmetricTie(image.asymmetric, &tie)) {
-      q = ParameterSetting{};
-      q.tied_to = tie.source;
-      q.tie_factor = tie.factor;
-    }
+    if (SymmetricTie(image.asymmetric, &tie)) q = ParameterSetting::Tied(tie);
     a.parameters[FindParameter(ModelKind::kAsymmetric, image.asymmetric)] = q;
   }
   a.SettleTies();

@@ -247,17 +247,12 @@ TEST(SegmentCostFunction, TiedImagesFollowTheirSources) {
     EXPECT_EQ(full[at("psi_cos_phi")], 0.5 * full[at("theta_cos_phi")]);
     EXPECT_EQ(full[at("Cn_beta3")], -full[at("Cm_alpha3")]);
   }
-  Block jets = Make(a, shared, initial, {}, Incidence::kVelocityRatio, ties);
-  Block sensitivities =
-      Make(a, shared, initial, {}, Incidence::kVelocityRatio, ties);
+  Block s = Make(a, shared, initial, {}, Incidence::kVelocityRatio, ties);
   std::vector<double> r_jet, r_sens;
   std::vector<std::vector<double>> j_jet, j_sens;
+  EvaluateBy(s, SegmentCostFunction::JacobianMethod::kJetLanes, &r_jet, &j_jet);
   EvaluateBy(
-      jets, SegmentCostFunction::JacobianMethod::kJetLanes, &r_jet, &j_jet);
-  EvaluateBy(sensitivities,
-             SegmentCostFunction::JacobianMethod::kSensitivities,
-             &r_sens,
-             &j_sens);
+      s, SegmentCostFunction::JacobianMethod::kSensitivities, &r_sens, &j_sens);
   ASSERT_EQ(r_jet, r_sens);
   for (size_t b = 0; b < j_jet.size(); ++b) {
     for (size_t i = 0; i < j_jet[b].size(); ++i) {

@@ -22,6 +22,13 @@
 
 namespace fit3dof {
 
+// A tie as the fitter applies it: values[image] = factor * values[source].
+struct ParameterTie {
+  int image = 0;
+  int source = 0;
+  double factor = 1.0;
+};
+
 struct ParameterSetting {
   double value = 0.0;
   bool free = false;        // the report's NCON(i) = 1
@@ -37,14 +44,16 @@ struct ParameterSetting {
   double tie_factor = 1.0;
 
   bool tied() const { return tied_to >= 0; }
+  // The setting of `tie`'s image.
+  static ParameterSetting Tied(const ParameterTie& tie);
 };
 
-// A tie as the fitter applies it: values[image] = factor * values[source].
-struct ParameterTie {
-  int image = 0;
-  int source = 0;
-  double factor = 1.0;
-};
+inline ParameterSetting ParameterSetting::Tied(const ParameterTie& tie) {
+  ParameterSetting p;
+  p.tied_to = tie.source;
+  p.tie_factor = tie.factor;
+  return p;
+}
 
 // values[image] = factor * values[source] for every tie. T: double or a
 // ceres::Jet, whose derivatives then follow the source's.

@@ -39,6 +39,11 @@ const std::vector<CoefficientImage>& SymmetricImages();
 // Cm_p_alpha_delta2, Cm_alphadot).
 const std::vector<const char*>& SymmetricWithoutImage();
 
+// The first image listed of symmetric coefficient `symmetric`, the one
+// ToAsymmetric gives its value and free flag (Cm_alpha_delta2 -> Cm_alpha3);
+// nullptr for a name with no image.
+const CoefficientImage* FirstImage(const std::string& symmetric);
+
 // The tie ToAsymmetric gives the asymmetric coefficient `name` (to the
 // first image of the same symmetric term, e.g. Cn_beta: -1 x Cm_alpha);
 // false for a first image and for a name no symmetric term maps to.
