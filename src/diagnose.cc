@@ -28,15 +28,38 @@ namespace {
 // The id of a roll-locked effect's rival outside the catalog (diagnose.h).
 constexpr char kDriftInTime[] = "drift_in_time";
 
-// The probe outside the catalog (diagnose.h): fitted and compared, never
-// adopted.
-const Effect& ReadingDrift() {
-  static const Effect probe{
-      "reading_drift",
-      "a drift of the pitch and yaw readings in time (outside the catalog)",
-      {"theta_drift", "psi_drift"},
-      {"theta_drift", "psi_drift"}};
-  return probe;
+// The probes outside the catalog (diagnose.h): fitted and compared, never
+// adopted. A drift in time of the readings or of the dynamic pressure is
+// what a short run most often shows that the catalog does not hold, and
+// what a catalog effect that follows the amplitude (which decays in time)
+// or the roll angle (which grows in time) imitates on one run.
+const std::vector<Effect>& Probes() {
+  static const std::vector<Effect> probes = {
+      {"reading_drift",
+       "a drift of the pitch and yaw readings in time (outside the catalog)",
+       {"theta_drift", "psi_drift"},
+       {"theta_drift", "psi_drift"},
+       false,
+       {},
+       "",
+       ""},
+      {"pressure_drift",
+       "a dynamic pressure drifting during the run (outside the catalog)",
+       {"q_drift"},
+       {"q_drift"},
+       false,
+       {},
+       "",
+       ""},
+  };
+  return probes;
+}
+
+const Effect* FindProbe(const std::string& id) {
+  for (const Effect& e : Probes()) {
+    if (e.id == id) return &e;
+  }
+  return nullptr;
 }
 
 double Bic(const FitResult& r) {
@@ -164,19 +187,36 @@ bool Refit(const Candidate& k,
   return true;
 }
 
-// The probe (ReadingDrift) fitted from the solution `fit` of `current`;
-// false when the case already has its parameters free or the fit fails.
-bool FitProbe(const Case& current,
-              const FitResult& fit,
-              const std::vector<TimeHistory>& data,
-              Candidate* k,
-              Contender* c) {
-  k->effect = &ReadingDrift();
-  if (!CandidateCase(
-          CaseAtSolution(current, fit), *k->effect, &k->c, &k->added)) {
-    return false;
+// The probes (Probes) fitted from the solution `fit` of `current`: the
+// one with the lowest BIC into *probe, its case into *candidates (which
+// *probe points into); false when none could be fitted (the case has their
+// parameters free already, or the fits fail).
+bool FitProbes(const Case& current,
+               const FitResult& fit,
+               const std::vector<TimeHistory>& data,
+               std::vector<Candidate>* candidates,
+               Contender* probe) {
+  const Case at = CaseAtSolution(current, fit);
+  candidates->clear();
+  for (const Effect& e : Probes()) {
+    Candidate k{&e, Case(), {}, {}};
+    if (CandidateCase(at, e, &k.c, &k.added)) {
+      candidates->push_back(std::move(k));
+    }
   }
-  return Refit(*k, fit, data, c);
+  const int n = static_cast<int>(candidates->size());
+  std::vector<Contender> fits(n);
+  std::vector<bool> fitted(n, false);
+  ParallelFor(n, [&](int i) {
+    fitted[i] = Refit((*candidates)[i], fit, data, &fits[i]);
+  });
+  int best = -1;
+  for (int i = 0; i < n; ++i) {
+    if (fitted[i] && (best < 0 || fits[i].bic < fits[best].bic)) best = i;
+  }
+  if (best < 0) return false;
+  *probe = std::move(fits[best]);
+  return true;
 }
 
 // Every contender not rejected otherwise is rejected for the probe, which
@@ -185,7 +225,7 @@ void OutdoneByProbe(const Contender& probe,
                     std::vector<Contender>* contenders) {
   for (Contender& k : *contenders) {
     if (!k.record.rejected.empty()) continue;
-    k.record.rejected = ReadingDrift().description +
+    k.record.rejected = probe.candidate->effect->description +
                         " explains the residual better (BIC lower by " +
                         FormatNumber("%.1f", k.bic - probe.bic) + ")";
   }
@@ -465,8 +505,8 @@ std::string Describe(const std::string& id) {
     return "a slow drift of the readings or of the flow in time (outside "
            "the catalog)";
   }
-  if (id == ReadingDrift().id) return ReadingDrift().description;
-  return FindEffect(id)->description;
+  const Effect* probe = FindProbe(id);
+  return probe != nullptr ? probe->description : FindEffect(id)->description;
 }
 
 void Conclude(Diagnosis* d) {
@@ -515,7 +555,7 @@ void Conclude(Diagnosis* d) {
                    "final model is the one before it") +
         (d->outside_catalog.effect.empty()
              ? ""
-             : "; " + ReadingDrift().description +
+             : "; " + Describe(d->outside_catalog.effect) +
                    " explains more than any catalog effect (BIC lower by " +
                    FormatNumber("%.1f", d->outside_catalog.bic_drop) + ")");
   }
@@ -751,9 +791,9 @@ Diagnosis Search(const Case& c,
         Earned(fit, added, options, &out_of_sample, &contenders);
     // The probe outside the catalog, against the best that earned its
     // place: better by a margin, and nothing is adopted; within it, a tie.
-    Candidate drift;
+    std::vector<Candidate> probes;
     Contender probe;
-    const bool probed = FitProbe(current, fit, data, &drift, &probe) &&
+    const bool probed = FitProbes(current, fit, data, &probes, &probe) &&
                         probe.record.bic_drop >= options.min_bic_drop;
     if (probed && (earned.empty() || probe.bic < contenders[earned[0]].bic -
                                                      options.ambiguity_bic)) {

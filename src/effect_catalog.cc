@@ -80,7 +80,7 @@ const std::vector<Effect>& EffectCatalog() {
        false,
        {},
        "amplitude",
-       "changes the linear stiffness by at most twice its size over the "
+       "changes the linear stiffness by at most 4 times its size over the "
        "record's angles"},
       {"nonlinear_damping",
        "nonlinear pitch and yaw damping (Eq. 16's delta^2 term)",
@@ -89,7 +89,7 @@ const std::vector<Effect>& EffectCatalog() {
        false,
        {},
        "amplitude",
-       "changes the linear damping by at most twice its size over the "
+       "changes the linear damping by at most 4 times its size over the "
        "record's angles"},
       {"roll_damping",
        "roll damping (Cl_p)",

@@ -56,6 +56,7 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"psi_cal3", "psi_cal3", 1.0},
       {"theta_drift", "theta_drift", 1.0},
       {"psi_drift", "psi_drift", 1.0},
+      {"q_drift", "q_drift", 1.0},
   };
   return images;
 }

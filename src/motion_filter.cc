@@ -157,9 +157,21 @@ bool MotionModel::Filter(const double* values,
     }
     q_before = density(state);
   };
-  auto rhs = [&](const StateJet* s, StateJet* ds) { Derivative(k, s, ds); };
-  if (!IntegrateSamples<StateJet, 6>(
-          rhs, times, n, spec_.max_step, Guard(), x, observe, failure)) {
+  // The dynamic pressure's drift as Integrate applies it.
+  std::array<double, kMaxParameters> drifted = internal;
+  const CoefficientView<double> kd(drifted.data(), active_);
+  const double start = n > 0 ? times[0] : 0.0;
+  double t = start;
+  auto rhs = [&](const StateJet* s, StateJet* ds) { Derivative(kd, s, ds); };
+  auto step = [&](double h) {
+    if (!drifting_.empty()) {
+      Drift(internal.data(), t + 0.5 * h - start, drifted.data());
+    }
+    t += h;
+    RungeKutta4Step<StateJet, 6>(rhs, h, x);
+  };
+  if (!IntegrateSamplesWith<StateJet, 6>(
+          step, times, n, spec_.max_step, Guard(), x, observe, failure)) {
     return false;
   }
   if (singular && failure != nullptr) {

@@ -10,6 +10,24 @@
 #include "fit3dof/input_error.h"
 
 namespace fit3dof {
+namespace {
+
+// A coefficient of q S d: a moment that follows the dynamic pressure.
+bool IsMomentCoefficient(Scaling scaling) {
+  switch (scaling) {
+    case Scaling::kPitchStatic:
+    case Scaling::kPitchRate:
+    case Scaling::kYawStatic:
+    case Scaling::kYawRate:
+    case Scaling::kRollStatic:
+    case Scaling::kRollRate:
+      return true;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
 
 void CheckIntegrationSteps(double steps,
                            double span,
@@ -55,6 +73,14 @@ MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
   calibration_ =
       active_[layout_.calibration] || active_[layout_.calibration + 1];
   drift_ = active_[layout_.drift] || active_[layout_.drift + 1];
+  if (active_[layout_.q_drift]) {
+    const auto& table = ParameterTable(spec_.model);
+    for (int i = 0; i < static_cast<int>(table.size()); ++i) {
+      if (active_[i] && IsMomentCoefficient(table[i].scaling)) {
+        drifting_.push_back(i);
+      }
+    }
+  }
   // A moment coefficient as an angular acceleration, as scaling.cc turns
   // Cl_0, Cm and Cn (q S d / I of the axis; one I in the symmetric model).
   const double qsd =

@@ -69,6 +69,16 @@ struct CoefficientPasses {
     for (const auto& pass : narrow) visit(pass);
     for (const auto& pass : thin) visit(pass);
   }
+
+  // visit(&pass, other's pass) for each pass of these and the same one of
+  // `other`, built from the same parameters.
+  template <typename Visit>
+  void ForEachWith(const CoefficientPasses& other, const Visit& visit) {
+    for (size_t i = 0; i < wide.size(); ++i) visit(&wide[i], other.wide[i]);
+    for (size_t i = 0; i < narrow.size(); ++i)
+      visit(&narrow[i], other.narrow[i]);
+    for (size_t i = 0; i < thin.size(); ++i) visit(&thin[i], other.thin[i]);
+  }
 };
 
 // Seeds `pass` with the parameters `internal`, lane l carrying the scale
@@ -192,12 +202,17 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
   const int np = num_parameters();
   std::array<double, kMaxParameters> internal;
   ToInternal(values, &internal);
-  const CoefficientView<double> k(internal.data(), active_);
   const int first_initial = layout_.first_initial;
 
   const SensitivityColumns columns(wrt, m, first_initial, np);
   const CoefficientPasses passes =
       MakePasses(internal, scale_, columns.coefficient_parameters);
+  // The equations of motion see the coefficients as the dynamic pressure
+  // has drifted at each step (Integrate): these copies, updated per step
+  // when q_drift is active; the measurement model sees them as given.
+  std::array<double, kMaxParameters> drifted = internal;
+  CoefficientPasses drifted_passes = passes;
+  const CoefficientView<double> k(drifted.data(), active_);
   const std::vector<int>& jacobian_column = columns.jacobian_column;
 
   // z = (x, S) with S row by row: S(j, q) = z[6 + m j + q]; S(0) holds the
@@ -214,7 +229,7 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
   auto add_coefficient_rates = [&](const double* y,
                                    const auto& trig,
                                    double* ds) {
-    passes.ForEach([&](const auto& pass) {
+    drifted_passes.ForEach([&](const auto& pass) {
       typename std::decay_t<decltype(pass)>::Jet fp[6];
       Derivative(CoefficientView(pass.internal.data(), active_), y, trig, fp);
       for (int j = 0; j < 6; ++j) {
@@ -280,7 +295,17 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
 
   std::vector<double> work(5 * dim);
   double* k1 = work.data();
+  const double start = n > 0 ? times[0] : 0.0;
+  double t = start;
   auto step = [&](double h) {
+    if (!drifting_.empty()) {
+      const double elapsed = t + 0.5 * h - start;
+      Drift(internal.data(), elapsed, drifted.data());
+      drifted_passes.ForEachWith(passes, [&](auto* to, const auto& from) {
+        Drift(from.internal.data(), elapsed, to->internal.data());
+      });
+    }
+    t += h;
     RungeKutta4Step(rhs,
                     h,
                     dim,

@@ -178,6 +178,13 @@ std::vector<ParameterInfo> MakeSymmetricTable() {
        "deg/s",
        S::kAngleRate,
        "reading drift: yaw reading error growing in time"},
+      // A dynamic pressure drifting in time (outside diagnose's catalog).
+      {43,
+       "q_drift",
+       "",
+       "1/s",
+       S::kPerSecond,
+       "dynamic-pressure drift: every moment x (1 + q_drift (t - t_0))"},
   };
 }
 
@@ -496,6 +503,13 @@ std::vector<ParameterInfo> MakeAsymmetricTable() {
        "deg/s",
        S::kAngleRate,
        "reading drift: yaw reading error growing in time"},
+      // A dynamic pressure drifting in time (outside diagnose's catalog).
+      {83,
+       "q_drift",
+       "",
+       "1/s",
+       S::kPerSecond,
+       "dynamic-pressure drift: every moment x (1 + q_drift (t - t_0))"},
   };
 }
 
@@ -558,8 +572,8 @@ std::string SuggestParameter(ModelKind model, std::string_view name) {
 }
 
 const ParameterLayout& Layout(ModelKind model) {
-  static const ParameterLayout symmetric{22, 23, 24, -1, 30, 36, 38, 40};
-  static const ParameterLayout asymmetric{64, 65, 66, 59, 72, 76, 78, 80};
+  static const ParameterLayout symmetric{22, 23, 24, -1, 30, 36, 38, 40, 42};
+  static const ParameterLayout asymmetric{64, 65, 66, 59, 72, 76, 78, 80, 82};
   return model == ModelKind::kSymmetric ? symmetric : asymmetric;
 }
 

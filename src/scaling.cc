@@ -45,6 +45,7 @@ std::vector<double> InternalScaleFactors(ModelKind model,
         factors[i] = kDegree;
         break;
       case Scaling::kInertia:
+      case Scaling::kPerSecond:
       case Scaling::kUnused:
         factors[i] = 1.0;
         break;

@@ -3,11 +3,13 @@
 // Implausible (effect_validation.cc): each effect's plausibility bound
 // (Effect::bounds) against fitted values and the record's angles.
 
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "diagnose_internal.h"
+#include "fit3dof/angles.h"
 #include "fit3dof/diagnose.h"
 #include "gtest/gtest.h"
 
@@ -61,6 +63,24 @@ TEST(Implausible, CalibrationAtEachChannelsLargestAngle) {
   // A large term in a channel that stays near zero is harmless.
   EXPECT_EQ(calibration("psi_cal3", 5.0, 20.0, 0.5), "");
   EXPECT_NE(calibration("psi_cal3", 5.0, 0.5, 20.0), "");
+}
+
+// A nonlinear damping may change Cm_q by up to 4 times its size at the
+// record's largest angle: 3 times (a damping that reverses at 8 deg) is
+// plausible, 5 is not.
+TEST(Implausible, NonlinearTermAgainstItsLinearOne) {
+  const double d2 = std::pow(8.0 * kDegree, 2);
+  const auto damping = [&](double times) {
+    return Verdict(
+        "nonlinear_damping",
+        Fitted({{"Cm_q", -5.5}, {"Cm_q_delta2", times * 5.5 / d2}}, 8.0, 1.0));
+  };
+  EXPECT_EQ(damping(3.0), "");
+  const std::string why = damping(5.0);
+  EXPECT_NE(why.find("it changes Cm_q by 27.5 over the record, more than 4 "
+                     "times |Cm_q| = 5.5"),
+            std::string::npos)
+      << why;
 }
 
 TEST(Implausible, ReadingErrorTrimAngleAndBearingAngle) {

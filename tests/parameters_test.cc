@@ -37,8 +37,8 @@ TEST(Parameters, TablesHaveTheReportsSizeAndOrder) {
   // calibration nonlinearity (2) and the reading drift (2).
   EXPECT_EQ(kReportParameters[0], 30);
   EXPECT_EQ(kReportParameters[1], 72);
-  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 42);
-  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 82);
+  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 43);
+  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 83);
   for (ModelKind model : {ModelKind::kSymmetric, ModelKind::kAsymmetric}) {
     const auto& table = ParameterTable(model);
     std::set<std::string> names;

@@ -74,15 +74,20 @@
 // outside the catalog): the record is then `ambiguous` at best, and a
 // record spanning a revolution, or a second run at another spin rate,
 // separates them.
-// Each round also fits a probe outside the catalog: a drift of the pitch
-// and yaw readings in time (theta_drift, psi_drift; docs/parameters.md).
-// It is never adopted. When it lowers BIC by more than `ambiguity_bic`
+// Each round also fits two probes outside the catalog: a drift of the
+// pitch and yaw readings in time (theta_drift, psi_drift) and a dynamic
+// pressure drifting during the run (q_drift; docs/parameters.md). The
+// better of them (lower BIC) is compared; it is never adopted. When it
+// lowers BIC by more than `ambiguity_bic`
 // below the best catalog effect that earned its place (or by
 // `min_bic_drop` when none did), nothing is added and the verdict is
 // `not_explained`, naming the drift and its rate
 // (Diagnosis::outside_catalog): on two runs a roll-synchronous reading
 // error and a zero offset had been adopted for a drifting pitch reading.
-// Within `ambiguity_bic` of the best, it ties with it (`ambiguous`).
+// Within `ambiguity_bic` of the best, it ties with it (`ambiguous`): on
+// one 3-s run a bearing moment (a stiffness that grows as the amplitude
+// decays) and a drifting dynamic pressure do; a drifting pressure had
+// been named a bearing moment.
 // When the record is explained by several effects, each is checked again
 // with the others in (backward elimination): one whose removal keeps the
 // residuals at the noise level and costs less than `min_bic_drop` of BIC
@@ -233,8 +238,8 @@ struct Diagnosis {
   // of the last round, each with why it did not earn its place.
   std::string residual_description;
   std::vector<CandidateFit> rejected;
-  // When a probe outside the catalog (a drift of the readings in time,
-  // theta_drift and psi_drift) explains the residual better than any
+  // When a probe outside the catalog (a drift of the readings or of the
+  // dynamic pressure in time) explains the residual better than any
   // catalog effect that earned its place, by ambiguity_bic or more: its
   // fit (effect empty otherwise). It is never adopted: the verdict is
   // not_explained, and it names what the residual looks like.

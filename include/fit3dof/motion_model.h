@@ -204,6 +204,16 @@ class MotionModel {
   void ToInternal(const T* values,
                   std::array<T, kMaxParameters>* internal) const;
 
+  // The moment coefficients of `internal` (internal units) at `elapsed`
+  // s after the segment's first sample, into *drifted: times
+  // 1 + q_drift elapsed, as each is a coefficient of q S d and the dynamic
+  // pressure drifts (parameters.h). The other entries are left as they are.
+  template <typename T>
+  void Drift(const T* internal, double elapsed, T* drifted) const {
+    const T factor = 1.0 + internal[layout_.q_drift] * elapsed;
+    for (int i : drifting_) drifted[i] = internal[i] * factor;
+  }
+
   template <typename T, typename Observe>
   bool Integrate(const T* values,
                  const double* times,
@@ -231,6 +241,9 @@ class MotionModel {
   bool roll_interaction_ = false;
   bool calibration_ = false;
   bool drift_ = false;
+  // The active moment coefficients that follow a drifting dynamic pressure
+  // (Drift); empty unless q_drift is active.
+  std::vector<int> drifting_;
   std::shared_ptr<const RandomMoment> random_moment_;
   // Moment coefficient to internal acceleration per axis (roll, pitch,
   // yaw): the scales of Cl_0, t1 and t3.
@@ -317,20 +330,32 @@ bool MotionModel::Integrate(const T* values,
   // (phi, theta, psi, p, q, r).
   T x[6];
   for (int j = 0; j < 6; ++j) x[j] = (*internal)[layout_.first_initial + j];
-  if (random_moment_ == nullptr) {
+  if (random_moment_ == nullptr && drifting_.empty()) {
     auto rhs = [&](const T* s, T* ds) { Derivative(k, s, ds); };
     return IntegrateSamples<T, 6>(
         rhs, times, n, spec_.max_step, Guard(), x, observe, failure);
   }
-  // With process noise: the random moment at each step's midpoint.
-  double t = n > 0 ? times[0] : 0.0;
+  // With process noise or a drifting dynamic pressure: the random moment
+  // and the moment coefficients held over each step at their values at its
+  // midpoint (the midpoint rule: second order in the step).
+  const double start = n > 0 ? times[0] : 0.0;
+  double t = start;
+  std::array<T, kMaxParameters> drifted = *internal;
+  const CoefficientView<T> kd(drifted.data(), active_);
   TunnelMoment extra;
-  auto rhs = [&](const T* s, T* ds) { Derivative(k, s, ds, &extra); };
+  const TunnelMoment* pushed = random_moment_ == nullptr ? nullptr : &extra;
+  auto rhs = [&](const T* s, T* ds) { Derivative(kd, s, ds, pushed); };
   auto step = [&](double h) {
-    const std::array<double, 3> c = random_moment_->At(t + 0.5 * h);
-    extra.roll = c[0] * moment_scale_[0];
-    extra.pitch = c[1] * moment_scale_[1];
-    extra.yaw = c[2] * moment_scale_[2];
+    const double middle = t + 0.5 * h;
+    if (!drifting_.empty()) {
+      Drift(internal->data(), middle - start, drifted.data());
+    }
+    if (pushed != nullptr) {
+      const std::array<double, 3> c = random_moment_->At(middle);
+      extra.roll = c[0] * moment_scale_[0];
+      extra.pitch = c[1] * moment_scale_[1];
+      extra.yaw = c[2] * moment_scale_[2];
+    }
     RungeKutta4Step<T, 6>(rhs, h, x);
     t += h;
   };

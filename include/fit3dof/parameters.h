@@ -21,7 +21,10 @@
 //     same for psi (the reading error at 5 deg);
 //   - a drift of the readings in time (symmetric 41-42, asymmetric 81-82):
 //     theta_m += theta_drift (t - t_0), the same for psi (deg/s, t_0 the
-//     segment's first sample).
+//     segment's first sample);
+//   - a dynamic pressure drifting in time (symmetric 43, asymmetric 83):
+//     every moment coefficient acts times 1 + q_drift (t - t_0) (1/s), as
+//     each is a coefficient of q S d.
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -38,7 +41,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 82;
+inline constexpr int kMaxParameters = 83;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};
@@ -67,6 +70,7 @@ enum class Scaling {
   kAngle,      // degrees -> radians
   kAngleRate,  // deg/s -> rad/s
   kInertia,    // slug ft^2, used as is (the product of inertia I_zx)
+  kPerSecond,  // 1/s, used as is (the dynamic pressure's drift)
   kUnused,     // spare slots of the report's lists
 };
 
@@ -109,6 +113,7 @@ struct ParameterLayout {
   int bearing;             // Cm_bearing, then bearing_angle
   int calibration;         // theta_cal3, then psi_cal3
   int drift;               // theta_drift, then psi_drift
+  int q_drift;             // the dynamic pressure's drift (1/s)
 };
 const ParameterLayout& Layout(ModelKind model);
 
