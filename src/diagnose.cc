@@ -482,6 +482,20 @@ bool RollSeparates(const std::vector<TimeHistory>& data) {
   return *hi > 1.2 * *lo;
 }
 
+// How much lower the probe's BIC must be than that of `best`, the best
+// catalog effect that earned its place, for the record to be not
+// explained: ambiguity_bic; but a roll-locked effect on records that
+// sweep less than a revolution of roll is already a drift in time there
+// (DriftInTime), and when the fitted drift does better it has nothing
+// left to show for itself.
+double ProbeMargin(const Contender& best,
+                   const std::vector<TimeHistory>& data,
+                   const DiagnoseOptions& options) {
+  return best.candidate->effect->roll_locked && !RollSeparates(data)
+             ? 0.0
+             : options.ambiguity_bic;
+}
+
 // The rival of a roll-locked effect on a record shorter than a revolution
 // of roll: outside the catalog, not fitted.
 CandidateFit DriftInTime() {
@@ -795,8 +809,10 @@ Diagnosis Search(const Case& c,
     Contender probe;
     const bool probed = FitProbes(current, fit, data, &probes, &probe) &&
                         probe.record.bic_drop >= options.min_bic_drop;
-    if (probed && (earned.empty() || probe.bic < contenders[earned[0]].bic -
-                                                     options.ambiguity_bic)) {
+    if (probed &&
+        (earned.empty() ||
+         probe.bic < contenders[earned[0]].bic -
+                         ProbeMargin(contenders[earned[0]], data, options))) {
       d.outside_catalog = probe.record;
       OutdoneByProbe(probe, &contenders);
     }

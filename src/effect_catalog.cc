@@ -98,7 +98,7 @@ const std::vector<Effect>& EffectCatalog() {
        false,
        {},
        "spin rate",
-       "none"},
+       "Cl_p negative (or within 2 standard errors of zero)"},
       {"trim_moment",
        "a body-fixed trim moment in pitch and yaw (Cm_0, Cn_0)",
        {"Cm_0", "Cn_0"},

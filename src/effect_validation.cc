@@ -21,10 +21,11 @@
 namespace fit3dof {
 namespace {
 
-// What a bound sees: the fitted values by name and the record's largest
-// total angle.
+// What a bound sees: the fitted values and standard errors by name and
+// the record's largest total angle.
 struct BoundContext {
   std::map<std::string, double> values;
+  std::map<std::string, double> errors;
   double largest_deg = 0.0;  // total angle
   double largest_theta_deg = 0.0, largest_psi_deg = 0.0;
 
@@ -33,12 +34,18 @@ struct BoundContext {
     return it == values.end() ? 0.0 : it->second;
   }
   double largest_rad() const { return largest_deg * kDegree; }
+  double error(const std::string& name) const {
+    const auto it = errors.find(name);
+    return it == errors.end() ? 0.0 : it->second;
+  }
 };
 
 BoundContext ContextOf(const FitResult& fit) {
   BoundContext b;
   for (const ParameterEstimate& e : fit.parameters) {
-    if (e.segment.empty()) b.values[e.name] = e.value;
+    if (!e.segment.empty()) continue;
+    b.values[e.name] = e.value;
+    b.errors[e.name] = e.standard_error;
   }
   for (const SegmentFit& s : fit.segments) {
     for (int i = 0; i < s.data.size(); ++i) {
@@ -172,6 +179,20 @@ const std::map<std::string, Bound>& Bounds() {
        }},
       {"roll_interaction", ReadingError},
       {"calibration_nonlinearity", Calibration},
+      {"roll_damping",
+       [](const BoundContext& v) {
+         // A damping takes energy out of the roll; one that feeds the roll
+         // from its own rate, by more than its noise, stands in for
+         // something else (on one 3-s run, a roll-synchronous reading
+         // error's signature, Cl_p = +0.0026 +- 0.0004).
+         const double cl_p = v("Cl_p");
+         if (cl_p > 2.0 * v.error("Cl_p")) {
+           return "Cl_p = " + FormatNumber("%.3g", cl_p) + " +- " +
+                  FormatNumber("%.2g", v.error("Cl_p")) +
+                  " drives the roll (a damping is negative)";
+         }
+         return std::string();
+       }},
       {"nonlinear_stiffness",
        [](const BoundContext& v) {
          std::string why = Nonlinear(

@@ -83,6 +83,22 @@ TEST(Implausible, NonlinearTermAgainstItsLinearOne) {
       << why;
 }
 
+// A roll damping damps: Cl_p positive by more than 2 standard errors is
+// refused, within them (or negative) accepted.
+TEST(Implausible, RollDampingThatDrivesTheRoll) {
+  FitResult fit = Fitted({{"Cl_p", 0.0026}}, 8.0, 8.0);
+  fit.parameters[0].standard_error = 0.0004;
+  const std::string why = Verdict("roll_damping", fit);
+  EXPECT_NE(why.find("Cl_p = 0.0026 +- 0.0004 drives the roll"),
+            std::string::npos)
+      << why;
+  fit.parameters[0].standard_error = 0.002;
+  EXPECT_EQ(Verdict("roll_damping", fit), "");
+  fit.parameters[0].value = -0.0081;
+  fit.parameters[0].standard_error = 0.0004;
+  EXPECT_EQ(Verdict("roll_damping", fit), "");
+}
+
 TEST(Implausible, ReadingErrorTrimAngleAndBearingAngle) {
   EXPECT_EQ(
       Verdict(

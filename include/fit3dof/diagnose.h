@@ -84,7 +84,12 @@
 // `not_explained`, naming the drift and its rate
 // (Diagnosis::outside_catalog): on two runs a roll-synchronous reading
 // error and a zero offset had been adopted for a drifting pitch reading.
-// Within `ambiguity_bic` of the best, it ties with it (`ambiguous`): on
+// When the best is roll-locked and the records sweep less than a
+// revolution of roll (it is then a drift in time itself), the probe needs
+// no margin: better at all, the verdict is `not_explained` (a pitch
+// reading drift on one 3-s run had ended `ambiguous` with a roll reading
+// error of twice its parameters). Otherwise, within `ambiguity_bic` of the
+// best, it ties with it (`ambiguous`): on
 // one 3-s run a bearing moment (a stiffness that grows as the amplitude
 // decays) and a drifting dynamic pressure do; a drifting pressure had
 // been named a bearing moment.
