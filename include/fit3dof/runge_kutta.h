@@ -6,7 +6,10 @@
 //
 // Templated on the scalar (double or ceres::Jet) and on the right-hand side,
 // a callable `f(const T* x, T* dx)` of an autonomous system: the 3DOF
-// equations do not depend on time explicitly.
+// equations do not depend on time explicitly. What does (simulate's random
+// moments, a drifting dynamic pressure) the caller's step function holds
+// over each step at its midpoint value (IntegrateSamplesWith;
+// MotionModel::Integrate).
 //
 // Example Usage:
 //
