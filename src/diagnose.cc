@@ -28,40 +28,6 @@ namespace {
 // The id of a roll-locked effect's rival outside the catalog (diagnose.h).
 constexpr char kDriftInTime[] = "drift_in_time";
 
-// The probes outside the catalog (diagnose.h): fitted and compared, never
-// adopted. A drift in time of the readings or of the dynamic pressure is
-// what a short run most often shows that the catalog does not hold, and
-// what a catalog effect that follows the amplitude (which decays in time)
-// or the roll angle (which grows in time) imitates on one run.
-const std::vector<Effect>& Probes() {
-  static const std::vector<Effect> probes = {
-      {"reading_drift",
-       "a drift of the pitch and yaw readings in time (outside the catalog)",
-       {"theta_drift", "psi_drift"},
-       {"theta_drift", "psi_drift"},
-       false,
-       {},
-       "",
-       ""},
-      {"pressure_drift",
-       "a dynamic pressure drifting during the run (outside the catalog)",
-       {"q_drift"},
-       {"q_drift"},
-       false,
-       {},
-       "",
-       ""},
-  };
-  return probes;
-}
-
-const Effect* FindProbe(const std::string& id) {
-  for (const Effect& e : Probes()) {
-    if (e.id == id) return &e;
-  }
-  return nullptr;
-}
-
 double Bic(const FitResult& r) {
   const double n = 3.0 * r.points;
   const double rss = std::max(r.sum_of_residuals * r.sum_of_residuals, 1e-300);

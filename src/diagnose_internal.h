@@ -26,6 +26,11 @@ namespace fit3dof {
 inline constexpr double kNearSolution = 3.0;
 void RefitFromSolution(Case* c, double probable_error);
 
+// The probes outside the catalog (diagnose.h), and the one called `id`
+// (nullptr if none).
+const std::vector<Effect>& Probes();
+const Effect* FindProbe(const std::string& id);
+
 // The case `at` with the effect's parameters free at zero (converted to the
 // asymmetric program when the effect needs it), their names in `added`;
 // false when the effect does not apply or is already in the model.

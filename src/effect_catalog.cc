@@ -139,12 +139,50 @@ const std::vector<Effect>& EffectCatalog() {
   return catalog;
 }
 
-const Effect* FindEffect(const std::string& id) {
-  for (const Effect& e : EffectCatalog()) {
+// The probes outside the catalog (diagnose.h): fitted and compared, never
+// adopted. A drift in time of the readings or of the dynamic pressure is
+// what a short run most often shows that the catalog does not hold, and
+// what a catalog effect that follows the amplitude (which decays in time)
+// or the roll angle (which grows in time) imitates on one run.
+const std::vector<Effect>& Probes() {
+  static const std::vector<Effect> probes = {
+      {"reading_drift",
+       "a drift of the pitch and yaw readings in time (outside the catalog)",
+       {"theta_drift", "psi_drift"},
+       {"theta_drift", "psi_drift"},
+       false,
+       {},
+       "",
+       ""},
+      {"pressure_drift",
+       "a dynamic pressure drifting during the run (outside the catalog)",
+       {"q_drift"},
+       {"q_drift"},
+       false,
+       {},
+       "",
+       ""},
+  };
+  return probes;
+}
+
+namespace {
+
+const Effect* FindIn(const std::vector<Effect>& effects,
+                     const std::string& id) {
+  for (const Effect& e : effects) {
     if (e.id == id) return &e;
   }
   return nullptr;
 }
+
+}  // namespace
+
+const Effect* FindEffect(const std::string& id) {
+  return FindIn(EffectCatalog(), id);
+}
+
+const Effect* FindProbe(const std::string& id) { return FindIn(Probes(), id); }
 
 void RefitFromSolution(Case* c, double probable_error) {
   // Far above the noise (the fit without the effect lost the motion: a

@@ -160,14 +160,11 @@ bool MotionModel::Filter(const double* values,
   // The dynamic pressure's drift as Integrate applies it.
   std::array<double, kMaxParameters> drifted = internal;
   const CoefficientView<double> kd(drifted.data(), active_);
-  const double start = n > 0 ? times[0] : 0.0;
-  double t = start;
   auto rhs = [&](const StateJet* s, StateJet* ds) { Derivative(kd, s, ds); };
-  auto step = [&](double h) {
+  auto step = [&](double t, double h) {
     if (!drifting_.empty()) {
-      Drift(internal.data(), t + 0.5 * h - start, drifted.data());
+      Drift(internal.data(), t + 0.5 * h - times[0], drifted.data());
     }
-    t += h;
     RungeKutta4Step<StateJet, 6>(rhs, h, x);
   };
   if (!IntegrateSamplesWith<StateJet, 6>(

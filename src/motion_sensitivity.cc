@@ -211,7 +211,10 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
   // has drifted at each step (Integrate): these copies, updated per step
   // when q_drift is active; the measurement model sees them as given.
   std::array<double, kMaxParameters> drifted = internal;
-  CoefficientPasses drifted_passes = passes;
+  CoefficientPasses drifted_passes =
+      drifting_.empty() ? CoefficientPasses() : passes;
+  const CoefficientPasses& rate_passes =
+      drifting_.empty() ? passes : drifted_passes;
   const CoefficientView<double> k(drifted.data(), active_);
   const std::vector<int>& jacobian_column = columns.jacobian_column;
 
@@ -229,7 +232,7 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
   auto add_coefficient_rates = [&](const double* y,
                                    const auto& trig,
                                    double* ds) {
-    drifted_passes.ForEach([&](const auto& pass) {
+    rate_passes.ForEach([&](const auto& pass) {
       typename std::decay_t<decltype(pass)>::Jet fp[6];
       Derivative(CoefficientView(pass.internal.data(), active_), y, trig, fp);
       for (int j = 0; j < 6; ++j) {
@@ -295,17 +298,14 @@ bool MotionModel::EvaluateWithSensitivities(const double* values,
 
   std::vector<double> work(5 * dim);
   double* k1 = work.data();
-  const double start = n > 0 ? times[0] : 0.0;
-  double t = start;
-  auto step = [&](double h) {
+  auto step = [&](double t, double h) {
     if (!drifting_.empty()) {
-      const double elapsed = t + 0.5 * h - start;
+      const double elapsed = t + 0.5 * h - times[0];
       Drift(internal.data(), elapsed, drifted.data());
       drifted_passes.ForEachWith(passes, [&](auto* to, const auto& from) {
         Drift(from.internal.data(), elapsed, to->internal.data());
       });
     }
-    t += h;
     RungeKutta4Step(rhs,
                     h,
                     dim,

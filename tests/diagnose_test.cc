@@ -351,6 +351,14 @@ std::string SimulateShort(const Case& truth,
   return path;
 }
 
+// ShortTruth without its trim moment.
+Case UntrimmedShortTruth(double spin) {
+  Case truth = ShortTruth(spin);
+  truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
+  truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
+  return truth;
+}
+
 // Two 3-s runs without trim, 30 deg/s at 8 deg and 60 deg/s at 4 deg,
 // each truth changed by `hide` before it is simulated (noise seeds `seed`
 // and seed + 1); the files, dir/run0.csv and dir/run1.csv.
@@ -359,9 +367,7 @@ std::vector<std::string> TwoShortRuns(const std::string& dir,
                                       const std::function<void(Case*)>& hide) {
   std::vector<std::string> files;
   for (const auto& [spin, angle] : {std::pair{30.0, 8.0}, {60.0, 4.0}}) {
-    Case truth = ShortTruth(spin);
-    truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
-    truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
+    Case truth = UntrimmedShortTruth(spin);
     truth.parameters[FindParameter(truth.model, "theta0")].value = angle;
     hide(&truth);
     const std::string path =
@@ -431,10 +437,7 @@ TEST(Diagnose, AmbiguityIsAVerdictAndTwoSpinRatesSeparate) {
 // rival (or finds nothing that explains the record).
 TEST(Diagnose, ARollLockedEffectTiesWithADriftOnLessThanARevolution) {
   const std::string dir = testing::ScratchDirectory("diagnose_short_drift");
-  Case truth = ShortTruth(30.0);
-  truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
-  truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
-  SimulateShort(truth, dir + "/clean.csv", 12);
+  SimulateShort(UntrimmedShortTruth(30.0), dir + "/clean.csv", 12);
   TimeHistory data = ReadTimeHistory(dir + "/clean.csv");
   for (int i = 0; i < data.size(); ++i) data.theta[i] += 0.016 * data.t[i];
   WriteTimeHistory(dir + "/data.csv", data);
@@ -512,9 +515,7 @@ TEST(Diagnose, TwoRunsNameADriftOfTheReadingsOutsideTheCatalog) {
 // the verdict is not_explained and names the drift with its rate.
 TEST(Diagnose, ADriftingDynamicPressureIsNotExplainedByTheCatalog) {
   const std::string dir = testing::ScratchDirectory("diagnose_q_drift");
-  Case truth = ShortTruth(30.0);
-  truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
-  truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
+  Case truth = UntrimmedShortTruth(30.0);
   truth.parameters[FindParameter(truth.model, "q_drift")].value = 0.004;
   const std::vector<std::string> files = {
       SimulateShort(truth, dir + "/run0.csv", 5)};
@@ -543,9 +544,7 @@ TEST(Diagnose, ADriftingDynamicPressureIsNotExplainedByTheCatalog) {
 TEST(Diagnose, OneRunNamesADriftOfThePitchReading) {
   const std::string dir = testing::ScratchDirectory("diagnose_pitch_drift");
   for (std::uint64_t seed : {3, 4}) {
-    Case truth = ShortTruth(30.0);
-    truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
-    truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
+    Case truth = UntrimmedShortTruth(30.0);
     truth.parameters[FindParameter(truth.model, "theta_drift")].value = 0.015;
     const std::vector<std::string> files = {
         SimulateShort(truth, dir + "/run0.csv", seed)};

@@ -338,17 +338,15 @@ bool MotionModel::Integrate(const T* values,
   // With process noise or a drifting dynamic pressure: the random moment
   // and the moment coefficients held over each step at their values at its
   // midpoint (the midpoint rule: second order in the step).
-  const double start = n > 0 ? times[0] : 0.0;
-  double t = start;
   std::array<T, kMaxParameters> drifted = *internal;
   const CoefficientView<T> kd(drifted.data(), active_);
   TunnelMoment extra;
   const TunnelMoment* pushed = random_moment_ == nullptr ? nullptr : &extra;
   auto rhs = [&](const T* s, T* ds) { Derivative(kd, s, ds, pushed); };
-  auto step = [&](double h) {
+  auto step = [&](double t, double h) {
     const double middle = t + 0.5 * h;
     if (!drifting_.empty()) {
-      Drift(internal->data(), middle - start, drifted.data());
+      Drift(internal->data(), middle - times[0], drifted.data());
     }
     if (pushed != nullptr) {
       const std::array<double, 3> c = random_moment_->At(middle);
@@ -357,7 +355,6 @@ bool MotionModel::Integrate(const T* values,
       extra.yaw = c[2] * moment_scale_[2];
     }
     RungeKutta4Step<T, 6>(rhs, h, x);
-    t += h;
   };
   return IntegrateSamplesWith<T, 6>(
       step, times, n, spec_.max_step, Guard(), x, observe, failure);

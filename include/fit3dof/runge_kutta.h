@@ -8,8 +8,8 @@
 // a callable `f(const T* x, T* dx)` of an autonomous system: the 3DOF
 // equations do not depend on time explicitly. What does (simulate's random
 // moments, a drifting dynamic pressure) the caller's step function holds
-// over each step at its midpoint value (IntegrateSamplesWith;
-// MotionModel::Integrate).
+// over each step at its midpoint value (IntegrateSamplesWith gives the step
+// its time; MotionModel::Integrate).
 //
 // Example Usage:
 //
@@ -108,11 +108,12 @@ struct StateGuard {
 };
 
 // Integrates from times[0] (x holds the state there) through times[n-1],
-// calling observe(i, x) at every sample, the first included: step(h)
-// advances the system by one RK4 step of size h, its first kDim values
-// being the motion's state x, which the guard checks. observe may correct
-// x (a filter's update); the integration goes on from the corrected state.
-// Returns false and fills `failure` if the guard trips.
+// calling observe(i, x) at every sample, the first included: step(t, h)
+// advances the system by one RK4 step of size h from time t (times[0] plus
+// the steps taken so far, for what the step holds over it), its first kDim
+// values being the motion's state x, which the guard checks. observe may
+// correct x (a filter's update); the integration goes on from the corrected
+// state. Returns false and fills `failure` if the guard trips.
 template <typename T, int kDim, typename Step, typename Observe>
 bool IntegrateSamplesWith(const Step& step,
                           const double* times,
@@ -148,11 +149,15 @@ bool IntegrateSamplesWith(const Step& step,
   if (n <= 0) return true;
   if (!check(times[0])) return false;
   observe(0, x);
+  double t = times[0];
   for (int i = 1; i < n; ++i) {
     const double interval = times[i] - times[i - 1];
     const int substeps = NumSubsteps(interval, max_step);
     const double h = interval / substeps;
-    for (int s = 0; s < substeps; ++s) step(h);
+    for (int s = 0; s < substeps; ++s) {
+      step(t, h);
+      t += h;
+    }
     if (!check(times[i])) return false;
     observe(i, x);
   }
@@ -169,7 +174,7 @@ bool IntegrateSamples(const Rhs& f,
                       T* x,
                       const Observe& observe,
                       IntegrationFailure* failure) {
-  auto step = [&](double h) { RungeKutta4Step<T, kDim>(f, h, x); };
+  auto step = [&](double, double h) { RungeKutta4Step<T, kDim>(f, h, x); };
   return IntegrateSamplesWith<T, kDim>(
       step, times, n, max_step, guard, x, observe, failure);
 }
