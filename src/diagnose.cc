@@ -304,7 +304,7 @@ void Judge(const FitResult& current,
 }
 
 // The contenders judged in BIC order until the best that earns its place
-// and the next one within ambiguity_bic of it are known; returns the
+// and every other within ambiguity_bic of it are known; returns the
 // indices of those that earned it.
 std::vector<int> Earned(const FitResult& current,
                         const std::vector<const Effect*>& added,
@@ -312,7 +312,7 @@ std::vector<int> Earned(const FitResult& current,
                         OutOfSample* out_of_sample,
                         std::vector<Contender>* contenders) {
   std::vector<int> earned;
-  for (size_t i = 0; i < contenders->size() && earned.size() < 2; ++i) {
+  for (size_t i = 0; i < contenders->size(); ++i) {
     Contender& c = (*contenders)[i];
     if (!earned.empty() &&
         c.bic - (*contenders)[earned[0]].bic >= options.ambiguity_bic) {
@@ -395,7 +395,7 @@ void FinalValues(Diagnosis* d) {
   for (std::vector<DiagnosisStep>* steps :
        {&d->steps, &d->partial, &d->pruned}) {
     const FitResult& fit =
-        steps == &d->partial ? d->fits.back() : d->FinalFit();
+        steps == &d->partial ? d->fits[d->partial_fit] : d->FinalFit();
     for (DiagnosisStep& step : *steps) {
       std::vector<std::string> names;
       for (const ParameterEstimate& e : step.step_parameters) {
@@ -495,16 +495,36 @@ void Conclude(Diagnosis* d) {
     d->verdict = Verdict::kAmbiguous;
     const CandidateFit& a = d->ambiguous[0];
     const CandidateFit& b = d->ambiguous[1];
+    std::string effects, drops;
+    const size_t n = d->ambiguous.size();
+    for (size_t i = 0; i < n; ++i) {
+      const char* separator = i == 0 ? "" : i + 1 == n ? " and " : ", ";
+      effects += (i == 0       ? ""
+                  : i + 1 == n ? " or "
+                               : ", ") +
+                 Describe(d->ambiguous[i].effect);
+      drops += separator + FormatNumber("%.1f", d->ambiguous[i].bic_drop);
+    }
     d->verdict_text =
-        "ambiguous: " + Describe(a.effect) + " or " + Describe(b.effect) +
+        "ambiguous: " + effects +
         (b.effect == kDriftInTime
              ? " (the first lowers BIC by " + FormatNumber("%.1f", a.bic_drop) +
                    "; over this record's roll its signature is a slow change "
                    "in time)"
-             : " explain the residual alike (BIC lower by " +
-                   FormatNumber("%.1f", a.bic_drop) + " and " +
-                   FormatNumber("%.1f", b.bic_drop) + ")") +
-        "; neither added; " + d->separated_by + " would separate them" +
+             : " explain the residual alike (BIC lower by " + drops + ")") +
+        (n > 2 ? "; none added; " : "; neither added; ") + d->separated_by +
+        " would separate them" +
+        (d->steps.empty() ? "" : "; added: " + Described(d->steps)) +
+        (d->alternatives.empty()
+             ? ""
+             : " (needed with either; the complete model with each: "
+               "probable error " +
+                   FormatNumber("%.3g",
+                                d->alternatives[0].check.probable_error) +
+                   " and " +
+                   FormatNumber("%.3g",
+                                d->alternatives[1].check.probable_error) +
+                   ")") +
         (d->partial.size() > 1
              ? "; with the first in the model, " +
                    Described({d->partial.begin() + 1, d->partial.end()}) +
@@ -530,7 +550,8 @@ void Conclude(Diagnosis* d) {
                     ? " and no further effect earns its place"
                     : "")
              : "; " + Described(d->partial) + " lowers the probable error to " +
-                   FormatNumber("%.3g", d->fits.back().probable_error) +
+                   FormatNumber("%.3g",
+                                d->fits[d->partial_fit].probable_error) +
                    " but leaves the residuals structured: not adopted, the "
                    "final model is the one before it") +
         (d->outside_catalog.effect.empty()
@@ -651,37 +672,239 @@ const char* VerdictToString(Verdict verdict) {
 
 namespace {
 
-// A tie (at step `tie`) on the way to a record explained: the pruning
-// (Prune) of every step, the tied one among them. A roll torque tied with a
-// roll damping may only have taken up the roll that a missing pitch
-// damping left: once that is in, neither is needed. And a tunnel stiffness
-// tied with a roll-synchronous reading error, both hidden in the record,
-// is followed by the other: both needed, nothing ambiguous. In either case
-// *d and *current take the pruned result and the tie is gone; otherwise
-// they are left as they were.
+// The case `at` with the tied rival `id` free (CandidateCase): a catalog
+// effect, a probe, or for drift_in_time the drift of the readings (what a
+// roll-locked reading error is over part of a revolution); false when it
+// does not apply.
+bool RivalCase(const Case& at, const std::string& id, Case* out) {
+  const Effect* e = FindEffect(id);
+  if (e == nullptr) e = FindProbe(id == kDriftInTime ? "reading_drift" : id);
+  std::vector<std::string> added;
+  return e != nullptr && CandidateCase(at, *e, out, &added);
+}
+
+// The case `c` fitted from `from`, its solution, into *fit; false when the
+// fit fails.
+bool FitFrom(const Case& c,
+             const FitResult& from,
+             const std::vector<TimeHistory>& data,
+             FitResult* fit) {
+  try {
+    Case start = c;
+    RefitFromSolution(&start, from.probable_error);
+    *fit = FitSamples(start, data);
+    return true;
+  } catch (const std::exception& e) {
+    LOG(WARNING) << from.name << ": refit failed: " << e.what();
+    return false;
+  }
+}
+
+// The rivals of `step` (recorded when the search added it) that still
+// explain the record as well in the explained model `fit` (of case `at`,
+// whose effects are `steps`): swapped in for it, BIC within ambiguity_bic
+// of the model's and their values within their bounds. A drift in time
+// (not fitted) always does; a rival in the model is none.
+std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
+                                     const DiagnosisStep& step,
+                                     const std::vector<DiagnosisStep>& steps,
+                                     const Case& at,
+                                     const FitResult& fit,
+                                     const std::vector<TimeHistory>& data,
+                                     const DiagnoseOptions& options) {
+  const Case without = WithoutStep(at, step);
+  std::vector<CandidateFit> open;
+  for (const CandidateFit& rival : rivals) {
+    if (std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
+          return s.effect == rival.effect;
+        })) {
+      continue;
+    }
+    Case swapped;
+    FitResult swapped_fit;
+    const Effect* effect = FindEffect(rival.effect);
+    const bool as_good = rival.effect == kDriftInTime ||
+                         !RivalCase(without, rival.effect, &swapped) ||
+                         !FitFrom(swapped, fit, data, &swapped_fit) ||
+                         (Bic(swapped_fit) < Bic(fit) + options.ambiguity_bic &&
+                          (effect == nullptr ||
+                           Implausible(*effect, swapped, swapped_fit).empty()));
+    VLOG(1) << step.effect << " swapped for " << rival.effect << ": "
+            << (as_good ? "as good" : "worse");
+    if (as_good) open.push_back(rival);
+  }
+  return open;
+}
+
+// The step's effect as the contender it was.
+CandidateFit AsContender(const DiagnosisStep& step) {
+  CandidateFit c;
+  c.effect = step.effect;
+  c.parameters = step.step_parameters;
+  c.bic_drop = step.bic_drop;
+  c.prediction_gain = step.prediction_gain;
+  return c;
+}
+
+// What a second run would change to separate the tied `ambiguous` (the
+// first and its rivals), for the model fitted as `fit`.
+std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
+                        const Case& c,
+                        const FitResult& fit,
+                        const std::vector<TimeHistory>& data) {
+  const Effect* a = FindEffect(ambiguous[0].effect);
+  const Effect* b = FindEffect(ambiguous[1].effect);
+  if (a != nullptr && b != nullptr) return Separation(*a, *b, c, fit);
+  if (ambiguous[1].effect == kDriftInTime) {
+    return "a record spanning a revolution of roll (this one: " +
+           FormatNumber("%.0f", RollSpan(data)) +
+           " deg) or a run at another spin rate";
+  }
+  return "a second run at another spin rate or amplitude (a drift grows "
+         "with the time of each run, a catalog effect follows what the runs "
+         "differ in)";
+}
+
+// Ties (the first at step *tie; `rivals` holds each step's) on the way to
+// a record explained: the pruning (Prune) of every step, then the rivals
+// of each step still in the model swapped in for it (Unresolved). A roll torque
+// tied with a roll damping may only have taken up the roll that a missing pitch
+// damping left: once that is in, neither is needed. A tunnel stiffness tied
+// with a roll-synchronous reading error, both hidden in the record, is followed
+// by the other: both needed, nothing ambiguous. And a calibration error tied
+// with a flow angularity while a trim moment was still missing is alone in
+// explaining the record once the trim moment is in: swapped for it, the flow
+// angularity raises BIC by more than ambiguity_bic. When no rival of any
+// step is left, *d and *current take the pruned result and the ties are
+// gone; otherwise *tie becomes the first step with rivals left,
+// d->ambiguous its effect and those rivals, (*tied)[i] whether step i
+// (pruned or with rivals left) stays in doubt, and *current is left as it
+// was.
 bool TieDissolves(const std::vector<TimeHistory>& data,
                   const DiagnoseOptions& options,
-                  int tie,
+                  const std::vector<std::vector<CandidateFit>>& rivals,
+                  int* tie,
+                  std::vector<bool>* tied,
                   Diagnosis* d,
                   Case* current) {
   Diagnosis pruned = *d;
   Case model = *current;
   pruned.final_fit = pruned.steps.size();
   Prune(data, options, &pruned, &model);
-  const auto kept = [&](const std::string& id) {
-    return std::any_of(pruned.steps.begin(),
-                       pruned.steps.end(),
-                       [&](const DiagnosisStep& s) { return s.effect == id; });
-  };
-  // Either the tied step is gone, or the search added its rival too and
-  // both are needed: one of them alone is what stays ambiguous.
-  if (kept(d->steps[tie].effect) && !kept(d->ambiguous[1].effect)) {
+  const FitResult& fit = pruned.FinalFit();
+  const Case at = CaseAtSolution(model, fit);
+  int first = -1;
+  for (size_t i = 0; i < d->steps.size(); ++i) {
+    if (rivals[i].empty()) continue;
+    const auto kept = std::find_if(
+        pruned.steps.begin(), pruned.steps.end(), [&](const DiagnosisStep& s) {
+          return s.effect == d->steps[i].effect;
+        });
+    // A step pruned away is not in doubt; but it is not adopted either.
+    (*tied)[i] = true;
+    if (kept == pruned.steps.end()) continue;
+    const std::vector<CandidateFit> open =
+        Unresolved(rivals[i], *kept, pruned.steps, at, fit, data, options);
+    (*tied)[i] = !open.empty();
+    if (open.empty() || first >= 0) continue;
+    first = static_cast<int>(i);
+    d->ambiguous = {AsContender(d->steps[i])};
+    d->ambiguous.insert(d->ambiguous.end(), open.begin(), open.end());
+  }
+  if (first >= 0) {
+    *tie = first;
     return false;
   }
-  pruned.ambiguous.clear();
-  pruned.separated_by.clear();
   *d = std::move(pruned);
+  d->ambiguous.clear();
   *current = std::move(model);
+  return true;
+}
+
+// After a tie (at step `tie`; `tied` marks every step that tied) followed
+// to an explained record: the steps after it up to the next tie are
+// adopted when the record needs them whichever of the pair is in it
+// (diagnose.h). The tied step (and any after the next tie) is then
+// partial, the final model *current is the one before the tie with them
+// added, d->alternatives holds the complete model with each of the pair,
+// *final gets the final model's residual check, and true is returned;
+// otherwise nothing changes.
+bool AdoptAfterTie(const std::vector<TimeHistory>& data,
+                   const DiagnoseOptions& options,
+                   const std::vector<Case>& models,
+                   int tie,
+                   const std::vector<bool>& tied,
+                   Diagnosis* d,
+                   Case* current,
+                   ResidualCheck* final) {
+  int last = tie;  // the last step to adopt
+  while (last + 1 < static_cast<int>(d->steps.size()) && !tied[last + 1]) {
+    ++last;
+  }
+  VLOG(1) << "after the tie at step " << tie << ": " << last - tie
+          << " step(s) before the next tie";
+  if (last == tie) return false;
+  const std::string& first = d->steps[tie].effect;
+  const std::string& rival = d->ambiguous[1].effect;
+  const FitResult& complete = d->fits[last + 1];
+  const FitResult& before = d->fits[tie];
+  // Without either of the pair, with the rival instead of the first, and
+  // the rival alone on the model before the tie.
+  const Case without =
+      WithoutStep(CaseAtSolution(models[last + 1], complete), d->steps[tie]);
+  Case with_rival, rival_alone;
+  FitResult without_fit, rival_fit, rival_alone_fit;
+  if (!FitFrom(without, complete, data, &without_fit) ||
+      !RivalCase(CaseAtSolution(without, without_fit), rival, &with_rival) ||
+      !FitFrom(with_rival, without_fit, data, &rival_fit) ||
+      !RivalCase(CaseAtSolution(models[tie], before), rival, &rival_alone) ||
+      !FitFrom(rival_alone, before, data, &rival_alone_fit)) {
+    return false;
+  }
+  std::vector<const Effect*> effects;  // the adopted model's
+  std::vector<std::string> names;      // the terms added after the tie
+  for (int i = 0; i <= last; ++i) {
+    if (i == tie) continue;
+    effects.push_back(FindEffect(d->steps[i].effect));
+    if (i < tie) continue;
+    for (const ParameterEstimate& e : d->steps[i].step_parameters) {
+      names.push_back(e.name);
+    }
+  }
+  const bool needed =
+      Bic(without_fit) < Bic(before) - options.min_bic_drop &&
+      Bic(rival_fit) < Bic(rival_alone_fit) - options.min_bic_drop;
+  VLOG(1) << "without either: BIC " << Bic(without_fit) << " against "
+          << Bic(before) << " before the tie; with " << rival << ": "
+          << Bic(rival_fit) << " against " << Bic(rival_alone_fit) << " alone";
+  const ResidualCheck with_first = CheckResiduals(complete, options);
+  const ResidualCheck with_second = CheckResiduals(rival_fit, options);
+  // The drag rule guards against an effect absorbing an unknown structure;
+  // when both complete models reach the noise, what the final model leaves
+  // is known (the pair's signature), and the coefficients may move.
+  const bool known = with_first.at_noise_level && with_second.at_noise_level;
+  if (!needed || !ImplausibleAmong(effects, without, without_fit).empty() ||
+      !ImplausibleAmong(effects, with_rival, rival_fit).empty() ||
+      (!known &&
+       !Drags(before, without_fit, names, options.max_drag).empty())) {
+    return false;
+  }
+  d->fits.push_back(rival_fit);
+  d->alternatives = {{first, with_first, complete.parameters, last + 1},
+                     {rival,
+                      with_second,
+                      rival_fit.parameters,
+                      static_cast<int>(d->fits.size()) - 1}};
+  d->fits.push_back(without_fit);
+  d->final_fit = d->fits.size() - 1;
+  d->partial.assign(1, d->steps[tie]);
+  d->partial.insert(
+      d->partial.end(), d->steps.begin() + last + 1, d->steps.end());
+  d->steps.erase(d->steps.begin() + last + 1, d->steps.end());
+  d->steps.erase(d->steps.begin() + tie);
+  *final = CheckResiduals(without_fit, options);
+  d->steps.back().after = *final;
+  *current = without;
   return true;
 }
 
@@ -690,14 +913,16 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
 // and `tie`, the step of the first tie or -1: sets d->final_fit and
 // *current (from `user` when nothing explains the record) and returns the
 // final model's residual check.
-ResidualCheck SettleFinalModel(const Case& user,
-                               const std::vector<TimeHistory>& data,
-                               const DiagnoseOptions& options,
-                               const std::vector<Case>& models,
-                               int tie,
-                               const ResidualCheck& check,
-                               Diagnosis* d,
-                               Case* current) {
+ResidualCheck SettleFinalModel(
+    const Case& user,
+    const std::vector<TimeHistory>& data,
+    const DiagnoseOptions& options,
+    const std::vector<Case>& models,
+    int tie,
+    const std::vector<std::vector<CandidateFit>>& rivals,
+    const ResidualCheck& check,
+    Diagnosis* d,
+    Case* current) {
   if (!check.at_noise_level) {
     // Nothing explains the record: the steps taken are partial and not
     // adopted (Diagnosis::partial says why), a tie on the way included.
@@ -709,9 +934,16 @@ ResidualCheck SettleFinalModel(const Case& user,
     d->final_fit = 0;
     return d->initial;
   }
-  if (tie >= 0 && TieDissolves(data, options, tie, d, current)) {
+  std::vector<bool> tied(d->steps.size(), false);
+  if (tie >= 0 &&
+      TieDissolves(data, options, rivals, &tie, &tied, d, current)) {
     // The tied effect turned out redundant with the later ones in.
     return CheckResiduals(d->FinalFit(), options);
+  }
+  ResidualCheck adopted;
+  if (tie >= 0 &&
+      AdoptAfterTie(data, options, models, tie, tied, d, current, &adopted)) {
+    return adopted;
   }
   if (tie >= 0) {
     // Explained, but with one of a tied pair: the final model is the one
@@ -744,8 +976,10 @@ Diagnosis Search(const Case& c,
   std::vector<Case> models = {current};  // the model of each of d.fits
   d.initial = CheckResiduals(fit, options);
   ResidualCheck check = d.initial;
-  // The step at which two contenders first tied (diagnose.h), or -1.
+  // The step at which two contenders first tied (diagnose.h), or -1, and
+  // whether each step tied.
   int tie = -1;
+  std::vector<std::vector<CandidateFit>> rivals;
   for (int step = 0; step < options.max_steps && !check.at_noise_level;
        ++step) {
     if (Polish(current, data, &fit)) {
@@ -787,31 +1021,27 @@ Diagnosis Search(const Case& c,
       break;
     }
     const Contender& best = contenders[earned[0]];
-    if (tie < 0 && earned.size() > 1) {
-      // Go on with the better of the two: whether the rest of the record
-      // is explained decides between `ambiguous` and `not_explained`.
-      const Contender& rival = contenders[earned[1]];
-      d.ambiguous = {best.record, rival.record};
-      d.separated_by =
-          Separation(*best.candidate->effect, *rival.candidate->effect, c, fit);
-      tie = static_cast<int>(d.steps.size());
-      *tied_first = best.record.effect;
-    } else if (tie < 0 && probed &&
-               probe.bic < best.bic + options.ambiguity_bic) {
-      d.ambiguous = {best.record, probe.record};
-      d.separated_by =
-          "a second run at another spin rate or amplitude (a drift grows "
-          "with the time of each run, a catalog effect follows what the runs "
-          "differ in)";
-      tie = static_cast<int>(d.steps.size());
-    } else if (tie < 0 && best.candidate->effect->roll_locked &&
-               !RollSeparates(data)) {
-      d.ambiguous = {best.record, DriftInTime()};
-      d.separated_by = "a record spanning a revolution of roll (this one: " +
-                       FormatNumber("%.0f", RollSpan(data)) +
-                       " deg) or a run at another spin rate";
-      tie = static_cast<int>(d.steps.size());
+    // Whatever explains this round's residual as well (diagnose.h): the
+    // other contenders that earned their place within ambiguity_bic, the
+    // probe within it, and for a roll-locked effect on less than a
+    // revolution of roll a drift in time.
+    std::vector<CandidateFit> step_rivals;
+    for (size_t i = 1; i < earned.size(); ++i) {
+      step_rivals.push_back(contenders[earned[i]].record);
     }
+    if (probed && probe.bic < best.bic + options.ambiguity_bic) {
+      step_rivals.push_back(probe.record);
+    }
+    if (best.candidate->effect->roll_locked && !RollSeparates(data)) {
+      step_rivals.push_back(DriftInTime());
+    }
+    if (tie < 0 && !step_rivals.empty()) {
+      // Go on with the best: whether the rest of the record is explained
+      // decides between `ambiguous` and `not_explained`.
+      tie = static_cast<int>(d.steps.size());
+      if (earned.size() > 1) *tied_first = best.record.effect;
+    }
+    rivals.push_back(std::move(step_rivals));
     DiagnosisStep record = Step(best, contenders);
     for (const Candidate& k : candidates) record.ranking.push_back(k.score);
     current = best.candidate->c;
@@ -824,8 +1054,12 @@ Diagnosis Search(const Case& c,
     record.after = check;
     d.steps.push_back(record);
   }
-  d.final =
-      SettleFinalModel(c, data, options, models, tie, check, &d, &current);
+  d.partial_fit = d.fits.size() - 1;
+  d.final = SettleFinalModel(
+      c, data, options, models, tie, rivals, check, &d, &current);
+  if (!d.ambiguous.empty()) {
+    d.separated_by = SeparatedBy(d.ambiguous, c, d.FinalFit(), data);
+  }
   d.final_case = FinalCase(c, current, d.FinalFit());
   FinalValues(&d);
   Conclude(&d);

@@ -114,6 +114,12 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
     out["ambiguous"] = Contenders(d.ambiguous);
     out["separated_by"] = d.separated_by;
   }
+  out["alternatives"] = json::array();
+  for (const AlternativeModel& a : d.alternatives) {
+    out["alternatives"].push_back({{"effect", a.effect},
+                                   {"check", Check(a.check)},
+                                   {"parameters", Estimates(a.parameters)}});
+  }
   if (!d.residual_description.empty()) {
     out["residual_description"] = d.residual_description;
   }
@@ -166,6 +172,12 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
                 : " (" + Values(a.parameters) + "), BIC lower by " +
                       FormatNumber("%.1f", a.bic_drop)) +
            "\n";
+  }
+  for (const AlternativeModel& a : d.alternatives) {
+    out += "  complete model with " + a.effect + ": probable error " +
+           FormatNumber("%.3g", a.check.probable_error) +
+           (a.check.at_noise_level ? ", at the noise level\n"
+                                   : ", residuals structured\n");
   }
   if (!d.outside_catalog.effect.empty()) {
     out += "  outside the catalog, not adopted: " + d.outside_catalog.effect +

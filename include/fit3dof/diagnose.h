@@ -61,14 +61,26 @@
 //     record test an effect at every amplitude and spin rate the record
 //     has: a calibration error that lives at the large early angles would
 //     go untested in a held-out final third.
-// When two contenders both earn their place and their BICs lie within
-// `ambiguity_bic` (10), the verdict is `ambiguous` and neither is added:
-// both fits are reported with what would separate them (another spin
-// rate, amplitude or dynamic pressure). A tie that leaves the residuals
+// When two or more contenders earn their place with BICs within
+// `ambiguity_bic` (10) of the best, the search follows the best and
+// remembers the others; once the record is explained, a rival swapped in
+// for the effect it tied with that still keeps BIC within `ambiguity_bic`
+// (and its values within bounds) makes the verdict `ambiguous` and none of
+// them is added: their fits are reported with what would separate them
+// (another spin rate, amplitude or dynamic pressure). A rival that loses
+// by more once the other effects are in is no longer one. A tie that leaves the residuals
 // structured is only part of the story: the search goes on with the
 // better of the two in the model, and if the record then reaches the noise
-// the verdict is `ambiguous` (the final model the one before the tie, the
-// effects found after it reported as partial), else `not_explained`.
+// the verdict is `ambiguous`, else `not_explained`. The effects found
+// after the tie, up to a second tie, are adopted when the record needs them
+// whichever of the pair is in it: with the tied effect swapped for its
+// rival they still lower BIC by more than `min_bic_drop`, and without
+// either they do so against the model before the tie, all within their
+// bounds (a tunnel stiffness beside a trim moment that ties with a
+// roll-synchronous reading error). The final model is then the one before
+// the tie with them added (Diagnosis::alternatives holds the complete
+// model with each of the pair); otherwise it is the one before the tie,
+// the tied effect and those after it reported as partial.
 // A roll-locked effect (Effect::roll_locked) on records that span less
 // than a revolution of roll ties with a drift in time (`drift_in_time`,
 // outside the catalog): the record is then `ambiguous` at best, and a
@@ -209,6 +221,15 @@ struct DiagnosisStep {
   int fit_after = -1;
 };
 
+// A complete model of an ambiguous diagnosis: the effects adopted and one
+// of the tied pair.
+struct AlternativeModel {
+  std::string effect;  // the tied effect in it
+  ResidualCheck check;
+  std::vector<ParameterEstimate> parameters;  // every parameter
+  int fit = -1;                               // its Diagnosis::fits
+};
+
 enum class Verdict {
   kNoiseLevel,    // the first fit's residuals are measurement noise
   kExplained,     // effects were added and the residuals are noise
@@ -239,6 +260,10 @@ struct Diagnosis {
   // When ambiguous: the effects, their fits, and what would separate them.
   std::vector<CandidateFit> ambiguous;
   std::string separated_by;
+  // When effects were adopted after the tie (they are needed whichever of
+  // the pair is in the model): the complete model with each of the pair,
+  // the tied effect in `effect`, the first as the search followed it.
+  std::vector<AlternativeModel> alternatives;
   // When the residuals stay structured: what they show, and the contenders
   // of the last round, each with why it did not earn its place.
   std::string residual_description;
@@ -256,6 +281,9 @@ struct Diagnosis {
   // partial or pruned, in the order taken), then one per pruning.
   std::vector<FitResult> fits;
   size_t final_fit = 0;  // which of them is the final model's
+  // The fit whose values the partial steps report: the last model the
+  // search had them in.
+  size_t partial_fit = 0;
 
   // The final model's fit.
   const FitResult& FinalFit() const { return fits[final_fit]; }
