@@ -489,21 +489,35 @@ std::string Describe(const std::string& id) {
   return probe != nullptr ? probe->description : FindEffect(id)->description;
 }
 
+// "A, B or C" for the tie's effects, and "x, y and z", their BIC drops.
+void TieWords(const std::vector<CandidateFit>& tie,
+              std::string* effects,
+              std::string* drops) {
+  const size_t n = tie.size();
+  for (size_t i = 0; i < n; ++i) {
+    const char* separator = i == 0 ? "" : i + 1 == n ? " and " : ", ";
+    *effects += (i == 0       ? ""
+                 : i + 1 == n ? " or "
+                              : ", ") +
+                Describe(tie[i].effect);
+    *drops += separator + FormatNumber("%.1f", tie[i].bic_drop);
+  }
+}
+
 void Conclude(Diagnosis* d) {
   const ResidualCheck& check = d->final;
   if (!d->ambiguous.empty()) {
     d->verdict = Verdict::kAmbiguous;
     const CandidateFit& a = d->ambiguous[0];
     const CandidateFit& b = d->ambiguous[1];
-    std::string effects, drops;
     const size_t n = d->ambiguous.size();
-    for (size_t i = 0; i < n; ++i) {
-      const char* separator = i == 0 ? "" : i + 1 == n ? " and " : ", ";
-      effects += (i == 0       ? ""
-                  : i + 1 == n ? " or "
-                               : ", ") +
-                 Describe(d->ambiguous[i].effect);
-      drops += separator + FormatNumber("%.1f", d->ambiguous[i].bic_drop);
+    std::string effects, drops;
+    TieWords(d->ambiguous, &effects, &drops);
+    std::string later;
+    for (const std::vector<CandidateFit>& tie : d->later_ties) {
+      std::string words, bic;
+      TieWords(tie, &words, &bic);
+      later += "; also ambiguous: " + words + " (BIC lower by " + bic + ")";
     }
     d->verdict_text =
         "ambiguous: " + effects +
@@ -513,7 +527,7 @@ void Conclude(Diagnosis* d) {
                    "in time)"
              : " explain the residual alike (BIC lower by " + drops + ")") +
         (n > 2 ? "; none added; " : "; neither added; ") + d->separated_by +
-        " would separate them" +
+        " would separate them" + later +
         (d->steps.empty() ? "" : "; added: " + Described(d->steps)) +
         (d->alternatives.empty()
              ? ""
@@ -793,6 +807,7 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
   Prune(data, options, &pruned, &model);
   const FitResult& fit = pruned.FinalFit();
   const Case at = CaseAtSolution(model, fit);
+  std::vector<std::vector<CandidateFit>> open_ties;
   int first = -1;
   for (size_t i = 0; i < d->steps.size(); ++i) {
     if (rivals[i].empty()) continue;
@@ -806,13 +821,15 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
     const std::vector<CandidateFit> open =
         Unresolved(rivals[i], *kept, pruned.steps, at, fit, data, options);
     (*tied)[i] = !open.empty();
-    if (open.empty() || first >= 0) continue;
-    first = static_cast<int>(i);
-    d->ambiguous = {AsContender(d->steps[i])};
-    d->ambiguous.insert(d->ambiguous.end(), open.begin(), open.end());
+    if (open.empty()) continue;
+    if (first < 0) first = static_cast<int>(i);
+    open_ties.push_back({AsContender(d->steps[i])});
+    open_ties.back().insert(open_ties.back().end(), open.begin(), open.end());
   }
   if (first >= 0) {
     *tie = first;
+    d->ambiguous = open_ties[0];
+    d->later_ties.assign(open_ties.begin() + 1, open_ties.end());
     return false;
   }
   *d = std::move(pruned);

@@ -106,12 +106,25 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["effects_added"] = json::array();
   for (const DiagnosisStep& s : d.steps)
     out["effects_added"].push_back(s.effect);
+  // Every effect in doubt, the first tie's first; each tie on its own in
+  // ambiguous_groups.
+  std::vector<std::vector<CandidateFit>> ties;
+  if (!d.ambiguous.empty()) ties.push_back(d.ambiguous);
+  ties.insert(ties.end(), d.later_ties.begin(), d.later_ties.end());
+  std::vector<CandidateFit> tied;
   out["ambiguous_between"] = json::array();
-  for (const CandidateFit& a : d.ambiguous) {
-    out["ambiguous_between"].push_back(a.effect);
+  out["ambiguous_groups"] = json::array();
+  for (const std::vector<CandidateFit>& tie : ties) {
+    json group = json::array();
+    for (const CandidateFit& a : tie) {
+      out["ambiguous_between"].push_back(a.effect);
+      group.push_back(a.effect);
+      tied.push_back(a);
+    }
+    out["ambiguous_groups"].push_back(group);
   }
   if (!d.ambiguous.empty()) {
-    out["ambiguous"] = Contenders(d.ambiguous);
+    out["ambiguous"] = Contenders(tied);
     out["separated_by"] = d.separated_by;
   }
   out["alternatives"] = json::array();
@@ -164,7 +177,11 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   for (const DiagnosisStep& s : d.pruned) {
     out += "  dropped again: " + s.description + ": " + s.note + "\n";
   }
-  for (const CandidateFit& a : d.ambiguous) {
+  std::vector<CandidateFit> tied = d.ambiguous;
+  for (const std::vector<CandidateFit>& tie : d.later_ties) {
+    tied.insert(tied.end(), tie.begin(), tie.end());
+  }
+  for (const CandidateFit& a : tied) {
     // drift_in_time, a roll-locked effect's rival, has no fit to quote.
     out += "  candidate: " + a.effect +
            (a.parameters.empty()

@@ -15,7 +15,8 @@
 // is white with a flat spectrum, a missing effect leaves slow, structured
 // residuals with lines near the motion's frequencies. On short records the
 // first two limits rise to what noise reaches with chance 1e-3:
-// E^2 <= 1 + 3.09 sqrt(2 / dof) and |lag-1| <= 3.09 / sqrt(n).
+// E^2 <= 1 + 3.09 sqrt(2 / dof) and lag-1 <= 3.09 / sqrt(n) (one-sided: a fit
+// lowers the lag-1 autocorrelation of noise, a missing effect raises it).
 //
 // Which effect? Every catalog effect not yet in the model is scored at the
 // current solution by a score (Lagrange-multiplier) test: with g = J_c^T r
@@ -68,7 +69,9 @@
 // (and its values within bounds) makes the verdict `ambiguous` and none of
 // them is added: their fits are reported with what would separate them
 // (another spin rate, amplitude or dynamic pressure). A rival that loses
-// by more once the other effects are in is no longer one. A tie that leaves the residuals
+// by more once the other effects are in is no longer one. Ties at later
+// steps are judged alike and reported beside the first
+// (Diagnosis::later_ties). A tie that leaves the residuals
 // structured is only part of the story: the search goes on with the
 // better of the two in the model, and if the record then reaches the noise
 // the verdict is `ambiguous`, else `not_explained`. The effects found
@@ -260,6 +263,9 @@ struct Diagnosis {
   // When ambiguous: the effects, their fits, and what would separate them.
   std::vector<CandidateFit> ambiguous;
   std::string separated_by;
+  // Ties at later steps of the search that the record leaves open as well
+  // (each: the effect followed, then its rivals); none of them is added.
+  std::vector<std::vector<CandidateFit>> later_ties;
   // When effects were adopted after the tie (they are needed whichever of
   // the pair is in the model): the complete model with each of the pair,
   // the tied effect in `effect`, the first as the search followed it.
