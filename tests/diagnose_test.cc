@@ -685,6 +685,48 @@ TEST(Diagnose, AdoptsWhatATieLeavesUndisputed) {
   EXPECT_EQ(j["alternatives"].size(), 2u);
 }
 
+// Three effects near the noise on one slow run: a tunnel stiffness (seen
+// there only through the roll it drives, as a roll torque or a tunnel
+// damping would drive it), a roll-synchronous reading error and a flow
+// angularity (over 90 deg of roll both alike a trim moment). Each tie the
+// record leaves open is reported, and nothing in doubt is added.
+TEST(Diagnose, ReportsEveryTieTheRecordLeavesOpen) {
+  const std::string dir = testing::ScratchDirectory("diagnose_two_ties");
+  Case truth = UntrimmedShortTruth(30.0);
+  const std::vector<std::pair<const char*, double>> hidden = {
+      {"t1", 0.00046},
+      {"t3", -0.00016},
+      {"theta_cos_phi", 0.0129},
+      {"theta_sin_phi", -0.0077},
+      {"psi_cos_phi", 0.0103},
+      {"psi_sin_phi", 0.0051},
+      {"theta_T", -0.0076},
+      {"psi_T", 0.0086}};
+  for (const auto& [name, value] : hidden) {
+    truth.parameters[FindParameter(truth.model, name)].value = value;
+  }
+  const std::string data = SimulateShort(truth, dir + "/data.csv", 41);
+  const Case config = ShortConfig({data});
+  const Diagnosis d = Diagnose(config, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("ambiguous")) << text;
+  const std::set<std::string> truths = {
+      "tunnel_stiffness", "roll_interaction", "flow_angularity"};
+  for (const DiagnosisStep& s : d.steps) {
+    EXPECT_TRUE(truths.count(s.effect)) << s.effect << "\n" << text;
+  }
+  EXPECT_FALSE(d.later_ties.empty()) << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(d, config));
+  std::set<std::string> named(j["effects_added"].begin(),
+                              j["effects_added"].end());
+  named.insert(j["ambiguous_between"].begin(), j["ambiguous_between"].end());
+  EXPECT_TRUE(named.count("tunnel_stiffness")) << text;
+  // The reading error as itself or as its roll-locked twin.
+  EXPECT_TRUE(named.count("roll_interaction") || named.count("trim_moment"))
+      << text;
+  EXPECT_EQ(j["ambiguous_groups"].size(), 1 + d.later_ties.size());
+}
+
 // An effect outside the catalog (a pitch reading that drifts 0.05 deg
 // over the Table 6 record) ends not_explained, with at most one effect
 // added, and the residuals described (the trend) for the engineer.
