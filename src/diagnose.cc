@@ -153,6 +153,23 @@ bool Refit(const Candidate& k,
   return true;
 }
 
+// The case `c` fitted from `from`, its solution, into *fit; false when the
+// fit fails.
+bool FitFrom(const Case& c,
+             const FitResult& from,
+             const std::vector<TimeHistory>& data,
+             FitResult* fit) {
+  try {
+    Case start = c;
+    RefitFromSolution(&start, from.probable_error);
+    *fit = FitSamples(start, data);
+    return true;
+  } catch (const std::exception& e) {
+    LOG(WARNING) << from.name << ": refit failed: " << e.what();
+    return false;
+  }
+}
+
 // The probes (Probes) fitted from the solution `fit` of `current`: the
 // one with the lowest BIC into *probe, its case into *candidates (which
 // *probe points into); false when none could be fitted (the case has their
@@ -500,8 +517,22 @@ void TieWords(const std::vector<CandidateFit>& tie,
                  : i + 1 == n ? " or "
                               : ", ") +
                 Describe(tie[i].effect);
-    *drops += separator + FormatNumber("%.1f", tie[i].bic_drop);
+    *drops += separator + (tie[i].effect == kDriftInTime
+                               ? std::string("not fitted")
+                               : FormatNumber("%.1f", tie[i].bic_drop));
   }
+}
+
+// "a, b and c": the alternatives' probable errors.
+std::string ProbableErrors(const std::vector<AlternativeModel>& models) {
+  std::string text;
+  for (size_t i = 0; i < models.size(); ++i) {
+    text += (i == 0                   ? ""
+             : i + 1 == models.size() ? " and "
+                                      : ", ") +
+            FormatNumber("%.3g", models[i].check.probable_error);
+  }
+  return text;
 }
 
 void Conclude(Diagnosis* d) {
@@ -531,14 +562,9 @@ void Conclude(Diagnosis* d) {
         (d->steps.empty() ? "" : "; added: " + Described(d->steps)) +
         (d->alternatives.empty()
              ? ""
-             : " (needed with either; the complete model with each: "
-               "probable error " +
-                   FormatNumber("%.3g",
-                                d->alternatives[0].check.probable_error) +
-                   " and " +
-                   FormatNumber("%.3g",
-                                d->alternatives[1].check.probable_error) +
-                   ")") +
+             : " (needed with each of the tied effects; the complete model "
+               "with each: probable error " +
+                   ProbableErrors(d->alternatives) + ")") +
         (d->partial.size() > 1
              ? "; with the first in the model, " +
                    Described({d->partial.begin() + 1, d->partial.end()}) +
@@ -697,28 +723,30 @@ bool RivalCase(const Case& at, const std::string& id, Case* out) {
   return e != nullptr && CandidateCase(at, *e, out, &added);
 }
 
-// The case `c` fitted from `from`, its solution, into *fit; false when the
-// fit fails.
-bool FitFrom(const Case& c,
-             const FitResult& from,
-             const std::vector<TimeHistory>& data,
-             FitResult* fit) {
-  try {
-    Case start = c;
-    RefitFromSolution(&start, from.probable_error);
-    *fit = FitSamples(start, data);
-    return true;
-  } catch (const std::exception& e) {
-    LOG(WARNING) << from.name << ": refit failed: " << e.what();
-    return false;
+// Whether two roll-locked effects can be told apart (Separation): a
+// segment spins faster than half the pitch frequency of the model fitted
+// as `fit`, where a trim moment's response grows and lags.
+bool SpinSeparatesRollLocked(const Case& c,
+                             const FitResult& fit,
+                             const std::vector<TimeHistory>& data) {
+  const double pitch = PitchFrequency(c, fit);
+  for (const TimeHistory& h : data) {
+    if (h.size() < 2 || !(h.t.back() > h.t.front())) continue;
+    const double spin =
+        std::abs(h.phi.back() - h.phi.front()) / (h.t.back() - h.t.front());
+    if (pitch > 0.0 && spin > 0.5 * pitch) return true;
   }
+  return false;
 }
 
 // The rivals of `step` (recorded when the search added it) that still
 // explain the record as well in the explained model `fit` (of case `at`,
 // whose effects are `steps`): swapped in for it, BIC within ambiguity_bic
 // of the model's and their values within their bounds. A drift in time
-// (not fitted) always does; a rival in the model is none.
+// (not fitted) always does, and so does a roll-locked rival of a
+// roll-locked effect unless a segment spins fast enough to separate them
+// (on two runs at 30 and 60 deg/s a trim moment had won the swap from the
+// roll reading error that was there); a rival in the model is none.
 std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
                                      const DiagnosisStep& step,
                                      const std::vector<DiagnosisStep>& steps,
@@ -727,6 +755,8 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
                                      const std::vector<TimeHistory>& data,
                                      const DiagnoseOptions& options) {
   const Case without = WithoutStep(at, step);
+  const Effect* own = FindEffect(step.effect);
+  const bool twins_separate = SpinSeparatesRollLocked(at, fit, data);
   std::vector<CandidateFit> open;
   for (const CandidateFit& rival : rivals) {
     if (std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
@@ -737,7 +767,10 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
     Case swapped;
     FitResult swapped_fit;
     const Effect* effect = FindEffect(rival.effect);
-    const bool as_good = rival.effect == kDriftInTime ||
+    const bool twins = own != nullptr && own->roll_locked &&
+                       effect != nullptr && effect->roll_locked &&
+                       !twins_separate;
+    const bool as_good = rival.effect == kDriftInTime || twins ||
                          !RivalCase(without, rival.effect, &swapped) ||
                          !FitFrom(swapped, fit, data, &swapped_fit) ||
                          (Bic(swapped_fit) < Bic(fit) + options.ambiguity_bic &&
@@ -838,12 +871,13 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
   return true;
 }
 
-// After a tie (at step `tie`; `tied` marks every step that tied) followed
-// to an explained record: the steps after it up to the next tie are
-// adopted when the record needs them whichever of the pair is in it
-// (diagnose.h). The tied step (and any after the next tie) is then
-// partial, the final model *current is the one before the tie with them
-// added, d->alternatives holds the complete model with each of the pair,
+// After a tie (at step `tie`; `tied` marks every step that stays in
+// doubt) followed to an explained record: the steps after it up to the
+// next tie are adopted when the record needs them whichever of the tied
+// effects (d->ambiguous) is in it (diagnose.h). The tied step (and any
+// after the next tie) is then partial, the final model *current is the one
+// before the tie with them added, d->alternatives holds the complete model
+// with each of the tied effects,
 // *final gets the final model's residual check, and true is returned;
 // otherwise nothing changes.
 bool AdoptAfterTie(const std::vector<TimeHistory>& data,
@@ -861,23 +895,8 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
   VLOG(1) << "after the tie at step " << tie << ": " << last - tie
           << " step(s) before the next tie";
   if (last == tie) return false;
-  const std::string& first = d->steps[tie].effect;
-  const std::string& rival = d->ambiguous[1].effect;
   const FitResult& complete = d->fits[last + 1];
   const FitResult& before = d->fits[tie];
-  // Without either of the pair, with the rival instead of the first, and
-  // the rival alone on the model before the tie.
-  const Case without =
-      WithoutStep(CaseAtSolution(models[last + 1], complete), d->steps[tie]);
-  Case with_rival, rival_alone;
-  FitResult without_fit, rival_fit, rival_alone_fit;
-  if (!FitFrom(without, complete, data, &without_fit) ||
-      !RivalCase(CaseAtSolution(without, without_fit), rival, &with_rival) ||
-      !FitFrom(with_rival, without_fit, data, &rival_fit) ||
-      !RivalCase(CaseAtSolution(models[tie], before), rival, &rival_alone) ||
-      !FitFrom(rival_alone, before, data, &rival_alone_fit)) {
-    return false;
-  }
   std::vector<const Effect*> effects;  // the adopted model's
   std::vector<std::string> names;      // the terms added after the tie
   for (int i = 0; i <= last; ++i) {
@@ -888,30 +907,56 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
       names.push_back(e.name);
     }
   }
-  const bool needed =
-      Bic(without_fit) < Bic(before) - options.min_bic_drop &&
-      Bic(rival_fit) < Bic(rival_alone_fit) - options.min_bic_drop;
-  VLOG(1) << "without either: BIC " << Bic(without_fit) << " against "
-          << Bic(before) << " before the tie; with " << rival << ": "
-          << Bic(rival_fit) << " against " << Bic(rival_alone_fit) << " alone";
-  const ResidualCheck with_first = CheckResiduals(complete, options);
-  const ResidualCheck with_second = CheckResiduals(rival_fit, options);
-  // The drag rule guards against an effect absorbing an unknown structure;
-  // when both complete models reach the noise, what the final model leaves
-  // is known (the pair's signature), and the coefficients may move.
-  const bool known = with_first.at_noise_level && with_second.at_noise_level;
-  if (!needed || !ImplausibleAmong(effects, without, without_fit).empty() ||
-      !ImplausibleAmong(effects, with_rival, rival_fit).empty() ||
-      (!known &&
-       !Drags(before, without_fit, names, options.max_drag).empty())) {
+  // Without any of the tied effects, against the model before the tie.
+  const Case without =
+      WithoutStep(CaseAtSolution(models[last + 1], complete), d->steps[tie]);
+  FitResult without_fit;
+  if (!FitFrom(without, complete, data, &without_fit) ||
+      !(Bic(without_fit) < Bic(before) - options.min_bic_drop) ||
+      !ImplausibleAmong(effects, without, without_fit).empty()) {
     return false;
   }
-  d->fits.push_back(rival_fit);
-  d->alternatives = {{first, with_first, complete.parameters, last + 1},
-                     {rival,
-                      with_second,
-                      rival_fit.parameters,
-                      static_cast<int>(d->fits.size()) - 1}};
+  // With each rival instead of the first, against that rival alone on the
+  // model before the tie.
+  std::vector<AlternativeModel> alternatives = {
+      {d->steps[tie].effect,
+       CheckResiduals(complete, options),
+       complete.parameters,
+       last + 1}};
+  bool known = alternatives[0].check.at_noise_level;
+  std::vector<FitResult> rival_fits;
+  for (size_t r = 1; r < d->ambiguous.size(); ++r) {
+    const std::string& rival = d->ambiguous[r].effect;
+    // A drift in time is no model (a straight drift of the readings stands
+    // in for it) and is tested only when it is the one rival.
+    if (rival == kDriftInTime && d->ambiguous.size() > 2) continue;
+    Case with_rival, rival_alone;
+    FitResult rival_fit, rival_alone_fit;
+    if (!RivalCase(CaseAtSolution(without, without_fit), rival, &with_rival) ||
+        !FitFrom(with_rival, without_fit, data, &rival_fit) ||
+        !RivalCase(CaseAtSolution(models[tie], before), rival, &rival_alone) ||
+        !FitFrom(rival_alone, before, data, &rival_alone_fit) ||
+        !(Bic(rival_fit) < Bic(rival_alone_fit) - options.min_bic_drop) ||
+        !ImplausibleAmong(effects, with_rival, rival_fit).empty()) {
+      VLOG(1) << "not needed, or not plausible, with " << rival;
+      return false;
+    }
+    alternatives.push_back(
+        {rival, CheckResiduals(rival_fit, options), rival_fit.parameters, -1});
+    known = known && alternatives.back().check.at_noise_level;
+    rival_fits.push_back(std::move(rival_fit));
+  }
+  // The drag rule guards against an effect absorbing an unknown structure;
+  // when every complete model reaches the noise, what the final model
+  // leaves is known (the tie's signature), and the coefficients may move.
+  if (!known && !Drags(before, without_fit, names, options.max_drag).empty()) {
+    return false;
+  }
+  for (size_t r = 0; r < rival_fits.size(); ++r) {
+    d->fits.push_back(std::move(rival_fits[r]));
+    alternatives[r + 1].fit = static_cast<int>(d->fits.size()) - 1;
+  }
+  d->alternatives = std::move(alternatives);
   d->fits.push_back(without_fit);
   d->final_fit = d->fits.size() - 1;
   d->partial.assign(1, d->steps[tie]);
@@ -1039,12 +1084,19 @@ Diagnosis Search(const Case& c,
     }
     const Contender& best = contenders[earned[0]];
     // Whatever explains this round's residual as well (diagnose.h): the
-    // other contenders that earned their place within ambiguity_bic, the
+    // other contenders within ambiguity_bic of its BIC, the
     // probe within it, and for a roll-locked effect on less than a
     // revolution of roll a drift in time.
     std::vector<CandidateFit> step_rivals;
-    for (size_t i = 1; i < earned.size(); ++i) {
-      step_rivals.push_back(contenders[earned[i]].record);
+    for (size_t i = 0; i < contenders.size(); ++i) {
+      // Those refused at this step too: with the effects still missing in,
+      // a roll reading error refused beside an unexplained nonlinear
+      // damping may explain the record as well as the trim moment adopted
+      // (the final swap decides, Unresolved).
+      if (static_cast<int>(i) != earned[0] &&
+          contenders[i].bic < best.bic + options.ambiguity_bic) {
+        step_rivals.push_back(contenders[i].record);
+      }
     }
     if (probed && probe.bic < best.bic + options.ambiguity_bic) {
       step_rivals.push_back(probe.record);

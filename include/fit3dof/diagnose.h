@@ -62,27 +62,33 @@
 //     record test an effect at every amplitude and spin rate the record
 //     has: a calibration error that lives at the large early angles would
 //     go untested in a held-out final third.
-// When two or more contenders earn their place with BICs within
-// `ambiguity_bic` (10) of the best, the search follows the best and
-// remembers the others; once the record is explained, a rival swapped in
+// When other contenders come within `ambiguity_bic` (10) of the BIC of
+// the best that earned its place (whether or not they earned theirs: the
+// effects still missing may be what refused them), the search follows the
+// best and remembers the others; once the record is explained, a rival
+// swapped in
 // for the effect it tied with that still keeps BIC within `ambiguity_bic`
 // (and its values within bounds) makes the verdict `ambiguous` and none of
 // them is added: their fits are reported with what would separate them
 // (another spin rate, amplitude or dynamic pressure). A rival that loses
-// by more once the other effects are in is no longer one. Ties at later
+// by more once the other effects are in is no longer one; two roll-locked
+// effects stay rivals unless a record spins above half the pitch
+// frequency (nothing slower separates them). Ties at later
 // steps are judged alike and reported beside the first
 // (Diagnosis::later_ties). A tie that leaves the residuals
 // structured is only part of the story: the search goes on with the
-// better of the two in the model, and if the record then reaches the noise
+// best of them in the model, and if the record then reaches the noise
 // the verdict is `ambiguous`, else `not_explained`. The effects found
 // after the tie, up to a second tie, are adopted when the record needs them
-// whichever of the pair is in it: with the tied effect swapped for its
-// rival they still lower BIC by more than `min_bic_drop`, and without
-// either they do so against the model before the tie, all within their
-// bounds (a tunnel stiffness beside a trim moment that ties with a
-// roll-synchronous reading error). The final model is then the one before
-// the tie with them added (Diagnosis::alternatives holds the complete
-// model with each of the pair); otherwise it is the one before the tie,
+// whichever of the tied effects is in it: with the followed one swapped
+// for each rival they still lower BIC by more than `min_bic_drop`, and
+// without any they do so against the model before the tie, all within
+// their bounds, and (unless every complete model reaches the noise) not
+// dragging the coefficients (a Magnus moment beside a roll-synchronous
+// reading error that ties with a trim moment). The final model is then
+// the one before the tie with them added (Diagnosis::alternatives holds
+// the complete model with each tied effect); otherwise it is the one
+// before the tie,
 // the tied effect and those after it reported as partial.
 // A roll-locked effect (Effect::roll_locked) on records that span less
 // than a revolution of roll ties with a drift in time (`drift_in_time`,
@@ -267,8 +273,9 @@ struct Diagnosis {
   // (each: the effect followed, then its rivals); none of them is added.
   std::vector<std::vector<CandidateFit>> later_ties;
   // When effects were adopted after the tie (they are needed whichever of
-  // the pair is in the model): the complete model with each of the pair,
-  // the tied effect in `effect`, the first as the search followed it.
+  // the tied effects is in the model): the complete model with each of
+  // them, the tied effect in `effect`, the first as the search followed
+  // it.
   std::vector<AlternativeModel> alternatives;
   // When the residuals stay structured: what they show, and the contenders
   // of the last round, each with why it did not earn its place.
