@@ -488,6 +488,32 @@ CandidateFit DriftInTime() {
   return drift;
 }
 
+// Whatever explains a round's residual as well as contenders[best]
+// (diagnose.h): the other contenders within ambiguity_bic of its BIC, the
+// probe (when fitted) within it, and for a roll-locked effect on less than
+// a revolution of roll a drift in time. Contenders refused at this round
+// count too: with the effects still missing in, a roll reading error
+// refused beside an unexplained nonlinear damping may explain the record
+// as well as the trim moment adopted (the final swap decides, Unresolved).
+std::vector<CandidateFit> Rivals(const std::vector<Contender>& contenders,
+                                 int best,
+                                 const Contender* probe,
+                                 const std::vector<TimeHistory>& data,
+                                 const DiagnoseOptions& options) {
+  const double within = contenders[best].bic + options.ambiguity_bic;
+  std::vector<CandidateFit> rivals;
+  for (int i = 0; i < static_cast<int>(contenders.size()); ++i) {
+    if (i != best && contenders[i].bic < within) {
+      rivals.push_back(contenders[i].record);
+    }
+  }
+  if (probe != nullptr && probe->bic < within) rivals.push_back(probe->record);
+  if (contenders[best].candidate->effect->roll_locked && !RollSeparates(data)) {
+    rivals.push_back(DriftInTime());
+  }
+  return rivals;
+}
+
 // The effect ids of `steps` but the one at `skip`, comma separated.
 std::string Others(const std::vector<DiagnosisStep>& steps, int skip) {
   std::string text;
@@ -972,7 +998,8 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
 
 // Which model the search ends with (diagnose.h), given `check`, the
 // residual check of its last fit, `models`, the case of each of d->fits,
-// and `tie`, the step of the first tie or -1: sets d->final_fit and
+// `tie`, the step of the first tie or -1, and `rivals`, each step's
+// (Rivals): sets d->final_fit and
 // *current (from `user` when nothing explains the record) and returns the
 // final model's residual check.
 ResidualCheck SettleFinalModel(
@@ -1083,27 +1110,8 @@ Diagnosis Search(const Case& c,
       break;
     }
     const Contender& best = contenders[earned[0]];
-    // Whatever explains this round's residual as well (diagnose.h): the
-    // other contenders within ambiguity_bic of its BIC, the
-    // probe within it, and for a roll-locked effect on less than a
-    // revolution of roll a drift in time.
-    std::vector<CandidateFit> step_rivals;
-    for (size_t i = 0; i < contenders.size(); ++i) {
-      // Those refused at this step too: with the effects still missing in,
-      // a roll reading error refused beside an unexplained nonlinear
-      // damping may explain the record as well as the trim moment adopted
-      // (the final swap decides, Unresolved).
-      if (static_cast<int>(i) != earned[0] &&
-          contenders[i].bic < best.bic + options.ambiguity_bic) {
-        step_rivals.push_back(contenders[i].record);
-      }
-    }
-    if (probed && probe.bic < best.bic + options.ambiguity_bic) {
-      step_rivals.push_back(probe.record);
-    }
-    if (best.candidate->effect->roll_locked && !RollSeparates(data)) {
-      step_rivals.push_back(DriftInTime());
-    }
+    std::vector<CandidateFit> step_rivals =
+        Rivals(contenders, earned[0], probed ? &probe : nullptr, data, options);
     if (tie < 0 && !step_rivals.empty()) {
       // Go on with the best: whether the rest of the record is explained
       // decides between `ambiguous` and `not_explained`.
