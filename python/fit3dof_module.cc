@@ -290,11 +290,14 @@ PYBIND11_MODULE(_fit3dof, m) {
                                return ids;
                              })
       .def_readonly("final_case", &Diagnosis::final_case)
-      .def_readonly("fits",
-                    &Diagnosis::fits,
-                    "the nominal fit, then one per step taken (kept, partial "
-                    "or pruned), then one per pruning; final_fit is the "
-                    "final model's")
+      .def_readonly(
+          "fits",
+          &Diagnosis::fits,
+          "the nominal fit, then one per step taken (kept, partial "
+          "or pruned), then one per pruning, then after a tie those of "
+          "the alternatives and of the model without it; final_fit "
+          "is the "
+          "final model's")
       .def_property_readonly("final_fit",
                              [](const Diagnosis& d) { return d.FinalFit(); })
       .def(
