@@ -129,35 +129,12 @@ std::vector<ParameterEstimate> Own(const FitResult& fit,
   return own;
 }
 
-// Candidate k refitted in full from the solution `fit` into *c; false
-// when the fit fails.
-bool Refit(const Candidate& k,
-           const FitResult& fit,
-           const std::vector<TimeHistory>& data,
-           Contender* c) {
-  c->candidate = &k;
-  try {
-    Case refit = k.c;
-    RefitFromSolution(&refit, fit.probable_error);
-    c->fit = FitSamples(refit, data);
-  } catch (const std::exception& e) {
-    LOG(WARNING) << fit.name << ": refit with " << k.effect->id
-                 << " failed: " << e.what();
-    return false;
-  }
-  c->bic = Bic(c->fit);
-  c->record.effect = k.effect->id;
-  c->record.parameters = Own(c->fit, k.added);
-  c->record.bic_drop = Bic(fit) - c->bic;
-  c->record.prediction_gain = std::numeric_limits<double>::quiet_NaN();
-  return true;
-}
-
-// The case `c` fitted from `from`, its solution, into *fit; false when the
-// fit fails.
+// The case `c` fitted from `from`, its solution, into *fit; false (and a
+// warning naming the refit, `what`) when the fit fails.
 bool FitFrom(const Case& c,
              const FitResult& from,
              const std::vector<TimeHistory>& data,
+             const std::string& what,
              FitResult* fit) {
   try {
     Case start = c;
@@ -165,9 +142,25 @@ bool FitFrom(const Case& c,
     *fit = FitSamples(start, data);
     return true;
   } catch (const std::exception& e) {
-    LOG(WARNING) << from.name << ": refit failed: " << e.what();
+    LOG(WARNING) << from.name << ": refit " << what << " failed: " << e.what();
     return false;
   }
+}
+
+// Candidate k refitted in full from the solution `fit` into *c; false
+// when the fit fails.
+bool Refit(const Candidate& k,
+           const FitResult& fit,
+           const std::vector<TimeHistory>& data,
+           Contender* c) {
+  c->candidate = &k;
+  if (!FitFrom(k.c, fit, data, "with " + k.effect->id, &c->fit)) return false;
+  c->bic = Bic(c->fit);
+  c->record.effect = k.effect->id;
+  c->record.parameters = Own(c->fit, k.added);
+  c->record.bic_drop = Bic(fit) - c->bic;
+  c->record.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+  return true;
 }
 
 // The probes (Probes) fitted from the solution `fit` of `current`: the
@@ -532,33 +525,36 @@ std::string Describe(const std::string& id) {
   return probe != nullptr ? probe->description : FindEffect(id)->description;
 }
 
+// "a, b <last> c".
+std::string Joined(const std::vector<std::string>& items, const char* last) {
+  std::string text;
+  for (size_t i = 0; i < items.size(); ++i) {
+    text += (i == 0 ? "" : i + 1 == items.size() ? last : ", ") + items[i];
+  }
+  return text;
+}
+
 // "A, B or C" for the tie's effects, and "x, y and z", their BIC drops.
 void TieWords(const std::vector<CandidateFit>& tie,
               std::string* effects,
               std::string* drops) {
-  const size_t n = tie.size();
-  for (size_t i = 0; i < n; ++i) {
-    const char* separator = i == 0 ? "" : i + 1 == n ? " and " : ", ";
-    *effects += (i == 0       ? ""
-                 : i + 1 == n ? " or "
-                              : ", ") +
-                Describe(tie[i].effect);
-    *drops += separator + (tie[i].effect == kDriftInTime
-                               ? std::string("not fitted")
-                               : FormatNumber("%.1f", tie[i].bic_drop));
+  std::vector<std::string> names, bic;
+  for (const CandidateFit& k : tie) {
+    names.push_back(Describe(k.effect));
+    bic.push_back(k.effect == kDriftInTime ? "not fitted"
+                                           : FormatNumber("%.1f", k.bic_drop));
   }
+  *effects = Joined(names, " or ");
+  *drops = Joined(bic, " and ");
 }
 
 // "a, b and c": the alternatives' probable errors.
 std::string ProbableErrors(const std::vector<AlternativeModel>& models) {
-  std::string text;
-  for (size_t i = 0; i < models.size(); ++i) {
-    text += (i == 0                   ? ""
-             : i + 1 == models.size() ? " and "
-                                      : ", ") +
-            FormatNumber("%.3g", models[i].check.probable_error);
+  std::vector<std::string> values;
+  for (const AlternativeModel& m : models) {
+    values.push_back(FormatNumber("%.3g", m.check.probable_error));
   }
-  return text;
+  return Joined(values, " and ");
 }
 
 void Conclude(Diagnosis* d) {
@@ -681,15 +677,11 @@ void Prune(const std::vector<TimeHistory>& data,
     std::vector<FitResult> without(n);
     std::vector<bool> fitted(n, false);
     ParallelFor(n, [&](int i) {
-      try {
-        Case refit = WithoutStep(at, d->steps[i]);
-        RefitFromSolution(&refit, fit.probable_error);
-        without[i] = FitSamples(refit, data);
-        fitted[i] = true;
-      } catch (const std::exception& e) {
-        LOG(WARNING) << fit.name << ": refit without " << d->steps[i].effect
-                     << " failed: " << e.what();
-      }
+      fitted[i] = FitFrom(WithoutStep(at, d->steps[i]),
+                          fit,
+                          data,
+                          "without " + d->steps[i].effect,
+                          &without[i]);
     });
     int drop = -1;
     double least = options.min_bic_drop;
@@ -796,12 +788,17 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
     const bool twins = own != nullptr && own->roll_locked &&
                        effect != nullptr && effect->roll_locked &&
                        !twins_separate;
-    const bool as_good = rival.effect == kDriftInTime || twins ||
-                         !RivalCase(without, rival.effect, &swapped) ||
-                         !FitFrom(swapped, fit, data, &swapped_fit) ||
-                         (Bic(swapped_fit) < Bic(fit) + options.ambiguity_bic &&
-                          (effect == nullptr ||
-                           Implausible(*effect, swapped, swapped_fit).empty()));
+    const bool as_good =
+        rival.effect == kDriftInTime || twins ||
+        !RivalCase(without, rival.effect, &swapped) ||
+        !FitFrom(swapped,
+                 fit,
+                 data,
+                 "with " + rival.effect + " for " + step.effect,
+                 &swapped_fit) ||
+        (Bic(swapped_fit) < Bic(fit) + options.ambiguity_bic &&
+         (effect == nullptr ||
+          Implausible(*effect, swapped, swapped_fit).empty()));
     VLOG(1) << step.effect << " swapped for " << rival.effect << ": "
             << (as_good ? "as good" : "worse");
     if (as_good) open.push_back(rival);
@@ -937,7 +934,11 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
   const Case without =
       WithoutStep(CaseAtSolution(models[last + 1], complete), d->steps[tie]);
   FitResult without_fit;
-  if (!FitFrom(without, complete, data, &without_fit) ||
+  if (!FitFrom(without,
+               complete,
+               data,
+               "without " + d->steps[tie].effect,
+               &without_fit) ||
       !(Bic(without_fit) < Bic(before) - options.min_bic_drop) ||
       !ImplausibleAmong(effects, without, without_fit).empty()) {
     return false;
@@ -959,9 +960,13 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
     Case with_rival, rival_alone;
     FitResult rival_fit, rival_alone_fit;
     if (!RivalCase(CaseAtSolution(without, without_fit), rival, &with_rival) ||
-        !FitFrom(with_rival, without_fit, data, &rival_fit) ||
+        !FitFrom(with_rival, without_fit, data, "with " + rival, &rival_fit) ||
         !RivalCase(CaseAtSolution(models[tie], before), rival, &rival_alone) ||
-        !FitFrom(rival_alone, before, data, &rival_alone_fit) ||
+        !FitFrom(rival_alone,
+                 before,
+                 data,
+                 "with " + rival + " alone",
+                 &rival_alone_fit) ||
         !(Bic(rival_fit) < Bic(rival_alone_fit) - options.min_bic_drop) ||
         !ImplausibleAmong(effects, with_rival, rival_fit).empty()) {
       VLOG(1) << "not needed, or not plausible, with " << rival;

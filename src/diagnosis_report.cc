@@ -96,6 +96,23 @@ std::string Values(const std::vector<ParameterEstimate>& estimates) {
   return values;
 }
 
+// The ties the diagnosis leaves open, the first first.
+std::vector<std::vector<CandidateFit>> Ties(const Diagnosis& d) {
+  std::vector<std::vector<CandidateFit>> ties;
+  if (!d.ambiguous.empty()) ties.push_back(d.ambiguous);
+  ties.insert(ties.end(), d.later_ties.begin(), d.later_ties.end());
+  return ties;
+}
+
+// Every effect in them, in order.
+std::vector<CandidateFit> Tied(const Diagnosis& d) {
+  std::vector<CandidateFit> tied;
+  for (const std::vector<CandidateFit>& tie : Ties(d)) {
+    tied.insert(tied.end(), tie.begin(), tie.end());
+  }
+  return tied;
+}
+
 }  // namespace
 
 std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
@@ -108,19 +125,14 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
     out["effects_added"].push_back(s.effect);
   // Every effect in doubt, the first tie's first; each tie on its own in
   // ambiguous_groups.
-  std::vector<std::vector<CandidateFit>> ties;
-  if (!d.ambiguous.empty()) ties.push_back(d.ambiguous);
-  ties.insert(ties.end(), d.later_ties.begin(), d.later_ties.end());
-  std::vector<CandidateFit> tied;
+  const std::vector<CandidateFit> tied = Tied(d);
   out["ambiguous_between"] = json::array();
+  for (const CandidateFit& a : tied)
+    out["ambiguous_between"].push_back(a.effect);
   out["ambiguous_groups"] = json::array();
-  for (const std::vector<CandidateFit>& tie : ties) {
+  for (const std::vector<CandidateFit>& tie : Ties(d)) {
     json group = json::array();
-    for (const CandidateFit& a : tie) {
-      out["ambiguous_between"].push_back(a.effect);
-      group.push_back(a.effect);
-      tied.push_back(a);
-    }
+    for (const CandidateFit& a : tie) group.push_back(a.effect);
     out["ambiguous_groups"].push_back(group);
   }
   if (!d.ambiguous.empty()) {
@@ -177,11 +189,7 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   for (const DiagnosisStep& s : d.pruned) {
     out += "  dropped again: " + s.description + ": " + s.note + "\n";
   }
-  std::vector<CandidateFit> tied = d.ambiguous;
-  for (const std::vector<CandidateFit>& tie : d.later_ties) {
-    tied.insert(tied.end(), tie.begin(), tie.end());
-  }
-  for (const CandidateFit& a : tied) {
+  for (const CandidateFit& a : Tied(d)) {
     // drift_in_time, a roll-locked effect's rival, has no fit to quote.
     out += "  candidate: " + a.effect +
            (a.parameters.empty()

@@ -24,6 +24,14 @@
 namespace fit3dof {
 namespace {
 
+// The parameters of `c` named in `values` (name-value pairs) set to theirs.
+template <typename Values>
+void SetValues(Case* c, const Values& values) {
+  for (const auto& [name, value] : values) {
+    c->parameters[FindParameter(c->model, name)].value = value;
+  }
+}
+
 // The linear Table 6 motion (no cubic terms): the base the effects hide in.
 Case Truth() {
   Case c = LoadConfig(testing::SourcePath("configs/report/table6_motion.yaml"));
@@ -97,10 +105,7 @@ TEST_P(DiagnoseHidden, NamesTheEffectRecoversItAndReachesTheNoise) {
   }
   Case with_effect =
       hidden.effect == "product_of_inertia" ? ToAsymmetric(truth) : truth;
-  for (const auto& [name, value] : hidden.values) {
-    with_effect.parameters[FindParameter(with_effect.model, name)].value =
-        value;
-  }
+  SetValues(&with_effect, hidden.values);
   Simulate(with_effect, dir + "/data.csv", 21);
   const Diagnosis d = Diagnose(fit_base, DiagnoseOptions());
   ASSERT_FALSE(d.steps.empty()) << FormatDiagnosis(d, fit_base.sigma);
@@ -258,9 +263,7 @@ TEST(Diagnose, DropsAnEffectTheOthersMakeRedundant) {
   Case truth = Truth();
   const std::map<std::string, double> hidden = {{"Cm_p_alpha", 0.148},
                                                 {"Cm_q_delta2", 29.15}};
-  for (const auto& [name, value] : hidden) {
-    truth.parameters[FindParameter(truth.model, name)].value = value;
-  }
+  SetValues(&truth, hidden);
   Simulate(truth, dir + "/data.csv", 11);
   const Diagnosis d =
       Diagnose(FitConfig(Truth(), dir + "/data.csv"), DiagnoseOptions());
@@ -320,7 +323,7 @@ Case ShortTruth(double spin) {
   for (ParameterSetting& p : c.parameters) p = ParameterSetting{};
   c.body = {0.3491, 0.6667, 0.0301, 0.2583, 0.2583};
   c.flow = {2900.0, 460.0};
-  const std::vector<std::pair<const char*, double>> values = {
+  const std::vector<std::pair<std::string, double>> values = {
       {"Cm_alpha", -0.23},
       {"Cm_q", -5.5},
       {"Cm_alpha_delta2", -1.13},
@@ -328,9 +331,7 @@ Case ShortTruth(double spin) {
       {"Cn_0", -3.3e-5},
       {"phidot0", spin},
       {"theta0", 8.0}};
-  for (const auto& [name, value] : values) {
-    c.parameters[FindParameter(c.model, name)].value = value;
-  }
+  SetValues(&c, values);
   return c;
 }
 
@@ -612,16 +613,14 @@ TEST(Diagnose, NamesABodyFixedYawAsymmetryInTheAsymmetricProgram) {
 TEST(Diagnose, FollowsTheOtherBranchOfATieThatLeavesTheRecordUnexplained) {
   const std::string dir = testing::ScratchDirectory("diagnose_tie_branch");
   Case truth = ShortTruth(30.0);
-  const std::vector<std::pair<const char*, double>> hidden = {
+  const std::vector<std::pair<std::string, double>> hidden = {
       {"Cm_0", 0.0},
       {"Cn_0", 0.0},
       {"Cm_p_alpha", 2.9},
       {"Cm_q_delta2", 494.0},
       {"theta_cal3", 0.027},
       {"psi_cal3", -0.027}};
-  for (const auto& [name, value] : hidden) {
-    truth.parameters[FindParameter(truth.model, name)].value = value;
-  }
+  SetValues(&truth, hidden);
   const std::string data = SimulateShort(truth, dir + "/data.csv", 21);
   const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -647,15 +646,13 @@ TEST(Diagnose, FollowsTheOtherBranchOfATieThatLeavesTheRecordUnexplained) {
 TEST(Diagnose, AdoptsWhatATieLeavesUndisputed) {
   const std::string dir = testing::ScratchDirectory("diagnose_after_tie");
   Case truth = UntrimmedShortTruth(30.0);
-  const std::vector<std::pair<const char*, double>> hidden = {
+  const std::vector<std::pair<std::string, double>> hidden = {
       {"Cm_p_alpha", 3.0},
       {"theta_cos_phi", 0.03},
       {"theta_sin_phi", -0.02},
       {"psi_cos_phi", 0.025},
       {"psi_sin_phi", 0.012}};
-  for (const auto& [name, value] : hidden) {
-    truth.parameters[FindParameter(truth.model, name)].value = value;
-  }
+  SetValues(&truth, hidden);
   const std::string data = SimulateShort(truth, dir + "/data.csv", 31);
   const Case config = ShortConfig({data});
   const Diagnosis d = Diagnose(config, DiagnoseOptions());
@@ -693,7 +690,7 @@ TEST(Diagnose, AdoptsWhatATieLeavesUndisputed) {
 TEST(Diagnose, ReportsEveryTieTheRecordLeavesOpen) {
   const std::string dir = testing::ScratchDirectory("diagnose_two_ties");
   Case truth = UntrimmedShortTruth(30.0);
-  const std::vector<std::pair<const char*, double>> hidden = {
+  const std::vector<std::pair<std::string, double>> hidden = {
       {"t1", 0.00046},
       {"t3", -0.00016},
       {"theta_cos_phi", 0.0129},
@@ -702,9 +699,7 @@ TEST(Diagnose, ReportsEveryTieTheRecordLeavesOpen) {
       {"psi_sin_phi", 0.0051},
       {"theta_T", -0.0076},
       {"psi_T", 0.0086}};
-  for (const auto& [name, value] : hidden) {
-    truth.parameters[FindParameter(truth.model, name)].value = value;
-  }
+  SetValues(&truth, hidden);
   const std::string data = SimulateShort(truth, dir + "/data.csv", 41);
   const Case config = ShortConfig({data});
   const Diagnosis d = Diagnose(config, DiagnoseOptions());
@@ -739,15 +734,13 @@ TEST(Diagnose, SlowRunsNeverNameOneOfTheRollLockedTwins) {
   for (int seed = 0; seed < seeds; ++seed) {
     const std::vector<std::string> files = TwoShortRuns(
         dir + "/" + std::to_string(seed), 50 + 10 * seed, [](Case* c) {
-          const std::vector<std::pair<const char*, double>> hidden = {
+          const std::vector<std::pair<std::string, double>> hidden = {
               {"theta_cos_phi", 0.0145},
               {"theta_sin_phi", -0.0087},
               {"psi_cos_phi", 0.0116},
               {"psi_sin_phi", 0.0058},
               {"Cm_q_delta2", 150.0}};
-          for (const auto& [name, value] : hidden) {
-            c->parameters[FindParameter(c->model, name)].value = value;
-          }
+          SetValues(c, hidden);
         });
     const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
     const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
