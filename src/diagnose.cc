@@ -182,7 +182,7 @@ bool FitProbes(const Case& current,
   }
   const int n = static_cast<int>(candidates->size());
   std::vector<Contender> fits(n);
-  std::vector<bool> fitted(n, false);
+  std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
   ParallelFor(n, [&](int i) {
     fitted[i] = Refit((*candidates)[i], fit, data, &fits[i]);
   });
@@ -215,7 +215,7 @@ std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
                                   const DiagnoseOptions& options) {
   const int n = std::min<int>(options.refit, candidates.size());
   std::vector<Contender> refits(n);
-  std::vector<bool> fitted(n, false);
+  std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
   ParallelFor(n, [&](int i) {
     fitted[i] = Refit(candidates[i], fit, data, &refits[i]);
   });
@@ -675,7 +675,8 @@ void Prune(const std::vector<TimeHistory>& data,
     const Case at = CaseAtSolution(*current, fit);
     const int n = static_cast<int>(d->steps.size());
     std::vector<FitResult> without(n);
-    std::vector<bool> fitted(n, false);
+    std::vector<char> fitted(n,
+                             false);  // not vector<bool>: written in parallel
     ParallelFor(n, [&](int i) {
       fitted[i] = FitFrom(WithoutStep(at, d->steps[i]),
                           fit,
