@@ -458,16 +458,27 @@ bool RollSeparates(const std::vector<TimeHistory>& data) {
   return *hi > 1.2 * *lo;
 }
 
+// The lowest BIC of `contenders`, refused or not (+inf when none).
+double BestBic(const std::vector<Contender>& contenders) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Contender& k : contenders) best = std::min(best, k.bic);
+  return best;
+}
+
 // How much lower the probe's BIC must be than that of `best`, the best
 // catalog effect that earned its place, for the record to be not
 // explained: ambiguity_bic; but a roll-locked effect on records that
 // sweep less than a revolution of roll is already a drift in time there
-// (DriftInTime), and when the fitted drift does better it has nothing
-// left to show for itself.
+// (DriftInTime), and when a fitted drift (of the readings or of the
+// dynamic pressure) does better it has nothing left to show for itself.
+// A flow stiffer in one plane is no drift: it needs the margin.
 double ProbeMargin(const Contender& best,
+                   const Contender& probe,
                    const std::vector<TimeHistory>& data,
                    const DiagnoseOptions& options) {
-  return best.candidate->effect->roll_locked && !RollSeparates(data)
+  const std::string& id = probe.candidate->effect->id;
+  const bool drift = id == "reading_drift" || id == "pressure_drift";
+  return drift && best.candidate->effect->roll_locked && !RollSeparates(data)
              ? 0.0
              : options.ambiguity_bic;
 }
@@ -1100,14 +1111,19 @@ Diagnosis Search(const Case& c,
         Earned(fit, added, options, &out_of_sample, &contenders);
     // The probe outside the catalog, against the best that earned its
     // place: better by a margin, and nothing is adopted; within it, a tie.
+    // A catalog effect refused here that explains more than the probe
+    // (a calibration error just past its bound while two effects beside
+    // it are missing) keeps the search in the catalog.
     std::vector<Candidate> probes;
     Contender probe;
     const bool probed = FitProbes(current, fit, data, &probes, &probe) &&
-                        probe.record.bic_drop >= options.min_bic_drop;
+                        probe.record.bic_drop >= options.min_bic_drop &&
+                        probe.bic < BestBic(contenders);
     if (probed &&
         (earned.empty() ||
-         probe.bic < contenders[earned[0]].bic -
-                         ProbeMargin(contenders[earned[0]], data, options))) {
+         probe.bic <
+             contenders[earned[0]].bic -
+                 ProbeMargin(contenders[earned[0]], probe, data, options))) {
       d.outside_catalog = probe.record;
       OutdoneByProbe(probe, &contenders);
     }

@@ -143,7 +143,10 @@ const std::vector<Effect>& EffectCatalog() {
 // adopted. A drift in time of the readings or of the dynamic pressure is
 // what a short run most often shows that the catalog does not hold, and
 // what a catalog effect that follows the amplitude (which decays in time)
-// or the roll angle (which grows in time) imitates on one run.
+// or the roll angle (which grows in time) imitates on one run. A flow
+// stiffer in one of the tunnel's planes is the simplest flow
+// nonuniformity Eq. 39 misses (its tunnel moments carry a roll torque a
+// normal force has not), and a Magnus moment imitates it.
 const std::vector<Effect>& Probes() {
   static const std::vector<Effect> probes = {
       {"reading_drift",
@@ -158,6 +161,15 @@ const std::vector<Effect>& Probes() {
        "a dynamic pressure drifting during the run (outside the catalog)",
        {"q_drift"},
        {"q_drift"},
+       false,
+       {},
+       "",
+       ""},
+      {"flow_yaw_stiffness",
+       "a flow whose stiffness differs between the tunnel's pitch and yaw "
+       "planes, without Eq. 39's roll torque (outside the catalog)",
+       {"Cn_beta_flow"},
+       {"Cn_beta_flow"},
        false,
        {},
        "",

@@ -57,6 +57,7 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"theta_drift", "theta_drift", 1.0},
       {"psi_drift", "psi_drift", 1.0},
       {"q_drift", "q_drift", 1.0},
+      {"Cn_beta_flow", "Cn_beta_flow", 1.0},
   };
   return images;
 }

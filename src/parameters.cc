@@ -185,6 +185,15 @@ std::vector<ParameterInfo> MakeSymmetricTable() {
        "1/s",
        S::kPerSecond,
        "dynamic-pressure drift: every moment x (1 + q_drift (t - t_0))"},
+      // A yaw-plane stiffness of the flow, no roll torque (outside
+      // diagnose's catalog).
+      {44,
+       "Cn_beta_flow",
+       "",
+       "1/rad",
+       S::kPitchStatic,
+       "flow's yaw-plane stiffness: M_z += Cn_beta_flow beta, non-rolling "
+       "frame, no roll torque"},
   };
 }
 
@@ -510,6 +519,15 @@ std::vector<ParameterInfo> MakeAsymmetricTable() {
        "1/s",
        S::kPerSecond,
        "dynamic-pressure drift: every moment x (1 + q_drift (t - t_0))"},
+      // A yaw-plane stiffness of the flow, no roll torque (outside
+      // diagnose's catalog).
+      {84,
+       "Cn_beta_flow",
+       "",
+       "1/rad",
+       S::kPitchStatic,
+       "flow's yaw-plane stiffness: M_z += Cn_beta_flow beta, non-rolling "
+       "frame, no roll torque"},
   };
 }
 
@@ -572,8 +590,10 @@ std::string SuggestParameter(ModelKind model, std::string_view name) {
 }
 
 const ParameterLayout& Layout(ModelKind model) {
-  static const ParameterLayout symmetric{22, 23, 24, -1, 30, 36, 38, 40, 42};
-  static const ParameterLayout asymmetric{64, 65, 66, 59, 72, 76, 78, 80, 82};
+  static const ParameterLayout symmetric{
+      22, 23, 24, -1, 30, 36, 38, 40, 42, 43};
+  static const ParameterLayout asymmetric{
+      64, 65, 66, 59, 72, 76, 78, 80, 82, 83};
   return model == ModelKind::kSymmetric ? symmetric : asymmetric;
 }
 

@@ -536,6 +536,29 @@ TEST(Diagnose, ADriftingDynamicPressureIsNotExplainedByTheCatalog) {
       << text;
 }
 
+// A flow 3.5% softer in the tunnel's yaw plane than in its pitch plane
+// (Cn_beta_flow = -0.008 against Cm_alpha = -0.23), acting through the
+// model's normal force: Eq. 39's tunnel stiffness carries a roll torque
+// this has not, and on two runs from a pitch-plane start (30 and 60 deg/s)
+// a Magnus moment had been adopted for it (the spin turns the pitching into
+// yaw either way). The third probe outside the catalog explains it:
+// nothing is adopted, the verdict is not_explained with its value.
+TEST(Diagnose, AFlowStifferInOnePlaneIsNotAMagnusMoment) {
+  const std::string dir = testing::ScratchDirectory("diagnose_flow_planes");
+  const std::vector<std::string> files = TwoShortRuns(dir, 41, [](Case* c) {
+    c->parameters[FindParameter(c->model, "Cn_beta_flow")].value = -0.008;
+  });
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  ASSERT_EQ(d.outside_catalog.effect, "flow_yaw_stiffness") << text;
+  ASSERT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
+  const ParameterEstimate& e = d.outside_catalog.parameters[0];
+  EXPECT_EQ(e.name, "Cn_beta_flow");
+  EXPECT_NEAR(e.value, -0.008, 3.0 * e.standard_error) << text;
+}
+
 // A pitch reading drifting 0.015 deg/s on one 3-s run: over its 90 deg of
 // roll a roll-synchronous reading error follows it nearly as well, with
 // twice the parameters. A roll-locked effect on less than a revolution is

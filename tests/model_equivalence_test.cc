@@ -61,7 +61,8 @@ Case SymmetricCase(Incidence incidence, double step) {
       {"Cm_bearing", -0.02},
       {"bearing_angle", 1.0},
       {"theta_cal3", 0.02},
-      {"psi_cal3", -0.015}};
+      {"psi_cal3", -0.015},
+      {"Cn_beta_flow", -0.008}};
   for (const auto& [name, value] : values) {
     c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = value;
   }
@@ -136,8 +137,12 @@ TEST(ModelEquivalence, TheExtensionTermsMoveTheMotion) {
     return angles;
   };
   const std::vector<double> reference = motion(all);
-  for (const char* name :
-       {"Cm_0", "Cn_0", "Cm_bearing", "theta_cal3", "psi_cal3"}) {
+  for (const char* name : {"Cm_0",
+                           "Cn_0",
+                           "Cm_bearing",
+                           "theta_cal3",
+                           "psi_cal3",
+                           "Cn_beta_flow"}) {
     Case without = all;
     without.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.0;
     const std::vector<double> other = motion(without);

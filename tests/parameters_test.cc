@@ -34,11 +34,12 @@ std::map<int, std::string> DesignNames(const std::string& heading) {
 TEST(Parameters, TablesHaveTheReportsSizeAndOrder) {
   // The report's 30 and 72, then the extensions: the roll interaction
   // (4), the symmetric trim moment (2), the bearing moment (2) and the
-  // calibration nonlinearity (2) and the reading drift (2).
+  // calibration nonlinearity (2), the reading drift (2), the dynamic
+  // pressure's drift (1) and the flow's yaw-plane stiffness (1).
   EXPECT_EQ(kReportParameters[0], 30);
   EXPECT_EQ(kReportParameters[1], 72);
-  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 43);
-  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 83);
+  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 44);
+  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 84);
   for (ModelKind model : {ModelKind::kSymmetric, ModelKind::kAsymmetric}) {
     const auto& table = ParameterTable(model);
     std::set<std::string> names;
@@ -88,6 +89,11 @@ TEST(Parameters, LayoutPointsAtTheRightEntries) {
   EXPECT_EQ(asym[Layout(ModelKind::kAsymmetric).first_initial + 5].name, "r0");
   EXPECT_EQ(asym[Layout(ModelKind::kAsymmetric).product_of_inertia].name,
             "Izx");
+  for (ModelKind model : {ModelKind::kSymmetric, ModelKind::kAsymmetric}) {
+    const auto& table = ParameterTable(model);
+    EXPECT_EQ(table[Layout(model).q_drift].name, "q_drift");
+    EXPECT_EQ(table[Layout(model).flow_yaw_stiffness].name, "Cn_beta_flow");
+  }
   EXPECT_TRUE(IsInitialCondition(ModelKind::kSymmetric, 29));
   EXPECT_FALSE(IsInitialCondition(ModelKind::kSymmetric, 23));
 }

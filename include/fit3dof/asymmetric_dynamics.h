@@ -174,6 +174,16 @@ void AsymmetricMoments(const CoefficientView<Tk>& k,
     *my += k(77) * a * fade;
     *mz -= k(77) * b * fade * (constants.Iy / constants.Iz);
   }
+  // A yaw-plane stiffness of the flow (84; parameters.h): the moment
+  // Cn_beta_flow beta' about the non-rolling frame's z axis, beta' the
+  // sideslip in that frame (the body's a, b turned back by the roll
+  // angle), taken to body axes as the symmetric program's trim moment is
+  // brought from them. Scaled for pitch, as Cm_bearing.
+  if (k.on(84)) {
+    const T yaw = k(84) * (b * cf - a * sf);
+    *my += yaw * sf;
+    *mz += yaw * cf * (constants.Iy / constants.Iz);
+  }
 
   // Tunnel-fixed stiffness and damping, Eqs. 39 and 41. myt is M_yT / I_y
   // and mzt is M_zT / I_z; the ratios of inertias move them to the axis

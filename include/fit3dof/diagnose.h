@@ -95,11 +95,13 @@
 // outside the catalog): the record is then `ambiguous` at best, and a
 // record spanning a revolution, or a second run at another spin rate,
 // separates them.
-// Each round also fits two probes outside the catalog: a drift of the
-// pitch and yaw readings in time (theta_drift, psi_drift) and a dynamic
-// pressure drifting during the run (q_drift; docs/parameters.md). The
-// better of them (lower BIC) is compared; it is never adopted. When it
-// lowers BIC by more than `ambiguity_bic`
+// Each round also fits three probes outside the catalog: a drift of the
+// pitch and yaw readings in time (theta_drift, psi_drift), a dynamic
+// pressure drifting during the run (q_drift) and a flow whose stiffness
+// differs between the tunnel's pitch and yaw planes without Eq. 39's roll
+// torque (Cn_beta_flow; docs/parameters.md). The best of them (lowest
+// BIC) is compared, when no catalog effect, refused or not, explains more;
+// it is never adopted. When it lowers BIC by more than `ambiguity_bic`
 // below the best catalog effect that earned its place (or by
 // `min_bic_drop` when none did), nothing is added and the verdict is
 // `not_explained`, naming the drift and its rate

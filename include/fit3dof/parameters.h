@@ -24,7 +24,13 @@
 //     segment's first sample);
 //   - a dynamic pressure drifting in time (symmetric 43, asymmetric 83):
 //     every moment coefficient acts times 1 + q_drift (t - t_0) (1/s), as
-//     each is a coefficient of q S d.
+//     each is a coefficient of q S d;
+//   - a yaw-plane stiffness of the flow (symmetric 44, asymmetric 84):
+//     M_z / (q S d) += Cn_beta_flow beta in the non-rolling frame, whose
+//     y and z axes stay in the tunnel's pitch and yaw planes. A flow whose
+//     stiffness differs between the tunnel's planes acts through the
+//     model's normal force, so unlike Eq. 39's tunnel moments it has no
+//     roll torque (outside diagnose's catalog).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -41,7 +47,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 83;
+inline constexpr int kMaxParameters = 84;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};
@@ -114,6 +120,7 @@ struct ParameterLayout {
   int calibration;         // theta_cal3, then psi_cal3
   int drift;               // theta_drift, then psi_drift
   int q_drift;             // the dynamic pressure's drift (1/s)
+  int flow_yaw_stiffness;  // Cn_beta_flow
 };
 const ParameterLayout& Layout(ModelKind model);
 

@@ -178,6 +178,9 @@ void SymmetricMoments(const CoefficientView<Tk>& k,
     *my += k(37) * alpha * fade;
     *mz -= k(37) * beta * fade;
   }
+  // A yaw-plane stiffness of the flow (44; parameters.h): the non-rolling
+  // frame's z axis stays in the tunnel's yaw plane.
+  if (k.on(44)) *mz += k(44) * beta;
 
   // Roll: Cl_0 + p (Cl_p + Cl_p_delta delta + Cl_p_delta2 delta^2).
   T roll_damping(0.0);
