@@ -842,6 +842,12 @@ std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
            FormatNumber("%.0f", RollSpan(data)) +
            " deg) or a run at another spin rate";
   }
+  for (const CandidateFit& k : ambiguous) {
+    const Effect* probe = FindProbe(k.effect);
+    if (probe != nullptr && !probe->separated_by.empty()) {
+      return probe->separated_by;
+    }
+  }
   return "a second run at another spin rate or amplitude (a drift grows "
          "with the time of each run, a catalog effect follows what the runs "
          "differ in)";
@@ -1116,7 +1122,8 @@ Diagnosis Search(const Case& c,
     // it are missing) keeps the search in the catalog.
     std::vector<Candidate> probes;
     Contender probe;
-    const bool probed = FitProbes(current, fit, data, &probes, &probe) &&
+    const bool probed = options.probes &&
+                        FitProbes(current, fit, data, &probes, &probe) &&
                         probe.record.bic_drop >= options.min_bic_drop &&
                         probe.bic < BestBic(contenders);
     if (probed &&
@@ -1125,6 +1132,8 @@ Diagnosis Search(const Case& c,
              contenders[earned[0]].bic -
                  ProbeMargin(contenders[earned[0]], probe, data, options))) {
       d.outside_catalog = probe.record;
+      d.outside_at_noise_level =
+          CheckResiduals(probe.fit, options).at_noise_level;
       OutdoneByProbe(probe, &contenders);
     }
     if (earned.empty() || !d.outside_catalog.effect.empty()) {
@@ -1180,6 +1189,49 @@ CandidateFit FollowedFirst(const Diagnosis& d, const std::string& first) {
 
 }  // namespace
 
+// A probe outside the catalog outdid every catalog effect at one round of
+// `d`; but it was weighed against single effects, and several may explain
+// the record between them. The search without probes, when it explains the
+// record and its final model's BIC is lower than the probe's model's by
+// more than ambiguity_bic, is the answer (the probe among its rejected):
+// a reading lag had beaten a Magnus moment at the first step of a record
+// that a Magnus moment, a nonlinear damping and a calibration error
+// explain. A probe that one catalog effect only matches (a flow stiffer in
+// one plane against a Magnus moment) keeps its verdict, and one that
+// explains the record to the noise needs no second search (nothing can
+// lower BIC much below a noise-level fit).
+Diagnosis CatalogAlone(const Case& c,
+                       const FitResult& nominal,
+                       const DiagnoseOptions& options,
+                       Diagnosis d) {
+  if (d.outside_at_noise_level) return d;
+  DiagnoseOptions without = options;
+  without.probes = false;
+  std::string unused;
+  Diagnosis other = Search(c, nominal, without, &unused);
+  if (other.verdict != Verdict::kExplained) return d;
+  const double probe_bic = Bic(d.fits.back()) - d.outside_catalog.bic_drop;
+  const double margin = probe_bic - Bic(other.FinalFit());
+  if (!(margin > options.ambiguity_bic)) return d;
+  CandidateFit outside = d.outside_catalog;
+  outside.rejected = "explains more than any one catalog effect at step " +
+                     std::to_string(d.steps.size() + 1) + ", but the " +
+                     "catalog's effects together explain the record (BIC " +
+                     FormatNumber("%.1f", margin) + " lower)";
+  other.rejected.push_back(outside);
+  return other;
+}
+
+// Search, and when a probe outdid the catalog, CatalogAlone.
+Diagnosis Searched(const Case& c,
+                   const FitResult& nominal,
+                   const DiagnoseOptions& options,
+                   std::string* tied_first) {
+  Diagnosis d = Search(c, nominal, options, tied_first);
+  if (d.outside_catalog.effect.empty()) return d;
+  return CatalogAlone(c, nominal, options, std::move(d));
+}
+
 // A tie followed down the better branch that leaves the record unexplained
 // is followed down the other: a Magnus moment and an asymmetric body lower
 // BIC alike on one short run, but only with the Magnus moment do the
@@ -1187,7 +1239,7 @@ CandidateFit FollowedFirst(const Diagnosis& d, const std::string& first) {
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
   const FitResult nominal = Fit(c);
   std::string first;
-  Diagnosis d = Search(c, nominal, options, &first);
+  Diagnosis d = Searched(c, nominal, options, &first);
   if (d.verdict != Verdict::kNotExplained || first.empty()) return d;
   DiagnoseOptions without = options;
   without.effects.clear();
@@ -1195,7 +1247,7 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
     if (Wanted(options, e) && e.id != first) without.effects.push_back(e.id);
   }
   std::string unused;
-  Diagnosis other = Search(c, nominal, without, &unused);
+  Diagnosis other = Searched(c, nominal, without, &unused);
   if (other.verdict != Verdict::kExplained) return d;
   CandidateFit followed = FollowedFirst(d, first);
   followed.rejected =

@@ -140,13 +140,18 @@ const std::vector<Effect>& EffectCatalog() {
 }
 
 // The probes outside the catalog (diagnose.h): fitted and compared, never
-// adopted. A drift in time of the readings or of the dynamic pressure is
-// what a short run most often shows that the catalog does not hold, and
-// what a catalog effect that follows the amplitude (which decays in time)
-// or the roll angle (which grows in time) imitates on one run. A flow
-// stiffer in one of the tunnel's planes is the simplest flow
-// nonuniformity Eq. 39 misses (its tunnel moments carry a roll torque a
-// normal force has not), and a Magnus moment imitates it.
+// adopted; separated_by, when given, is the whole phrase of what would
+// tell the probe from a catalog effect. A drift in time of the readings or
+// of the dynamic pressure is what a short run most often shows that the
+// catalog does not hold, and what a catalog effect that follows the
+// amplitude (which decays in time) or the roll angle (which grows in time)
+// imitates on one run. A lag of the readings (a filter's) shifts the
+// phase of pitch against yaw as a tunnel damping does (one 3-s coning run
+// had been called tunnel damping), and a pitch reading's gain error the
+// stiffness of a bearing moment. A flow stiffer in one of the tunnel's
+// planes is the simplest flow nonuniformity Eq. 39 misses (its tunnel
+// moments carry a roll torque a normal force has not), and a Magnus moment
+// imitates it.
 const std::vector<Effect>& Probes() {
   static const std::vector<Effect> probes = {
       {"reading_drift",
@@ -165,6 +170,25 @@ const std::vector<Effect>& Probes() {
        {},
        "",
        ""},
+      {"reading_lag",
+       "a lag of the pitch and yaw readings (a filter in the signal "
+       "conditioning; outside the catalog)",
+       {"theta_lag", "psi_lag"},
+       {"theta_lag", "psi_lag"},
+       false,
+       {},
+       "a bench test of the readings' lag (a known motion through the "
+       "signal conditioning)",
+       ""},
+      {"reading_gain",
+       "a pitch reading whose gain is off the yaw reading's (a calibration "
+       "slope; outside the catalog)",
+       {"theta_gain"},
+       {"theta_gain"},
+       false,
+       {},
+       "a bench calibration of the pitch and yaw readings",
+       ""},
       {"flow_yaw_stiffness",
        "a flow whose stiffness differs between the tunnel's pitch and yaw "
        "planes, without Eq. 39's roll torque (outside the catalog)",
@@ -172,7 +196,8 @@ const std::vector<Effect>& Probes() {
        {"Cn_beta_flow"},
        false,
        {},
-       "",
+       "a run pitching in one plane (Eq. 39's tunnel moments drive the "
+       "roll there, a normal force does not)",
        ""},
   };
   return probes;

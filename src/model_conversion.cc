@@ -58,6 +58,9 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"psi_drift", "psi_drift", 1.0},
       {"q_drift", "q_drift", 1.0},
       {"Cn_beta_flow", "Cn_beta_flow", 1.0},
+      {"theta_lag", "theta_lag", 1.0},
+      {"psi_lag", "psi_lag", 1.0},
+      {"theta_gain", "theta_gain", 1.0},
   };
   return images;
 }

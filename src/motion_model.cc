@@ -73,6 +73,8 @@ MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
   calibration_ =
       active_[layout_.calibration] || active_[layout_.calibration + 1];
   drift_ = active_[layout_.drift] || active_[layout_.drift + 1];
+  lag_ = active_[layout_.lag] || active_[layout_.lag + 1];
+  gain_ = active_[layout_.gain];
   if (active_[layout_.q_drift]) {
     const auto& table = ParameterTable(spec_.model);
     for (int i = 0; i < static_cast<int>(table.size()); ++i) {

@@ -194,6 +194,29 @@ std::vector<ParameterInfo> MakeSymmetricTable() {
        S::kPitchStatic,
        "flow's yaw-plane stiffness: M_z += Cn_beta_flow beta, non-rolling "
        "frame, no roll torque"},
+      // A lag of the readings (outside diagnose's catalog).
+      {45,
+       "theta_lag",
+       "",
+       "s",
+       S::kSecond,
+       "reading lag: pitch read through a first-order filter of this time "
+       "constant"},
+      {46,
+       "psi_lag",
+       "",
+       "s",
+       S::kSecond,
+       "reading lag: yaw read through a first-order filter of this time "
+       "constant"},
+      // A pitch reading's gain error (outside diagnose's catalog).
+      {47,
+       "theta_gain",
+       "",
+       "-",
+       S::kRatio,
+       "reading gain: theta_m += theta_gain theta (against the yaw "
+       "reading's)"},
   };
 }
 
@@ -528,6 +551,29 @@ std::vector<ParameterInfo> MakeAsymmetricTable() {
        S::kPitchStatic,
        "flow's yaw-plane stiffness: M_z += Cn_beta_flow beta, non-rolling "
        "frame, no roll torque"},
+      // A lag of the readings (outside diagnose's catalog).
+      {85,
+       "theta_lag",
+       "",
+       "s",
+       S::kSecond,
+       "reading lag: pitch read through a first-order filter of this time "
+       "constant"},
+      {86,
+       "psi_lag",
+       "",
+       "s",
+       S::kSecond,
+       "reading lag: yaw read through a first-order filter of this time "
+       "constant"},
+      // A pitch reading's gain error (outside diagnose's catalog).
+      {87,
+       "theta_gain",
+       "",
+       "-",
+       S::kRatio,
+       "reading gain: theta_m += theta_gain theta (against the yaw "
+       "reading's)"},
   };
 }
 
@@ -591,9 +637,9 @@ std::string SuggestParameter(ModelKind model, std::string_view name) {
 
 const ParameterLayout& Layout(ModelKind model) {
   static const ParameterLayout symmetric{
-      22, 23, 24, -1, 30, 36, 38, 40, 42, 43};
+      22, 23, 24, -1, 30, 36, 38, 40, 42, 43, 44, 46};
   static const ParameterLayout asymmetric{
-      64, 65, 66, 59, 72, 76, 78, 80, 82, 83};
+      64, 65, 66, 59, 72, 76, 78, 80, 82, 83, 84, 86};
   return model == ModelKind::kSymmetric ? symmetric : asymmetric;
 }
 

@@ -46,6 +46,8 @@ std::vector<double> InternalScaleFactors(ModelKind model,
         break;
       case Scaling::kInertia:
       case Scaling::kPerSecond:
+      case Scaling::kSecond:
+      case Scaling::kRatio:
       case Scaling::kUnused:
         factors[i] = 1.0;
         break;

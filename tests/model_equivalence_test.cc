@@ -62,7 +62,10 @@ Case SymmetricCase(Incidence incidence, double step) {
       {"bearing_angle", 1.0},
       {"theta_cal3", 0.02},
       {"psi_cal3", -0.015},
-      {"Cn_beta_flow", -0.008}};
+      {"Cn_beta_flow", -0.008},
+      {"theta_lag", 0.006},
+      {"psi_lag", -0.003},
+      {"theta_gain", 0.02}};
   for (const auto& [name, value] : values) {
     c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = value;
   }
@@ -142,7 +145,10 @@ TEST(ModelEquivalence, TheExtensionTermsMoveTheMotion) {
                            "Cm_bearing",
                            "theta_cal3",
                            "psi_cal3",
-                           "Cn_beta_flow"}) {
+                           "Cn_beta_flow",
+                           "theta_lag",
+                           "psi_lag",
+                           "theta_gain"}) {
     Case without = all;
     without.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.0;
     const std::vector<double> other = motion(without);

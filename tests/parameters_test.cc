@@ -35,11 +35,12 @@ TEST(Parameters, TablesHaveTheReportsSizeAndOrder) {
   // The report's 30 and 72, then the extensions: the roll interaction
   // (4), the symmetric trim moment (2), the bearing moment (2) and the
   // calibration nonlinearity (2), the reading drift (2), the dynamic
-  // pressure's drift (1) and the flow's yaw-plane stiffness (1).
+  // pressure's drift (1), the flow's yaw-plane stiffness (1), the
+  // readings' lag (2) and the pitch reading's gain (1).
   EXPECT_EQ(kReportParameters[0], 30);
   EXPECT_EQ(kReportParameters[1], 72);
-  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 44);
-  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 84);
+  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 47);
+  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 87);
   for (ModelKind model : {ModelKind::kSymmetric, ModelKind::kAsymmetric}) {
     const auto& table = ParameterTable(model);
     std::set<std::string> names;
@@ -93,6 +94,9 @@ TEST(Parameters, LayoutPointsAtTheRightEntries) {
     const auto& table = ParameterTable(model);
     EXPECT_EQ(table[Layout(model).q_drift].name, "q_drift");
     EXPECT_EQ(table[Layout(model).flow_yaw_stiffness].name, "Cn_beta_flow");
+    EXPECT_EQ(table[Layout(model).lag].name, "theta_lag");
+    EXPECT_EQ(table[Layout(model).lag + 1].name, "psi_lag");
+    EXPECT_EQ(table[Layout(model).gain].name, "theta_gain");
   }
   EXPECT_TRUE(IsInitialCondition(ModelKind::kSymmetric, 29));
   EXPECT_FALSE(IsInitialCondition(ModelKind::kSymmetric, 23));

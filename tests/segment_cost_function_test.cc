@@ -168,19 +168,26 @@ void EvaluateBy(Block& s,
 // The forward sensitivities give the Jet lanes' residuals exactly and their
 // derivatives to rounding, for every kind of parameter: coefficients of
 // both programs, tunnel terms, the product of inertia, the measurement
-// model (offsets, roll interaction), the dynamic pressure's drift, the
-// flow's yaw-plane stiffness and initial conditions, with both incidence definitions.
+// model (offsets, roll interaction, the readings' lag and gain), the dynamic
+// pressure's drift, the flow's yaw-plane stiffness and initial conditions, with
+// both incidence definitions.
 TEST(SegmentCostFunction, SensitivitiesEqualJetLanes) {
   std::vector<int> symmetric;
   for (int i = 0; i < 23; ++i) symmetric.push_back(i);   // + theta_T
   for (int i = 30; i < 34; ++i) symmetric.push_back(i);  // roll interaction
   symmetric.push_back(Layout(ModelKind::kSymmetric).q_drift);
   symmetric.push_back(Layout(ModelKind::kSymmetric).flow_yaw_stiffness);
+  symmetric.push_back(Layout(ModelKind::kSymmetric).lag);
+  symmetric.push_back(Layout(ModelKind::kSymmetric).lag + 1);
+  symmetric.push_back(Layout(ModelKind::kSymmetric).gain);
   std::vector<int> asymmetric;
   for (int i = 0; i < 65; ++i) asymmetric.push_back(i);
   for (int i = 72; i < 76; ++i) asymmetric.push_back(i);
   asymmetric.push_back(Layout(ModelKind::kAsymmetric).q_drift);
   asymmetric.push_back(Layout(ModelKind::kAsymmetric).flow_yaw_stiffness);
+  asymmetric.push_back(Layout(ModelKind::kAsymmetric).lag);
+  asymmetric.push_back(Layout(ModelKind::kAsymmetric).lag + 1);
+  asymmetric.push_back(Layout(ModelKind::kAsymmetric).gain);
   const std::vector<int> symmetric_initial = {24, 25, 26, 27, 28, 29};
   const std::vector<int> asymmetric_initial = {66, 67, 68, 69, 70, 71};
   std::vector<Block> blocks;

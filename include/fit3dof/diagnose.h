@@ -95,14 +95,19 @@
 // outside the catalog): the record is then `ambiguous` at best, and a
 // record spanning a revolution, or a second run at another spin rate,
 // separates them.
-// Each round also fits three probes outside the catalog: a drift of the
+// Each round also fits five probes outside the catalog: a drift of the
 // pitch and yaw readings in time (theta_drift, psi_drift), a dynamic
-// pressure drifting during the run (q_drift) and a flow whose stiffness
-// differs between the tunnel's pitch and yaw planes without Eq. 39's roll
-// torque (Cn_beta_flow; docs/parameters.md). The best of them (lowest
-// BIC) is compared, when no catalog effect, refused or not, explains more;
-// it is never adopted. When it lowers BIC by more than `ambiguity_bic`
-// below the best catalog effect that earned its place (or by
+// pressure drifting during the run (q_drift), a lag of the readings (a
+// filter's: theta_lag, psi_lag), a pitch reading's gain off the yaw
+// reading's (theta_gain) and a flow whose stiffness differs between the
+// tunnel's pitch and yaw planes without Eq. 39's roll torque (Cn_beta_flow;
+// docs/parameters.md). When the best of them wins a round, the search
+// without probes is run too, and when it explains the record with a BIC
+// lower than the probe's model's by more than `ambiguity_bic`, it is the
+// answer (several catalog effects against the probe that beat each alone). The
+// best of them (lowest BIC) is compared, when no catalog effect, refused or
+// not, explains more; it is never adopted. When it lowers BIC by more than
+// `ambiguity_bic` below the best catalog effect that earned its place (or by
 // `min_bic_drop` when none did), nothing is added and the verdict is
 // `not_explained`, naming the drift and its rate
 // (Diagnosis::outside_catalog): on two runs a roll-synchronous reading
@@ -177,6 +182,7 @@ struct DiagnoseOptions {
   double gain_per_parameter = 2.0;
   int max_steps = 5;
   std::vector<std::string> effects;  // restrict the catalog (empty: all)
+  bool probes = true;                // fit the probes outside the catalog
 };
 
 struct ResidualCheck {
@@ -284,11 +290,14 @@ struct Diagnosis {
   std::string residual_description;
   std::vector<CandidateFit> rejected;
   // When a probe outside the catalog (a drift of the readings or of the
-  // dynamic pressure in time) explains the residual better than any
-  // catalog effect that earned its place, by ambiguity_bic or more: its
-  // fit (effect empty otherwise). It is never adopted: the verdict is
-  // not_explained, and it names what the residual looks like.
+  // dynamic pressure in time, a lag or gain error of the readings, a flow
+  // stiffer in one plane) explains the residual better than any catalog
+  // effect that earned its place, by ambiguity_bic or more: its fit
+  // (effect empty otherwise), and whether that fit reaches the noise
+  // level. It is never adopted: the verdict is not_explained, and it
+  // names what the residual looks like.
   CandidateFit outside_catalog;
+  bool outside_at_noise_level = false;
   // Every parameter of the final model (its free ones with errors).
   std::vector<ParameterEstimate> final_parameters;
   Case final_case;

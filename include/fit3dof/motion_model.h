@@ -189,6 +189,30 @@ class MotionModel {
     AsymmetricDerivative(k, asymmetric_, x, trig, dx);
   }
 
+  // dtheta/dt and dpsi/dt of state x (rad/s): state entries in the
+  // symmetric program, the kinematics of Appendix A in the asymmetric one.
+  template <typename Tx>
+  void AngleRates(const Tx* x, Tx* thetadot, Tx* psidot) const {
+    if (spec_.model == ModelKind::kSymmetric) {
+      *thetadot = x[kSymThetaDot];
+      *psidot = x[kSymPsiDot];
+      return;
+    }
+    using std::cos;
+    using std::sin;
+    Tx phidot;
+    BodyToEulerRates<Tx>(sin(x[kAsymPhi]),
+                         cos(x[kAsymPhi]),
+                         sin(x[kAsymTheta]),
+                         cos(x[kAsymTheta]),
+                         x[kAsymP],
+                         x[kAsymQ],
+                         x[kAsymR],
+                         &phidot,
+                         thetadot,
+                         psidot);
+  }
+
   // The measurement model: the three measured angles (deg) of state x,
   // `elapsed` (s) after the segment's first sample, with `internal` the
   // parameters in internal units.
@@ -241,6 +265,8 @@ class MotionModel {
   bool roll_interaction_ = false;
   bool calibration_ = false;
   bool drift_ = false;
+  bool lag_ = false;
+  bool gain_ = false;
   // The active moment coefficients that follow a drifting dynamic pressure
   // (Drift); empty unless q_drift is active.
   std::vector<int> drifting_;
@@ -302,6 +328,16 @@ void MotionModel::Measure(const Tx* x,
   if (drift_) {
     theta += internal[layout_.drift] * elapsed;
     psi += internal[layout_.drift + 1] * elapsed;
+  }
+  // A pitch reading whose gain is off the yaw reading's.
+  if (gain_) theta += internal[layout_.gain] * x[state_index_[1]];
+  // A reading through a first-order lag of time constant tau reads
+  // x - tau dx/dt + O((omega tau)^2).
+  if (lag_) {
+    Tx thetadot, psidot;
+    AngleRates(x, &thetadot, &psidot);
+    theta -= internal[layout_.lag] * thetadot;
+    psi -= internal[layout_.lag + 1] * psidot;
   }
   angles[0] = T(phi * kDegreesPerRadian);
   angles[1] = theta * kDegreesPerRadian;

@@ -30,7 +30,15 @@
 //     y and z axes stay in the tunnel's pitch and yaw planes. A flow whose
 //     stiffness differs between the tunnel's planes acts through the
 //     model's normal force, so unlike Eq. 39's tunnel moments it has no
-//     roll torque (outside diagnose's catalog).
+//     roll torque (outside diagnose's catalog);
+//   - a lag of the readings (symmetric 45-46, asymmetric 85-86):
+//     theta_m -= theta_lag dtheta/dt, the same for psi (s): a first-order
+//     filter of time constant tau in the signal conditioning, to first
+//     order in omega tau (outside diagnose's catalog);
+//   - a pitch reading's gain off the yaw reading's (symmetric 47,
+//     asymmetric 87): theta_m += theta_gain theta, a calibration slope
+//     error (outside diagnose's catalog; a gain common to both readings
+//     scales a linear motion, which the initial conditions absorb).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -47,7 +55,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 84;
+inline constexpr int kMaxParameters = 87;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};
@@ -77,6 +85,8 @@ enum class Scaling {
   kAngleRate,  // deg/s -> rad/s
   kInertia,    // slug ft^2, used as is (the product of inertia I_zx)
   kPerSecond,  // 1/s, used as is (the dynamic pressure's drift)
+  kSecond,     // s, used as is (the readings' lag)
+  kRatio,      // dimensionless, used as is (a reading's gain error)
   kUnused,     // spare slots of the report's lists
 };
 
@@ -121,6 +131,8 @@ struct ParameterLayout {
   int drift;               // theta_drift, then psi_drift
   int q_drift;             // the dynamic pressure's drift (1/s)
   int flow_yaw_stiffness;  // Cn_beta_flow
+  int lag;                 // theta_lag, then psi_lag (s)
+  int gain;                // theta_gain
 };
 const ParameterLayout& Layout(ModelKind model);
 
