@@ -1187,19 +1187,22 @@ CandidateFit FollowedFirst(const Diagnosis& d, const std::string& first) {
   return none;
 }
 
-}  // namespace
+Diagnosis DiagnoseFrom(const Case& c,
+                       const FitResult& nominal,
+                       const DiagnoseOptions& options);
 
 // A probe outside the catalog outdid every catalog effect at one round of
 // `d`; but it was weighed against single effects, and several may explain
-// the record between them. The search without probes, when it explains the
-// record and its final model's BIC is lower than the probe's model's by
-// more than ambiguity_bic, is the answer (the probe among its rejected):
-// a reading lag had beaten a Magnus moment at the first step of a record
-// that a Magnus moment, a nonlinear damping and a calibration error
-// explain. A probe that one catalog effect only matches (a flow stiffer in
-// one plane against a Magnus moment) keeps its verdict, and one that
-// explains the record to the noise needs no second search (nothing can
-// lower BIC much below a noise-level fit).
+// the record between them. The diagnosis without probes, when it explains
+// the record (or ties with every branch explained) and its complete
+// model's BIC is lower than the probe's model's by more than
+// ambiguity_bic, is the answer (the probe among its rejected): a reading
+// lag had beaten a Magnus moment at the first step of a record that a
+// Magnus moment, a nonlinear damping and a calibration error explain. A
+// probe that one catalog effect only matches (a flow stiffer in one plane
+// against a Magnus moment) keeps its verdict, and one that explains the
+// record to the noise needs no second search (nothing can lower BIC much
+// below a noise-level fit).
 Diagnosis CatalogAlone(const Case& c,
                        const FitResult& nominal,
                        const DiagnoseOptions& options,
@@ -1207,11 +1210,17 @@ Diagnosis CatalogAlone(const Case& c,
   if (d.outside_at_noise_level) return d;
   DiagnoseOptions without = options;
   without.probes = false;
-  std::string unused;
-  Diagnosis other = Search(c, nominal, without, &unused);
-  if (other.verdict != Verdict::kExplained) return d;
+  Diagnosis other = DiagnoseFrom(c, nominal, without);
+  if (other.verdict != Verdict::kExplained &&
+      other.verdict != Verdict::kAmbiguous) {
+    return d;
+  }
+  // The complete model: the final one, or the search's last (what an open
+  // tie leaves out of the final model, pruning may have dropped).
+  const double catalog_bic =
+      std::min(Bic(other.FinalFit()), Bic(other.fits[other.partial_fit]));
   const double probe_bic = Bic(d.fits.back()) - d.outside_catalog.bic_drop;
-  const double margin = probe_bic - Bic(other.FinalFit());
+  const double margin = probe_bic - catalog_bic;
   if (!(margin > options.ambiguity_bic)) return d;
   CandidateFit outside = d.outside_catalog;
   outside.rejected = "explains more than any one catalog effect at step " +
@@ -1236,8 +1245,9 @@ Diagnosis Searched(const Case& c,
 // is followed down the other: a Magnus moment and an asymmetric body lower
 // BIC alike on one short run, but only with the Magnus moment do the
 // other effects in the record bring the residuals to the noise level.
-Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
-  const FitResult nominal = Fit(c);
+Diagnosis DiagnoseFrom(const Case& c,
+                       const FitResult& nominal,
+                       const DiagnoseOptions& options) {
   std::string first;
   Diagnosis d = Searched(c, nominal, options, &first);
   if (d.verdict != Verdict::kNotExplained || first.empty()) return d;
@@ -1258,6 +1268,12 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
                         ", as good at one step, leaves the residuals "
                         "structured whatever follows it";
   return other;
+}
+
+}  // namespace
+
+Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
+  return DiagnoseFrom(c, Fit(c), options);
 }
 
 }  // namespace fit3dof
