@@ -95,32 +95,37 @@
 // outside the catalog): the record is then `ambiguous` at best, and a
 // record spanning a revolution, or a second run at another spin rate,
 // separates them.
-// Each round also fits five probes outside the catalog: a drift of the
+// Each round also scores five probes outside the catalog: a drift of the
 // pitch and yaw readings in time (theta_drift, psi_drift), a dynamic
 // pressure drifting during the run (q_drift), a lag of the readings (a
 // filter's: theta_lag, psi_lag), a pitch reading's gain off the yaw
 // reading's (theta_gain) and a flow whose stiffness differs between the
 // tunnel's pitch and yaw planes without Eq. 39's roll torque (Cn_beta_flow;
-// docs/parameters.md). When the best of them wins a round, the search
-// without probes is run too, and when it explains the record with a BIC
-// lower than the probe's model's by more than `ambiguity_bic`, it is the
-// answer (several catalog effects against the probe that beat each alone). The
-// best of them (lowest BIC) is compared, when no catalog effect, refused or
-// not, explains more; it is never adopted. When it lowers BIC by more than
-// `ambiguity_bic` below the best catalog effect that earned its place (or by
-// `min_bic_drop` when none did), nothing is added and the verdict is
-// `not_explained`, naming the drift and its rate
+// docs/parameters.md), and refits the two with the largest scores. The
+// best of those (lowest BIC) is compared, when no catalog effect, refused
+// or not, explains more; it is never adopted. When it lowers BIC by more
+// than `ambiguity_bic` below the best catalog effect that earned its place
+// (or by `min_bic_drop` when none did), nothing is added and the verdict
+// is `not_explained`, naming it and its values
 // (Diagnosis::outside_catalog): on two runs a roll-synchronous reading
 // error and a zero offset had been adopted for a drifting pitch reading.
 // When the best is roll-locked and the records sweep less than a
-// revolution of roll (it is then a drift in time itself), the probe needs
-// no margin: better at all, the verdict is `not_explained` (a pitch
+// revolution of roll (it is then a drift in time itself), a drift probe
+// needs no margin: better at all, the verdict is `not_explained` (a pitch
 // reading drift on one 3-s run had ended `ambiguous` with a roll reading
 // error of twice its parameters). Otherwise, within `ambiguity_bic` of the
 // best, it ties with it (`ambiguous`): on
 // one 3-s run a bearing moment (a stiffness that grows as the amplitude
 // decays) and a drifting dynamic pressure do; a drifting pressure had
 // been named a bearing moment.
+// A probe is weighed against one catalog effect at a time: when it wins
+// without reaching the noise, and the round's catalog contenders together
+// lower BIC by more than it does, the diagnosis without probes is run too;
+// when that explains the record (or ties with every branch explained) with
+// a BIC lower than the probe's model's by more than `ambiguity_bic`, it is
+// the answer (a reading lag had beaten a Magnus moment at the first step
+// of a record a Magnus moment, a nonlinear damping and a calibration error
+// explain).
 // When the record is explained by several effects, each is checked again
 // with the others in (backward elimination): one whose removal keeps the
 // residuals at the noise level and costs less than `min_bic_drop` of BIC
