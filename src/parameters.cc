@@ -14,12 +14,145 @@ namespace {
 
 using S = Scaling;
 
+// `entries` numbered from `first` on, in their order.
+std::vector<ParameterInfo> Numbered(int first,
+                                    std::vector<ParameterInfo> entries) {
+  for (ParameterInfo& e : entries) e.index = first++;
+  return entries;
+}
+
+// fit3dof extensions both programs have (parameters.h), numbered from
+// `first` on: the roll interaction (Section 5.2, Figs. 9-12).
+std::vector<ParameterInfo> RollInteraction(int first) {
+  return Numbered(
+      first,
+      {
+          {0,
+           "theta_cos_phi",
+           "",
+           "deg",
+           S::kAngle,
+           "roll interaction: pitch reading error, cos(phi) harmonic"},
+          {0,
+           "theta_sin_phi",
+           "",
+           "deg",
+           S::kAngle,
+           "roll interaction: pitch reading error, sin(phi) harmonic"},
+          {0,
+           "psi_cos_phi",
+           "",
+           "deg",
+           S::kAngle,
+           "roll interaction: yaw reading error, cos(phi) harmonic"},
+          {0,
+           "psi_sin_phi",
+           "",
+           "deg",
+           S::kAngle,
+           "roll interaction: yaw reading error, sin(phi) harmonic"},
+      });
+}
+
+// The gas bearing's moment and calibration nonlinearity (Section 5.2), then
+// the faults diagnose probes for outside its catalog: a drift of the
+// readings and of the dynamic pressure, a flow stiffer in one plane, a lag
+// and a gain error of the readings.
+std::vector<ParameterInfo> BearingAndFaults(int first) {
+  return Numbered(
+      first,
+      {
+          {0,
+           "Cm_bearing",
+           "",
+           "1/rad",
+           S::kPitchStatic,
+           "gas-bearing moment: stiffness near zero angle, fading beyond "
+           "bearing_angle"},
+          {0,
+           "bearing_angle",
+           "",
+           "deg",
+           S::kAngle,
+           "gas-bearing moment: the angle where it saturates"},
+          {0,
+           "theta_cal3",
+           "",
+           "deg",
+           S::kAngle,
+           "calibration nonlinearity: pitch reading error at 5 deg, cubic"},
+          {0,
+           "psi_cal3",
+           "",
+           "deg",
+           S::kAngle,
+           "calibration nonlinearity: yaw reading error at 5 deg, cubic"},
+          // A drift of the readings in time (outside diagnose's catalog).
+          {0,
+           "theta_drift",
+           "",
+           "deg/s",
+           S::kAngleRate,
+           "reading drift: pitch reading error growing in time"},
+          {0,
+           "psi_drift",
+           "",
+           "deg/s",
+           S::kAngleRate,
+           "reading drift: yaw reading error growing in time"},
+          // A dynamic pressure drifting in time (outside diagnose's catalog).
+          {0,
+           "q_drift",
+           "",
+           "1/s",
+           S::kPerSecond,
+           "dynamic-pressure drift: every moment x (1 + q_drift (t - t_0))"},
+          // A yaw-plane stiffness of the flow, no roll torque (outside
+          // diagnose's catalog).
+          {0,
+           "Cn_beta_flow",
+           "",
+           "1/rad",
+           S::kPitchStatic,
+           "flow's yaw-plane stiffness: M_z += Cn_beta_flow beta, non-rolling "
+           "frame, no roll torque"},
+          // A lag of the readings (outside diagnose's catalog).
+          {0,
+           "theta_lag",
+           "",
+           "s",
+           S::kSecond,
+           "reading lag: pitch read through a first-order filter of this time "
+           "constant"},
+          {0,
+           "psi_lag",
+           "",
+           "s",
+           S::kSecond,
+           "reading lag: yaw read through a first-order filter of this time "
+           "constant"},
+          // A pitch reading's gain error (outside diagnose's catalog).
+          {0,
+           "theta_gain",
+           "",
+           "-",
+           S::kRatio,
+           "reading gain: theta_m += theta_gain theta (against the yaw "
+           "reading's)"},
+      });
+}
+
+void Append(const std::vector<ParameterInfo>& more,
+            std::vector<ParameterInfo>* table) {
+  table->insert(table->end(), more.begin(), more.end());
+}
+
 std::vector<ParameterInfo> MakeSymmetricTable() {
   // Symmetric REG: indices 1, 3, 5, 21, 22 divide by IPRM = I/(q S d);
   // the other aerodynamic indices up to 22 divide by MPRM = IPRM 2U/d;
   // 10, 11, 13, 14 also divide by RATIO = I_x/I (they act on the roll
   // axis); 23-30 are angles and rates in degrees.
-  return {
+  std::vector<ParameterInfo> table = {
       {1, "Cm_alpha", "", "1/rad", S::kPitchStatic, "dCm/d(alpha)"},
       {2, "Cm_q", "", "1/rad", S::kPitchRate, "dCm/d(q d/2U)"},
       {3,
@@ -110,121 +243,23 @@ std::vector<ParameterInfo> MakeSymmetricTable() {
       {28, "thetadot0", "", "deg/s", S::kAngleRate, "initial pitch rate"},
       {29, "psi0", "", "deg", S::kAngle, "initial yaw angle"},
       {30, "psidot0", "", "deg/s", S::kAngleRate, "initial yaw rate"},
-      // fit3dof extensions: roll interaction (Section 5.2, Figs. 9-12).
-      {31,
-       "theta_cos_phi",
-       "",
-       "deg",
-       S::kAngle,
-       "roll interaction: pitch reading error, cos(phi) harmonic"},
-      {32,
-       "theta_sin_phi",
-       "",
-       "deg",
-       S::kAngle,
-       "roll interaction: pitch reading error, sin(phi) harmonic"},
-      {33,
-       "psi_cos_phi",
-       "",
-       "deg",
-       S::kAngle,
-       "roll interaction: yaw reading error, cos(phi) harmonic"},
-      {34,
-       "psi_sin_phi",
-       "",
-       "deg",
-       S::kAngle,
-       "roll interaction: yaw reading error, sin(phi) harmonic"},
-      // fit3dof extensions: a body-fixed trim moment (rolls with the body;
-      // the asymmetric program's Cm_0 and Cn_0).
-      {35, "Cm_0", "", "-", S::kPitchStatic, "body-fixed trim moment, pitch"},
-      {36, "Cn_0", "", "-", S::kYawStatic, "body-fixed trim moment, yaw"},
-      // The gas bearing's moment and calibration nonlinearity (Section 5.2).
-      {37,
-       "Cm_bearing",
-       "",
-       "1/rad",
-       S::kPitchStatic,
-       "gas-bearing moment: stiffness near zero angle, fading beyond "
-       "bearing_angle"},
-      {38,
-       "bearing_angle",
-       "",
-       "deg",
-       S::kAngle,
-       "gas-bearing moment: the angle where it saturates"},
-      {39,
-       "theta_cal3",
-       "",
-       "deg",
-       S::kAngle,
-       "calibration nonlinearity: pitch reading error at 5 deg, cubic"},
-      {40,
-       "psi_cal3",
-       "",
-       "deg",
-       S::kAngle,
-       "calibration nonlinearity: yaw reading error at 5 deg, cubic"},
-      // A drift of the readings in time (outside diagnose's catalog).
-      {41,
-       "theta_drift",
-       "",
-       "deg/s",
-       S::kAngleRate,
-       "reading drift: pitch reading error growing in time"},
-      {42,
-       "psi_drift",
-       "",
-       "deg/s",
-       S::kAngleRate,
-       "reading drift: yaw reading error growing in time"},
-      // A dynamic pressure drifting in time (outside diagnose's catalog).
-      {43,
-       "q_drift",
-       "",
-       "1/s",
-       S::kPerSecond,
-       "dynamic-pressure drift: every moment x (1 + q_drift (t - t_0))"},
-      // A yaw-plane stiffness of the flow, no roll torque (outside
-      // diagnose's catalog).
-      {44,
-       "Cn_beta_flow",
-       "",
-       "1/rad",
-       S::kPitchStatic,
-       "flow's yaw-plane stiffness: M_z += Cn_beta_flow beta, non-rolling "
-       "frame, no roll torque"},
-      // A lag of the readings (outside diagnose's catalog).
-      {45,
-       "theta_lag",
-       "",
-       "s",
-       S::kSecond,
-       "reading lag: pitch read through a first-order filter of this time "
-       "constant"},
-      {46,
-       "psi_lag",
-       "",
-       "s",
-       S::kSecond,
-       "reading lag: yaw read through a first-order filter of this time "
-       "constant"},
-      // A pitch reading's gain error (outside diagnose's catalog).
-      {47,
-       "theta_gain",
-       "",
-       "-",
-       S::kRatio,
-       "reading gain: theta_m += theta_gain theta (against the yaw "
-       "reading's)"},
   };
+  Append(RollInteraction(31), &table);
+  // A body-fixed trim moment (rolls with the body; the asymmetric
+  // program's Cm_0 and Cn_0).
+  table.push_back(
+      {35, "Cm_0", "", "-", S::kPitchStatic, "body-fixed trim moment, pitch"});
+  table.push_back(
+      {36, "Cn_0", "", "-", S::kYawStatic, "body-fixed trim moment, yaw"});
+  Append(BearingAndFaults(37), &table);
+  return table;
 }
 
 std::vector<ParameterInfo> MakeAsymmetricTable() {
   // Asymmetric REG: 1-16 and 63 multiply by MY1 = q S d / I_y, 17-27 and 62
   // by MY2 = MY1 d/2U, 28-35 and 64 by MZ1, 36-46 and 61 by MZ2, 47-52 by
   // MX1, 53-57 by MX2; 60 (I_zx) as is; 65-72 are angles and rates.
-  return {
+  std::vector<ParameterInfo> table = {
       {1, "Cm_0", "", "-", S::kPitchStatic, "Cm at zero incidence"},
       {2, "Cm_alpha", "", "1/rad", S::kPitchStatic, "dCm/d(alpha)"},
       {3, "Cm_absalpha", "", "1/rad", S::kPitchStatic, "dCm/d(|alpha|)"},
@@ -472,109 +507,10 @@ std::vector<ParameterInfo> MakeAsymmetricTable() {
       {70, "p0", "", "deg/s", S::kAngleRate, "initial body roll rate"},
       {71, "q0", "", "deg/s", S::kAngleRate, "initial body pitch rate"},
       {72, "r0", "", "deg/s", S::kAngleRate, "initial body yaw rate"},
-      // fit3dof extensions: roll interaction (Section 5.2, Figs. 9-12).
-      {73,
-       "theta_cos_phi",
-       "",
-       "deg",
-       S::kAngle,
-       "roll interaction: pitch reading error, cos(phi) harmonic"},
-      {74,
-       "theta_sin_phi",
-       "",
-       "deg",
-       S::kAngle,
-       "roll interaction: pitch reading error, sin(phi) harmonic"},
-      {75,
-       "psi_cos_phi",
-       "",
-       "deg",
-       S::kAngle,
-       "roll interaction: yaw reading error, cos(phi) harmonic"},
-      {76,
-       "psi_sin_phi",
-       "",
-       "deg",
-       S::kAngle,
-       "roll interaction: yaw reading error, sin(phi) harmonic"},
-      {77,
-       "Cm_bearing",
-       "",
-       "1/rad",
-       S::kPitchStatic,
-       "gas-bearing moment: stiffness near zero angle, fading beyond "
-       "bearing_angle"},
-      {78,
-       "bearing_angle",
-       "",
-       "deg",
-       S::kAngle,
-       "gas-bearing moment: the angle where it saturates"},
-      {79,
-       "theta_cal3",
-       "",
-       "deg",
-       S::kAngle,
-       "calibration nonlinearity: pitch reading error at 5 deg, cubic"},
-      {80,
-       "psi_cal3",
-       "",
-       "deg",
-       S::kAngle,
-       "calibration nonlinearity: yaw reading error at 5 deg, cubic"},
-      // A drift of the readings in time (outside diagnose's catalog).
-      {81,
-       "theta_drift",
-       "",
-       "deg/s",
-       S::kAngleRate,
-       "reading drift: pitch reading error growing in time"},
-      {82,
-       "psi_drift",
-       "",
-       "deg/s",
-       S::kAngleRate,
-       "reading drift: yaw reading error growing in time"},
-      // A dynamic pressure drifting in time (outside diagnose's catalog).
-      {83,
-       "q_drift",
-       "",
-       "1/s",
-       S::kPerSecond,
-       "dynamic-pressure drift: every moment x (1 + q_drift (t - t_0))"},
-      // A yaw-plane stiffness of the flow, no roll torque (outside
-      // diagnose's catalog).
-      {84,
-       "Cn_beta_flow",
-       "",
-       "1/rad",
-       S::kPitchStatic,
-       "flow's yaw-plane stiffness: M_z += Cn_beta_flow beta, non-rolling "
-       "frame, no roll torque"},
-      // A lag of the readings (outside diagnose's catalog).
-      {85,
-       "theta_lag",
-       "",
-       "s",
-       S::kSecond,
-       "reading lag: pitch read through a first-order filter of this time "
-       "constant"},
-      {86,
-       "psi_lag",
-       "",
-       "s",
-       S::kSecond,
-       "reading lag: yaw read through a first-order filter of this time "
-       "constant"},
-      // A pitch reading's gain error (outside diagnose's catalog).
-      {87,
-       "theta_gain",
-       "",
-       "-",
-       S::kRatio,
-       "reading gain: theta_m += theta_gain theta (against the yaw "
-       "reading's)"},
   };
+  Append(RollInteraction(73), &table);
+  Append(BearingAndFaults(77), &table);
+  return table;
 }
 
 // Levenshtein distance, for suggestions.
