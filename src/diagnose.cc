@@ -88,6 +88,22 @@ bool Polish(const Case& current,
   }
 }
 
+// Each of *candidates scored against `data` (score_test.cc; in parallel,
+// within the process's thread budget, thread_budget.h), largest score
+// first.
+void RankByScore(const std::vector<TimeHistory>& data,
+                 std::vector<Candidate>* candidates) {
+  ParallelFor(static_cast<int>(candidates->size()), [&](int i) {
+    Candidate& k = (*candidates)[i];
+    k.score = Score(k.c, k.added, k.effect->id, data);
+  });
+  std::sort(candidates->begin(),
+            candidates->end(),
+            [](const Candidate& a, const Candidate& b) {
+              return a.score.score > b.score.score;
+            });
+}
+
 // Every applicable effect scored at the fit's solution, best first.
 std::vector<Candidate> ScoredCandidates(const Case& current,
                                         const FitResult& fit,
@@ -100,19 +116,11 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
     Candidate k{&e, Case(), {}, {}};
     if (CandidateCase(at, e, &k.c, &k.added)) all.push_back(std::move(k));
   }
-  // Within the process's thread budget (thread_budget.h).
-  ParallelFor(static_cast<int>(all.size()), [&](int i) {
-    all[i].score = Score(all[i].c, all[i].added, all[i].effect->id, data);
-  });
+  RankByScore(data, &all);
   std::vector<Candidate> candidates;
   for (Candidate& k : all) {
     if (k.score.dof > 0) candidates.push_back(std::move(k));
   }
-  std::sort(candidates.begin(),
-            candidates.end(),
-            [](const Candidate& a, const Candidate& b) {
-              return a.score.score > b.score.score;
-            });
   return candidates;
 }
 
@@ -184,15 +192,7 @@ bool FitProbes(const Case& current,
   // 800-sample record costs as much as the scores of all five; the probes
   // are near-linear in their parameters, where the score ranks as the
   // refits do).
-  ParallelFor(static_cast<int>(candidates->size()), [&](int i) {
-    Candidate& k = (*candidates)[i];
-    k.score = Score(k.c, k.added, k.effect->id, data);
-  });
-  std::sort(candidates->begin(),
-            candidates->end(),
-            [](const Candidate& a, const Candidate& b) {
-              return a.score.score > b.score.score;
-            });
+  RankByScore(data, candidates);
   constexpr size_t kProbesRefitted = 2;
   if (candidates->size() > kProbesRefitted) {
     candidates->resize(kProbesRefitted);
@@ -493,9 +493,8 @@ double ProbeMargin(const Contender& best,
                    const Contender& probe,
                    const std::vector<TimeHistory>& data,
                    const DiagnoseOptions& options) {
-  const std::string& id = probe.candidate->effect->id;
-  const bool drift = id == "reading_drift" || id == "pressure_drift";
-  return drift && best.candidate->effect->roll_locked && !RollSeparates(data)
+  return probe.candidate->effect->drifts_in_time &&
+                 best.candidate->effect->roll_locked && !RollSeparates(data)
              ? 0.0
              : options.ambiguity_bic;
 }
@@ -703,8 +702,8 @@ void Prune(const std::vector<TimeHistory>& data,
     const Case at = CaseAtSolution(*current, fit);
     const int n = static_cast<int>(d->steps.size());
     std::vector<FitResult> without(n);
-    std::vector<char> fitted(n,
-                             false);  // not vector<bool>: written in parallel
+    // Not vector<bool>: written in parallel.
+    std::vector<char> fitted(n, false);
     ParallelFor(n, [&](int i) {
       fitted[i] = FitFrom(WithoutStep(at, d->steps[i]),
                           fit,

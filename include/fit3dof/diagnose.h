@@ -169,6 +169,10 @@ struct Effect {
   // flow (outside the catalog) makes as well. On such records it is never
   // adopted alone (diagnose.h).
   bool roll_locked = false;
+  // A probe that is a drift in time (of the readings, of the dynamic
+  // pressure): over less than a revolution of roll a roll-locked effect is
+  // one too, and such a probe beats it without a margin (ProbeMargin).
+  bool drifts_in_time = false;
 };
 
 const std::vector<Effect>& EffectCatalog();
