@@ -6,6 +6,7 @@
 
 #include "fit3dof/diagnose.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -476,6 +477,26 @@ TEST(Diagnose, ARollLockedEffectTiesWithADriftOnLessThanARevolution) {
   EXPECT_EQ(&d.FinalFit(), &d.fits.front());
 }
 
+// `d` (printed as `text`) adds nothing, ends not_explained and names the
+// probe `probe` outside the catalog, its parameter `name` within 3
+// standard errors of `truth`.
+void ExpectOutsideCatalog(const Diagnosis& d,
+                          const std::string& text,
+                          const std::string& probe,
+                          const std::string& name,
+                          double truth) {
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  ASSERT_EQ(d.outside_catalog.effect, probe) << text;
+  const std::vector<ParameterEstimate>& fitted = d.outside_catalog.parameters;
+  const auto it = std::find_if(
+      fitted.begin(), fitted.end(), [&](const ParameterEstimate& e) {
+        return e.name == name;
+      });
+  ASSERT_NE(it, fitted.end()) << text;
+  EXPECT_NEAR(it->value, truth, 3.0 * it->standard_error) << text;
+}
+
 // The same drift in two runs (30 deg/s and 8 deg, 60 deg/s and 4 deg): a
 // roll-synchronous reading error cannot follow it in both, the probe
 // outside the catalog (theta_drift, psi_drift) can. Nothing is adopted,
@@ -487,17 +508,8 @@ TEST(Diagnose, TwoRunsNameADriftOfTheReadingsOutsideTheCatalog) {
   });
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
-  EXPECT_TRUE(d.steps.empty()) << text;
+  ExpectOutsideCatalog(d, text, "reading_drift", "theta_drift", 0.02);
   EXPECT_EQ(&d.FinalFit(), &d.fits.front());
-  ASSERT_EQ(d.outside_catalog.effect, "reading_drift") << text;
-  bool found = false;
-  for (const ParameterEstimate& e : d.outside_catalog.parameters) {
-    if (e.name != "theta_drift") continue;
-    found = true;
-    EXPECT_NEAR(e.value, 0.02, 3.0 * e.standard_error) << text;
-  }
-  EXPECT_TRUE(found) << text;
   EXPECT_NE(d.verdict_text.find("drift of the pitch and yaw readings"),
             std::string::npos)
       << text;
@@ -523,14 +535,9 @@ TEST(Diagnose, ADriftingDynamicPressureIsNotExplainedByTheCatalog) {
       SimulateShort(truth, dir + "/run0.csv", 5)};
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
-  EXPECT_TRUE(d.steps.empty()) << text;
+  ExpectOutsideCatalog(d, text, "pressure_drift", "q_drift", 0.004);
   EXPECT_EQ(&d.FinalFit(), &d.fits.front());
-  ASSERT_EQ(d.outside_catalog.effect, "pressure_drift") << text;
-  ASSERT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
-  const ParameterEstimate& drift = d.outside_catalog.parameters[0];
-  EXPECT_EQ(drift.name, "q_drift");
-  EXPECT_NEAR(drift.value, 0.004, 3.0 * drift.standard_error) << text;
+  EXPECT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
   EXPECT_NE(d.verdict_text.find("a dynamic pressure drifting during the run"),
             std::string::npos)
       << text;
@@ -550,13 +557,8 @@ TEST(Diagnose, AFlowStifferInOnePlaneIsNotAMagnusMoment) {
   });
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
-  EXPECT_TRUE(d.steps.empty()) << text;
-  ASSERT_EQ(d.outside_catalog.effect, "flow_yaw_stiffness") << text;
-  ASSERT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
-  const ParameterEstimate& e = d.outside_catalog.parameters[0];
-  EXPECT_EQ(e.name, "Cn_beta_flow");
-  EXPECT_NEAR(e.value, -0.008, 3.0 * e.standard_error) << text;
+  ExpectOutsideCatalog(d, text, "flow_yaw_stiffness", "Cn_beta_flow", -0.008);
+  EXPECT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
 }
 
 // A pitch reading lagging 6 ms (a filter in the signal conditioning) on one
@@ -575,16 +577,7 @@ TEST(Diagnose, ALaggingPitchReadingIsNotATunnelDamping) {
       SimulateShort(truth, dir + "/run0.csv", 7)};
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
-  EXPECT_TRUE(d.steps.empty()) << text;
-  ASSERT_EQ(d.outside_catalog.effect, "reading_lag") << text;
-  bool found = false;
-  for (const ParameterEstimate& e : d.outside_catalog.parameters) {
-    if (e.name != "theta_lag") continue;
-    found = true;
-    EXPECT_NEAR(e.value, 0.006, 3.0 * e.standard_error) << text;
-  }
-  EXPECT_TRUE(found) << text;
+  ExpectOutsideCatalog(d, text, "reading_lag", "theta_lag", 0.006);
 }
 
 // A pitch reading whose gain is 5% off the yaw reading's (a calibration
@@ -598,12 +591,8 @@ TEST(Diagnose, APitchReadingsGainIsNotACalibrationNonlinearity) {
   });
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
-  EXPECT_TRUE(d.steps.empty()) << text;
-  ASSERT_EQ(d.outside_catalog.effect, "reading_gain") << text;
-  ASSERT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
-  const ParameterEstimate& e = d.outside_catalog.parameters[0];
-  EXPECT_NEAR(e.value, 0.05, 3.0 * e.standard_error) << text;
+  ExpectOutsideCatalog(d, text, "reading_gain", "theta_gain", 0.05);
+  EXPECT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
 }
 
 // A pitch reading drifting 0.015 deg/s on one 3-s run: over its 90 deg of
