@@ -151,7 +151,9 @@ const std::vector<Effect>& EffectCatalog() {
 // stiffness of a bearing moment. A flow stiffer in one of the tunnel's
 // planes is the simplest flow nonuniformity Eq. 39 misses (its tunnel
 // moments carry a roll torque a normal force has not), and a Magnus moment
-// imitates it.
+// imitates it. Dry friction in the bearing damps the motion as a tunnel
+// damping does over a few cycles (one 3-s run had been called tunnel
+// damping); only the amplitude tells them apart.
 const std::vector<Effect>& Probes() {
   static const std::vector<Effect> probes = {
       {"reading_drift",
@@ -202,6 +204,16 @@ const std::vector<Effect>& Probes() {
        {},
        "a run pitching in one plane (Eq. 39's tunnel moments drive the "
        "roll there, a normal force does not)",
+       ""},
+      {"bearing_friction",
+       "dry (Coulomb) friction of the bearing against the pitch-yaw motion "
+       "(outside the catalog)",
+       {"Cm_friction"},
+       {"Cm_friction"},
+       false,
+       {},
+       "a run at another amplitude (dry friction damps a small motion more "
+       "than a large one, a viscous damping does not)",
        ""},
   };
   return probes;

@@ -61,6 +61,7 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"theta_lag", "theta_lag", 1.0},
       {"psi_lag", "psi_lag", 1.0},
       {"theta_gain", "theta_gain", 1.0},
+      {"Cm_friction", "Cm_friction", 1.0},
   };
   return images;
 }

@@ -139,6 +139,14 @@ std::vector<ParameterInfo> BearingAndFaults(int first) {
            S::kRatio,
            "reading gain: theta_m += theta_gain theta (against the yaw "
            "reading's)"},
+          // Dry friction of the bearing (outside diagnose's catalog).
+          {0,
+           "Cm_friction",
+           "",
+           "-",
+           S::kPitchStatic,
+           "bearing friction: a moment of this size against the pitch-yaw "
+           "rate"},
       });
 }
 

@@ -607,6 +607,27 @@ TEST(Diagnose, APitchReadingsGainIsNotACalibrationNonlinearity) {
   EXPECT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
 }
 
+// Dry friction in the bearing (Cm_friction = 2.8e-4: a moment of constant
+// size against the pitch-yaw rate) on one 3-s run pitching in one plane:
+// its damping grows as the amplitude falls, as a nonlinear damping with a
+// positive Cm_q_delta2 does, and that (474 +- 40) had been adopted for it,
+// residuals at the noise. The sixth probe fits the friction (BIC 16.6
+// lower): not_explained, its value within 3 errors. (At 2e-4 the two tie:
+// `ambiguous`, neither added.)
+TEST(Diagnose, DryFrictionInTheBearingIsNotANonlinearDamping) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const std::string dir = testing::ScratchDirectory("diagnose_friction");
+  Case truth = UntrimmedShortTruth(30.0);
+  truth.parameters[FindParameter(truth.model, "Cm_friction")].value = 4e-4;
+  const std::vector<std::string> files = {
+      SimulateShort(truth, dir + "/run0.csv", 9)};
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "bearing_friction", "Cm_friction", 4e-4);
+}
+
 // A pitch reading drifting 0.015 deg/s on one 3-s run: over its 90 deg of
 // roll a roll-synchronous reading error follows it nearly as well, with
 // twice the parameters. A roll-locked effect on less than a revolution is

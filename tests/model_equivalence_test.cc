@@ -65,7 +65,8 @@ Case SymmetricCase(Incidence incidence, double step) {
       {"Cn_beta_flow", -0.008},
       {"theta_lag", 0.006},
       {"psi_lag", -0.003},
-      {"theta_gain", 0.02}};
+      {"theta_gain", 0.02},
+      {"Cm_friction", 0.0005}};
   for (const auto& [name, value] : values) {
     c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = value;
   }
@@ -148,7 +149,8 @@ TEST(ModelEquivalence, TheExtensionTermsMoveTheMotion) {
                            "Cn_beta_flow",
                            "theta_lag",
                            "psi_lag",
-                           "theta_gain"}) {
+                           "theta_gain",
+                           "Cm_friction"}) {
     Case without = all;
     without.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.0;
     const std::vector<double> other = motion(without);

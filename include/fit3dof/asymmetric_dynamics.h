@@ -20,6 +20,7 @@
 #include <cmath>
 
 #include "fit3dof/angles.h"
+#include "fit3dof/bearing_friction.h"
 #include "fit3dof/bearing_moment.h"
 #include "fit3dof/coefficients.h"
 #include "fit3dof/parameters.h"
@@ -183,6 +184,15 @@ void AsymmetricMoments(const CoefficientView<Tk>& k,
     const T yaw = k(84) * (b * cf - a * sf);
     *my += yaw * sf;
     *mz += yaw * cf * (constants.Iy / constants.Iz);
+  }
+  // Dry friction of the bearing (88; bearing_friction.h), isotropic, so
+  // written in the body rates as in the symmetric program's; scaled for
+  // pitch, as Cm_bearing.
+  if (k.on(88)) {
+    T fy(0.0), fz(0.0);
+    AddBearingFriction(k(88), q, r, &fy, &fz);
+    *my += fy;
+    *mz += fz * (constants.Iy / constants.Iz);
   }
 
   // Tunnel-fixed stiffness and damping, Eqs. 39 and 41. myt is M_yT / I_y

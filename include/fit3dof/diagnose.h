@@ -95,13 +95,14 @@
 // outside the catalog): the record is then `ambiguous` at best, and a
 // record spanning a revolution, or a second run at another spin rate,
 // separates them.
-// Each round also scores five probes outside the catalog: a drift of the
+// Each round also scores six probes outside the catalog: a drift of the
 // pitch and yaw readings in time (theta_drift, psi_drift), a dynamic
 // pressure drifting during the run (q_drift), a lag of the readings (a
 // filter's: theta_lag, psi_lag), a pitch reading's gain off the yaw
-// reading's (theta_gain) and a flow whose stiffness differs between the
-// tunnel's pitch and yaw planes without Eq. 39's roll torque (Cn_beta_flow;
-// docs/parameters.md), and refits the two with the largest scores. The
+// reading's (theta_gain), a flow whose stiffness differs between the
+// tunnel's pitch and yaw planes without Eq. 39's roll torque (Cn_beta_flow)
+// and dry friction in the bearing (Cm_friction; docs/parameters.md), and
+// refits the two with the largest scores. The
 // best of those (lowest BIC) is compared, when no catalog effect, refused
 // or not, explains more; it is never adopted. When it lowers BIC by more
 // than `ambiguity_bic` below the best catalog effect that earned its place
@@ -119,8 +120,7 @@
 // decays) and a drifting dynamic pressure do; a drifting pressure had
 // been named a bearing moment.
 // A probe is weighed against one catalog effect at a time: when it wins
-// without reaching the noise, and the round's catalog contenders together
-// lower BIC by more than it does, the diagnosis without probes is run too;
+// without reaching the noise, the diagnosis without probes is run too;
 // when that explains the record (or ties with every branch explained) with
 // a BIC lower than the probe's model's by more than `ambiguity_bic`, it is
 // the answer (a reading lag had beaten a Magnus moment at the first step

@@ -38,7 +38,10 @@
 //   - a pitch reading's gain off the yaw reading's (symmetric 47,
 //     asymmetric 87): theta_m += theta_gain theta, a calibration slope
 //     error (outside diagnose's catalog; a gain common to both readings
-//     scales a linear motion, which the initial conditions absorb).
+//     scales a linear motion, which the initial conditions absorb);
+//   - dry friction of the bearing (symmetric 48, asymmetric 88): a moment
+//     Cm_friction q S d against the pitch-yaw rate, of constant size
+//     (bearing_friction.h; outside diagnose's catalog).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -55,7 +58,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 87;
+inline constexpr int kMaxParameters = 88;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};

@@ -20,6 +20,7 @@
 #include <cmath>
 
 #include "fit3dof/angles.h"
+#include "fit3dof/bearing_friction.h"
 #include "fit3dof/bearing_moment.h"
 #include "fit3dof/coefficients.h"
 #include "fit3dof/parameters.h"
@@ -181,6 +182,8 @@ void SymmetricMoments(const CoefficientView<Tk>& k,
   // A yaw-plane stiffness of the flow (44; parameters.h): the non-rolling
   // frame's z axis stays in the tunnel's yaw plane.
   if (k.on(44)) *mz += k(44) * beta;
+  // Dry friction of the bearing (48; bearing_friction.h).
+  if (k.on(48)) AddBearingFriction(k(48), q, r, my, mz);
 
   // Roll: Cl_0 + p (Cl_p + Cl_p_delta delta + Cl_p_delta2 delta^2).
   T roll_damping(0.0);
