@@ -647,7 +647,11 @@ void Conclude(Diagnosis* d) {
              ? ""
              : "; " + Describe(d->outside_catalog.effect) +
                    " explains more than any catalog effect (BIC lower by " +
-                   FormatNumber("%.1f", d->outside_catalog.bic_drop) + ")");
+                   FormatNumber("%.1f", d->outside_catalog.bic_drop) +
+                   (d->outside_at_noise_level
+                        ? "; with it the residuals are at the noise level"
+                        : "") +
+                   ")");
   }
   if (d->verdict != Verdict::kNoiseLevel && d->verdict != Verdict::kExplained) {
     d->residual_description = DescribeResiduals(d->FinalFit());

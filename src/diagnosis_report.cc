@@ -152,6 +152,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["outside_catalog"] = d.outside_catalog.effect.empty()
                                ? json(nullptr)
                                : Contender(d.outside_catalog);
+  out["outside_catalog_at_noise_level"] = d.outside_at_noise_level;
   out["final_parameters"] = Estimates(d.final_parameters);
   out["initial_rms_residual_deg"] = JsonChannels(d.initial.rms_deg);
   out["final_rms_residual_deg"] = JsonChannels(d.final.rms_deg);
@@ -207,7 +208,10 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   if (!d.outside_catalog.effect.empty()) {
     out += "  outside the catalog, not adopted: " + d.outside_catalog.effect +
            " (" + Values(d.outside_catalog.parameters) + "), BIC lower by " +
-           FormatNumber("%.1f", d.outside_catalog.bic_drop) + "\n";
+           FormatNumber("%.1f", d.outside_catalog.bic_drop) +
+           (d.outside_at_noise_level ? "; residuals at the noise level with it"
+                                     : "") +
+           "\n";
   }
   for (const CandidateFit& r : d.rejected) {
     out += "  not added: " + r.effect + " (" + Values(r.parameters) +

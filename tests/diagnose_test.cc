@@ -217,6 +217,7 @@ TEST(Diagnose, RunsInABatchAndOnTheCommandLine) {
   EXPECT_EQ(j["effects_added"], nlohmann::json::array({"flow_angularity"}));
   EXPECT_TRUE(j["ambiguous_between"].empty());
   EXPECT_TRUE(j["partial"].empty());
+  EXPECT_EQ(j["outside_catalog_at_noise_level"], false);
   const auto& final_theta_t = j["final_parameters"]["theta_T"];
   EXPECT_NEAR(final_theta_t["value"].get<double>(),
               -0.134,
@@ -495,6 +496,12 @@ void ExpectOutsideCatalog(const Diagnosis& d,
       });
   ASSERT_NE(it, fitted.end()) << text;
   EXPECT_NEAR(it->value, truth, 3.0 * it->standard_error) << text;
+  // The probe is the hidden fault's own model: with it the residuals
+  // reach the noise, and the report says so.
+  EXPECT_TRUE(d.outside_at_noise_level) << text;
+  EXPECT_NE(text.find("residuals at the noise level with it"),
+            std::string::npos)
+      << text;
 }
 
 // The same drift in two runs (30 deg/s and 8 deg, 60 deg/s and 4 deg): a
