@@ -5,7 +5,7 @@
 // one that earns its place (unless a second one explains the residual as
 // well), repeat. The pieces: effect_catalog.cc, score_test.cc,
 // effect_validation.cc, residual_check.cc, residual_description.cc,
-// diagnosis_report.cc.
+// diagnosis_verdict.cc, diagnosis_report.cc.
 
 #include "fit3dof/diagnose.h"
 
@@ -24,9 +24,6 @@
 
 namespace fit3dof {
 namespace {
-
-// The id of a roll-locked effect's rival outside the catalog (diagnose.h).
-constexpr char kDriftInTime[] = "drift_in_time";
 
 double Bic(const FitResult& r) {
   const double n = 3.0 * r.points;
@@ -440,14 +437,6 @@ void FinalValues(Diagnosis* d) {
   }
 }
 
-std::string Described(const std::vector<DiagnosisStep>& steps) {
-  std::string text;
-  for (const DiagnosisStep& s : steps) {
-    text += (text.empty() ? "" : ", ") + s.description;
-  }
-  return text;
-}
-
 // The largest roll angle any segment sweeps (deg).
 double RollSpan(const std::vector<TimeHistory>& data) {
   double span = 0.0;
@@ -541,121 +530,6 @@ std::string Others(const std::vector<DiagnosisStep>& steps, int skip) {
     if (i != skip) text += (text.empty() ? "" : ", ") + steps[i].effect;
   }
   return text;
-}
-
-std::string Describe(const std::string& id) {
-  if (id == kDriftInTime) {
-    return "a slow drift of the readings or of the flow in time (outside "
-           "the catalog)";
-  }
-  const Effect* probe = FindProbe(id);
-  return probe != nullptr ? probe->description : FindEffect(id)->description;
-}
-
-// "a, b <last> c".
-std::string Joined(const std::vector<std::string>& items, const char* last) {
-  std::string text;
-  for (size_t i = 0; i < items.size(); ++i) {
-    text += (i == 0 ? "" : i + 1 == items.size() ? last : ", ") + items[i];
-  }
-  return text;
-}
-
-// "A, B or C" for the tie's effects, and "x, y and z", their BIC drops.
-void TieWords(const std::vector<CandidateFit>& tie,
-              std::string* effects,
-              std::string* drops) {
-  std::vector<std::string> names, bic;
-  for (const CandidateFit& k : tie) {
-    names.push_back(Describe(k.effect));
-    bic.push_back(k.effect == kDriftInTime ? "not fitted"
-                                           : FormatNumber("%.1f", k.bic_drop));
-  }
-  *effects = Joined(names, " or ");
-  *drops = Joined(bic, " and ");
-}
-
-// "a, b and c": the alternatives' probable errors.
-std::string ProbableErrors(const std::vector<AlternativeModel>& models) {
-  std::vector<std::string> values;
-  for (const AlternativeModel& m : models) {
-    values.push_back(FormatNumber("%.3g", m.check.probable_error));
-  }
-  return Joined(values, " and ");
-}
-
-void Conclude(Diagnosis* d) {
-  const ResidualCheck& check = d->final;
-  if (!d->ambiguous.empty()) {
-    d->verdict = Verdict::kAmbiguous;
-    const CandidateFit& a = d->ambiguous[0];
-    const CandidateFit& b = d->ambiguous[1];
-    const size_t n = d->ambiguous.size();
-    std::string effects, drops;
-    TieWords(d->ambiguous, &effects, &drops);
-    std::string later;
-    for (const std::vector<CandidateFit>& tie : d->later_ties) {
-      std::string words, bic;
-      TieWords(tie, &words, &bic);
-      later += "; also ambiguous: " + words + " (BIC lower by " + bic + ")";
-    }
-    d->verdict_text =
-        "ambiguous: " + effects +
-        (b.effect == kDriftInTime
-             ? " (the first lowers BIC by " + FormatNumber("%.1f", a.bic_drop) +
-                   "; over this record's roll its signature is a slow change "
-                   "in time)"
-             : " explain the residual alike (BIC lower by " + drops + ")") +
-        (n > 2 ? "; none added; " : "; neither added; ") + d->separated_by +
-        " would separate them" + later +
-        (d->steps.empty() ? "" : "; added: " + Described(d->steps)) +
-        (d->alternatives.empty()
-             ? ""
-             : " (needed with each of the tied effects; the complete model "
-               "with each: probable error " +
-                   ProbableErrors(d->alternatives) + ")") +
-        (d->partial.size() > 1
-             ? "; with the first in the model, " +
-                   Described({d->partial.begin() + 1, d->partial.end()}) +
-                   " explains the rest (not adopted either)"
-             : "");
-  } else if (check.at_noise_level) {
-    d->verdict = d->steps.empty() ? Verdict::kNoiseLevel : Verdict::kExplained;
-    d->verdict_text = d->steps.empty() ? "residuals at noise level"
-                                       : "explained: " + Described(d->steps) +
-                                             "; residuals at noise level";
-  } else {
-    d->verdict = Verdict::kNotExplained;
-    d->verdict_text =
-        "not explained by the catalog: the residuals remain structured "
-        "(probable error " +
-        FormatNumber("%.3g", check.probable_error) +
-        ", lag-1 autocorrelation theta " +
-        FormatNumber("%.2f", check.lag1.theta) + " psi " +
-        FormatNumber("%.2f", check.lag1.psi) + ")" +
-        (d->steps.empty() ? "" : " after adding " + Described(d->steps)) +
-        (d->partial.empty()
-             ? (d->outside_catalog.effect.empty()
-                    ? " and no further effect earns its place"
-                    : "")
-             : "; " + Described(d->partial) + " lowers the probable error to " +
-                   FormatNumber("%.3g",
-                                d->fits[d->partial_fit].probable_error) +
-                   " but leaves the residuals structured: not adopted, the "
-                   "final model is the one before it") +
-        (d->outside_catalog.effect.empty()
-             ? ""
-             : "; " + Describe(d->outside_catalog.effect) +
-                   " explains more than any catalog effect (BIC lower by " +
-                   FormatNumber("%.1f", d->outside_catalog.bic_drop) +
-                   (d->outside_at_noise_level
-                        ? "; with it the residuals are at the noise level"
-                        : "") +
-                   ")");
-  }
-  if (d->verdict != Verdict::kNoiseLevel && d->verdict != Verdict::kExplained) {
-    d->residual_description = DescribeResiduals(d->FinalFit());
-  }
 }
 
 // The position in `model` of a term a step added: a symmetric name in the

@@ -1,8 +1,8 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
 // What the diagnosis loop (diagnose.cc) is built from: the candidate case
-// of a catalog effect (effect_catalog.cc) and its score test
-// (score_test.cc).
+// of a catalog effect (effect_catalog.cc), its score test (score_test.cc)
+// and the verdict's words (diagnosis_verdict.cc).
 
 #ifndef FIT3DOF_SRC_DIAGNOSE_INTERNAL_H_
 #define FIT3DOF_SRC_DIAGNOSE_INTERNAL_H_
@@ -87,6 +87,22 @@ double PredictionRss(const Case& c,
                      const std::vector<TimeHistory>& data,
                      const HeldOut& held_out,
                      const std::vector<ChannelValues>& weights);
+
+// The id of a roll-locked effect's rival outside the catalog (diagnose.h):
+// on less than a revolution of roll its signature is a drift in time.
+inline constexpr char kDriftInTime[] = "drift_in_time";
+
+// The description of a catalog effect, a probe or kDriftInTime.
+std::string Describe(const std::string& id);
+
+// The steps' descriptions, comma separated.
+std::string Described(const std::vector<DiagnosisStep>& steps);
+
+// Sets d->verdict and d->verdict_text from what the search left in *d
+// (its ties, steps, partial steps, probe and final residual check), and
+// d->residual_description when the residuals are not explained
+// (diagnosis_verdict.cc).
+void Conclude(Diagnosis* d);
 
 }  // namespace fit3dof
 

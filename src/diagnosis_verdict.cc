@@ -1,0 +1,153 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The verdict of a diagnosis (diagnose.h) and the words that give it:
+// what the search found (diagnose.cc) told as `ambiguous`, `explained`,
+// `noise_level` or `not_explained`, with the effects' descriptions.
+
+#include <string>
+#include <vector>
+
+#include "diagnose_internal.h"
+#include "fit3dof/diagnose.h"
+#include "format.h"
+
+namespace fit3dof {
+namespace {
+
+// "a, b <last> c".
+std::string Joined(const std::vector<std::string>& items, const char* last) {
+  std::string text;
+  for (size_t i = 0; i < items.size(); ++i) {
+    text += (i == 0 ? "" : i + 1 == items.size() ? last : ", ") + items[i];
+  }
+  return text;
+}
+
+// "A, B or C" for the tie's effects, and "x, y and z", their BIC drops.
+void TieWords(const std::vector<CandidateFit>& tie,
+              std::string* effects,
+              std::string* drops) {
+  std::vector<std::string> names, bic;
+  for (const CandidateFit& k : tie) {
+    names.push_back(Describe(k.effect));
+    bic.push_back(k.effect == kDriftInTime ? "not fitted"
+                                           : FormatNumber("%.1f", k.bic_drop));
+  }
+  *effects = Joined(names, " or ");
+  *drops = Joined(bic, " and ");
+}
+
+// "a, b and c": the alternatives' probable errors.
+std::string ProbableErrors(const std::vector<AlternativeModel>& models) {
+  std::vector<std::string> values;
+  for (const AlternativeModel& m : models) {
+    values.push_back(FormatNumber("%.3g", m.check.probable_error));
+  }
+  return Joined(values, " and ");
+}
+
+// The verdict text of an open tie (d->ambiguous): the tied effects, what
+// separates them, the later ties and what was added beside them.
+std::string AmbiguousText(const Diagnosis& d) {
+  const CandidateFit& a = d.ambiguous[0];
+  const CandidateFit& b = d.ambiguous[1];
+  const size_t n = d.ambiguous.size();
+  std::string effects, drops;
+  TieWords(d.ambiguous, &effects, &drops);
+  std::string later;
+  for (const std::vector<CandidateFit>& tie : d.later_ties) {
+    std::string words, bic;
+    TieWords(tie, &words, &bic);
+    later += "; also ambiguous: " + words + " (BIC lower by " + bic + ")";
+  }
+  return "ambiguous: " + effects +
+         (b.effect == kDriftInTime
+              ? " (the first lowers BIC by " +
+                    FormatNumber("%.1f", a.bic_drop) +
+                    "; over this record's roll its signature is a slow "
+                    "change in time)"
+              : " explain the residual alike (BIC lower by " + drops + ")") +
+         (n > 2 ? "; none added; " : "; neither added; ") + d.separated_by +
+         " would separate them" + later +
+         (d.steps.empty() ? "" : "; added: " + Described(d.steps)) +
+         (d.alternatives.empty()
+              ? ""
+              : " (needed with each of the tied effects; the complete model "
+                "with each: probable error " +
+                    ProbableErrors(d.alternatives) + ")") +
+         (d.partial.size() > 1
+              ? "; with the first in the model, " +
+                    Described({d.partial.begin() + 1, d.partial.end()}) +
+                    " explains the rest (not adopted either)"
+              : "");
+}
+
+// The verdict text when the final model leaves the residuals structured:
+// what it holds, what was tried and not adopted, and the probe outside
+// the catalog that explains more, if one does.
+std::string NotExplainedText(const Diagnosis& d) {
+  const ResidualCheck& check = d.final;
+  return "not explained by the catalog: the residuals remain structured "
+         "(probable error " +
+         FormatNumber("%.3g", check.probable_error) +
+         ", lag-1 autocorrelation theta " +
+         FormatNumber("%.2f", check.lag1.theta) + " psi " +
+         FormatNumber("%.2f", check.lag1.psi) + ")" +
+         (d.steps.empty() ? "" : " after adding " + Described(d.steps)) +
+         (d.partial.empty()
+              ? (d.outside_catalog.effect.empty()
+                     ? " and no further effect earns its place"
+                     : "")
+              : "; " + Described(d.partial) + " lowers the probable error to " +
+                    FormatNumber("%.3g", d.fits[d.partial_fit].probable_error) +
+                    " but leaves the residuals structured: not adopted, the "
+                    "final model is the one before it") +
+         (d.outside_catalog.effect.empty()
+              ? ""
+              : "; " + Describe(d.outside_catalog.effect) +
+                    " explains more than any catalog effect (BIC lower by " +
+                    FormatNumber("%.1f", d.outside_catalog.bic_drop) +
+                    (d.outside_at_noise_level
+                         ? "; with it the residuals are at the noise level"
+                         : "") +
+                    ")");
+}
+
+}  // namespace
+
+std::string Described(const std::vector<DiagnosisStep>& steps) {
+  std::string text;
+  for (const DiagnosisStep& s : steps) {
+    text += (text.empty() ? "" : ", ") + s.description;
+  }
+  return text;
+}
+
+std::string Describe(const std::string& id) {
+  if (id == kDriftInTime) {
+    return "a slow drift of the readings or of the flow in time (outside "
+           "the catalog)";
+  }
+  const Effect* probe = FindProbe(id);
+  return probe != nullptr ? probe->description : FindEffect(id)->description;
+}
+
+void Conclude(Diagnosis* d) {
+  if (!d->ambiguous.empty()) {
+    d->verdict = Verdict::kAmbiguous;
+    d->verdict_text = AmbiguousText(*d);
+  } else if (d->final.at_noise_level) {
+    d->verdict = d->steps.empty() ? Verdict::kNoiseLevel : Verdict::kExplained;
+    d->verdict_text = d->steps.empty() ? "residuals at noise level"
+                                       : "explained: " + Described(d->steps) +
+                                             "; residuals at noise level";
+  } else {
+    d->verdict = Verdict::kNotExplained;
+    d->verdict_text = NotExplainedText(*d);
+  }
+  if (d->verdict != Verdict::kNoiseLevel && d->verdict != Verdict::kExplained) {
+    d->residual_description = DescribeResiduals(d->FinalFit());
+  }
+}
+
+}  // namespace fit3dof
