@@ -965,6 +965,59 @@ ResidualCheck SettleFinalModel(
   return CheckResiduals(d->FinalFit(), options);
 }
 
+// The probes outside the catalog at one round of the search, against the
+// best catalog contender that earned its place (earned[0], if any): better
+// by a margin (ProbeMargin), and the probe's fit goes into
+// d->outside_catalog, every contender rejected for it (nothing is adopted);
+// within the margin the caller ties them. A catalog effect refused here
+// that explains more than the probe (a calibration error just past its
+// bound while two effects beside it are missing) keeps the search in the
+// catalog. Returns whether a probe was fitted that lowers BIC enough to
+// count (*probe, pointing into *probes).
+bool WeighProbes(const Case& current,
+                 const FitResult& fit,
+                 const std::vector<TimeHistory>& data,
+                 const DiagnoseOptions& options,
+                 const std::vector<int>& earned,
+                 std::vector<Candidate>* probes,
+                 Contender* probe,
+                 std::vector<Contender>* contenders,
+                 Diagnosis* d) {
+  const bool probed = options.probes &&
+                      FitProbes(current, fit, data, probes, probe) &&
+                      probe->record.bic_drop >= options.min_bic_drop &&
+                      probe->bic < BestBic(*contenders);
+  if (!probed) return false;
+  if (earned.empty() ||
+      probe->bic <
+          (*contenders)[earned[0]].bic -
+              ProbeMargin((*contenders)[earned[0]], *probe, data, options)) {
+    d->outside_catalog = probe->record;
+    d->outside_at_noise_level =
+        CheckResiduals(probe->fit, options).at_noise_level;
+    OutdoneByProbe(*probe, contenders);
+  }
+  return true;
+}
+
+// Adds `best` to the search's record *d as its next step (its fit, the
+// round's contenders and score ranking) and returns the residual check of
+// its fit.
+ResidualCheck TakeStep(const Contender& best,
+                       const std::vector<Contender>& contenders,
+                       const std::vector<Candidate>& candidates,
+                       const DiagnoseOptions& options,
+                       Diagnosis* d) {
+  DiagnosisStep record = Step(best, contenders);
+  for (const Candidate& k : candidates) record.ranking.push_back(k.score);
+  d->fits.push_back(best.fit);
+  record.fit_before = static_cast<int>(d->fits.size()) - 2;
+  record.fit_after = static_cast<int>(d->fits.size()) - 1;
+  record.after = CheckResiduals(best.fit, options);
+  d->steps.push_back(record);
+  return record.after;
+}
+
 // The forward search (diagnose.h) from `nominal`, the fit of `c`, with
 // `options`' catalog; *tied_first
 // gets the effect it followed at a tie of two catalog effects (empty if
@@ -1009,27 +1062,10 @@ Diagnosis Search(const Case& c,
       added.push_back(FindEffect(s.effect));
     const std::vector<int> earned =
         Earned(fit, added, options, &out_of_sample, &contenders);
-    // The probe outside the catalog, against the best that earned its
-    // place: better by a margin, and nothing is adopted; within it, a tie.
-    // A catalog effect refused here that explains more than the probe
-    // (a calibration error just past its bound while two effects beside
-    // it are missing) keeps the search in the catalog.
     std::vector<Candidate> probes;
     Contender probe;
-    const bool probed = options.probes &&
-                        FitProbes(current, fit, data, &probes, &probe) &&
-                        probe.record.bic_drop >= options.min_bic_drop &&
-                        probe.bic < BestBic(contenders);
-    if (probed &&
-        (earned.empty() ||
-         probe.bic <
-             contenders[earned[0]].bic -
-                 ProbeMargin(contenders[earned[0]], probe, data, options))) {
-      d.outside_catalog = probe.record;
-      d.outside_at_noise_level =
-          CheckResiduals(probe.fit, options).at_noise_level;
-      OutdoneByProbe(probe, &contenders);
-    }
+    const bool probed = WeighProbes(
+        current, fit, data, options, earned, &probes, &probe, &contenders, &d);
     if (earned.empty() || !d.outside_catalog.effect.empty()) {
       for (const Contender& k : contenders) d.rejected.push_back(k.record);
       break;
@@ -1044,17 +1080,10 @@ Diagnosis Search(const Case& c,
       if (earned.size() > 1) *tied_first = best.record.effect;
     }
     rivals.push_back(std::move(step_rivals));
-    DiagnosisStep record = Step(best, contenders);
-    for (const Candidate& k : candidates) record.ranking.push_back(k.score);
     current = best.candidate->c;
     fit = best.fit;
-    d.fits.push_back(fit);
     models.push_back(current);
-    record.fit_before = static_cast<int>(d.fits.size()) - 2;
-    record.fit_after = static_cast<int>(d.fits.size()) - 1;
-    check = CheckResiduals(fit, options);
-    record.after = check;
-    d.steps.push_back(record);
+    check = TakeStep(best, contenders, candidates, options, &d);
   }
   d.partial_fit = d.fits.size() - 1;
   d.final = SettleFinalModel(
