@@ -806,6 +806,35 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
   return true;
 }
 
+// Whether the effects adopted after a tie are needed with `rival` in
+// place of the tied effect too: `without` (their model without any of the
+// tied effects, fitted as `without_fit`) with the rival, fitted into
+// *rival_fit, lowers BIC by min_bic_drop below the rival alone on the model
+// before the tie (`before_tie`, fitted as `before`), and every effect in
+// it (`effects` and the rival) stays within its bounds.
+bool AdoptedWithRival(const std::vector<TimeHistory>& data,
+                      const DiagnoseOptions& options,
+                      const std::vector<const Effect*>& effects,
+                      const Case& without,
+                      const FitResult& without_fit,
+                      const Case& before_tie,
+                      const FitResult& before,
+                      const std::string& rival,
+                      FitResult* rival_fit) {
+  Case with_rival, rival_alone;
+  FitResult rival_alone_fit;
+  return RivalCase(CaseAtSolution(without, without_fit), rival, &with_rival) &&
+         FitFrom(with_rival, without_fit, data, "with " + rival, rival_fit) &&
+         RivalCase(CaseAtSolution(before_tie, before), rival, &rival_alone) &&
+         FitFrom(rival_alone,
+                 before,
+                 data,
+                 "with " + rival + " alone",
+                 &rival_alone_fit) &&
+         Bic(*rival_fit) < Bic(rival_alone_fit) - options.min_bic_drop &&
+         ImplausibleAmong(effects, with_rival, *rival_fit).empty();
+}
+
 // After a tie (at step `tie`; `tied` marks every step that stays in
 // doubt) followed to an explained record: the steps after it up to the
 // next tie are adopted when the record needs them whichever of the tied
@@ -869,18 +898,16 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
     // A drift in time is no model (a straight drift of the readings stands
     // in for it) and is tested only when it is the one rival.
     if (rival == kDriftInTime && d->ambiguous.size() > 2) continue;
-    Case with_rival, rival_alone;
-    FitResult rival_fit, rival_alone_fit;
-    if (!RivalCase(CaseAtSolution(without, without_fit), rival, &with_rival) ||
-        !FitFrom(with_rival, without_fit, data, "with " + rival, &rival_fit) ||
-        !RivalCase(CaseAtSolution(models[tie], before), rival, &rival_alone) ||
-        !FitFrom(rival_alone,
-                 before,
-                 data,
-                 "with " + rival + " alone",
-                 &rival_alone_fit) ||
-        !(Bic(rival_fit) < Bic(rival_alone_fit) - options.min_bic_drop) ||
-        !ImplausibleAmong(effects, with_rival, rival_fit).empty()) {
+    FitResult rival_fit;
+    if (!AdoptedWithRival(data,
+                          options,
+                          effects,
+                          without,
+                          without_fit,
+                          models[tie],
+                          before,
+                          rival,
+                          &rival_fit)) {
       VLOG(1) << "not needed, or not plausible, with " << rival;
       return false;
     }
