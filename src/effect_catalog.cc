@@ -151,9 +151,9 @@ const std::vector<Effect>& EffectCatalog() {
 // stiffness of a bearing moment. A flow stiffer in one of the tunnel's
 // planes is the simplest flow nonuniformity Eq. 39 misses (its tunnel
 // moments carry a roll torque a normal force has not), and a Magnus moment
-// imitates it. Dry friction in the bearing damps the motion as a tunnel
-// damping does over a few cycles (one 3-s run had been called tunnel
-// damping); only the amplitude tells them apart.
+// imitates it. Dry friction in the bearing damps a small motion more than
+// a large one, as a nonlinear damping with a positive Cm_q_delta2 does (one
+// 3-s run had been called that); a second amplitude tells them apart.
 const std::vector<Effect>& Probes() {
   static const std::vector<Effect> probes = {
       {"reading_drift",

@@ -102,8 +102,8 @@
 // reading's (theta_gain), a flow whose stiffness differs between the
 // tunnel's pitch and yaw planes without Eq. 39's roll torque (Cn_beta_flow)
 // and dry friction in the bearing (Cm_friction; docs/parameters.md), and
-// refits the two with the largest scores. The
-// best of those (lowest BIC) is compared, when no catalog effect, refused
+// refits the two with the largest scores. The best of those (lowest BIC)
+// is compared, when no catalog effect, refused
 // or not, explains more; it is never adopted. When it lowers BIC by more
 // than `ambiguity_bic` below the best catalog effect that earned its place
 // (or by `min_bic_drop` when none did), nothing is added and the verdict
@@ -300,10 +300,11 @@ struct Diagnosis {
   std::vector<CandidateFit> rejected;
   // When a probe outside the catalog (a drift of the readings or of the
   // dynamic pressure in time, a lag or gain error of the readings, a flow
-  // stiffer in one plane) explains the residual better than any catalog
-  // effect that earned its place, by ambiguity_bic or more: its fit
-  // (effect empty otherwise), and whether that fit reaches the noise
-  // level. It is never adopted: the verdict is not_explained, and it
+  // stiffer in one plane, dry friction in the bearing) explains the
+  // residual better than any catalog effect that earned its place, by
+  // ambiguity_bic or more: its fit (effect empty otherwise), and whether
+  // that fit reaches the noise level (diagnosis.json:
+  // outside_catalog_at_noise_level). It is never adopted: the verdict is not_explained, and it
   // names what the residual looks like.
   CandidateFit outside_catalog;
   bool outside_at_noise_level = false;
