@@ -57,7 +57,7 @@ std::vector<ParameterInfo> RollInteraction(int first) {
 // The gas bearing's moment and calibration nonlinearity (Section 5.2), then
 // the faults diagnose probes for outside its catalog: a drift of the
 // readings and of the dynamic pressure, a flow stiffer in one plane, a lag
-// and a gain error of the readings.
+// and a gain error of the readings, dry friction in the bearing.
 std::vector<ParameterInfo> BearingAndFaults(int first) {
   return Numbered(
       first,

@@ -304,8 +304,8 @@ struct Diagnosis {
   // residual better than any catalog effect that earned its place, by
   // ambiguity_bic or more: its fit (effect empty otherwise), and whether
   // that fit reaches the noise level (diagnosis.json:
-  // outside_catalog_at_noise_level). It is never adopted: the verdict is not_explained, and it
-  // names what the residual looks like.
+  // outside_catalog_at_noise_level). It is never adopted: the verdict is
+  // not_explained, and it names what the residual looks like.
   CandidateFit outside_catalog;
   bool outside_at_noise_level = false;
   // Every parameter of the final model (its free ones with errors).
