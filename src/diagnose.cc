@@ -1199,7 +1199,13 @@ Diagnosis Searched(const Case& c,
 // A tie followed down the better branch that leaves the record unexplained
 // is followed down the other: a Magnus moment and an asymmetric body lower
 // BIC alike on one short run, but only with the Magnus moment do the
-// other effects in the record bring the residuals to the noise level.
+// other effects in the record bring the residuals to the noise level. The
+// other branch's answer is taken when it explains the record, with or
+// without a tie of its own: on a coning run with a roll reading error and
+// a nonlinear damping, a trim moment tied with a flow angularity at the
+// first step and, once in, left the damping predicting nothing held out;
+// without it a flow angularity or the reading error (a tie) and the
+// damping explain the record.
 Diagnosis DiagnoseFrom(const Case& c,
                        const FitResult& nominal,
                        const DiagnoseOptions& options) {
@@ -1213,7 +1219,10 @@ Diagnosis DiagnoseFrom(const Case& c,
   }
   std::string unused;
   Diagnosis other = Searched(c, nominal, without, &unused);
-  if (other.verdict != Verdict::kExplained) return d;
+  if (other.verdict != Verdict::kExplained &&
+      other.verdict != Verdict::kAmbiguous) {
+    return d;
+  }
   CandidateFit followed = FollowedFirst(d, first);
   followed.rejected =
       "as good at its step as the effect that replaced it, but whatever "

@@ -868,6 +868,49 @@ TEST(Diagnose, SlowRunsNeverNameOneOfTheRollLockedTwins) {
   }
 }
 
+// A coning run (3 s, 8 deg, the pitch plane turning at 78 deg/s) with a
+// roll reading error (0.012 deg) and a nonlinear damping (Cm_q_delta2 =
+// 98.5), each near the detection limit: tools/diagnose_suite's record of
+// that case (draw 0), kept as tests/data/coning_roll_error_nonlinear_
+// damping.csv. At the first step a trim moment ties with a flow
+// angularity; followed, it leaves the damping predicting nothing held out
+// and the record unexplained. The other branch explains the record with a
+// tie of its own (a flow angularity or the reading error) and the damping
+// added: that is the answer (it had been not_explained), the trim moment
+// among the rejected.
+TEST(Diagnose, TakesTheOtherBranchOfATieWhenItEndsAmbiguous) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "FollowsTheOtherBranchOfATie...'s path; plain build";
+  }
+  Case c = ShortConfig({testing::SourcePath(
+      "tests/data/coning_roll_error_nonlinear_damping.csv")});
+  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  std::set<std::string> tied;
+  for (const CandidateFit& a : d.ambiguous) tied.insert(a.effect);
+  EXPECT_TRUE(tied.count("roll_interaction")) << text;
+  EXPECT_FALSE(tied.count("trim_moment")) << text;
+  ASSERT_EQ(d.steps.size(), 1u) << text;
+  EXPECT_EQ(d.steps[0].effect, "nonlinear_damping") << text;
+  // The complete model with each tied effect explains the record.
+  ASSERT_EQ(d.alternatives.size(), 2u) << text;
+  for (const auto& a : d.alternatives) {
+    EXPECT_TRUE(a.check.at_noise_level) << a.effect << "\n" << text;
+  }
+  for (const ParameterEstimate& e : d.final_parameters) {
+    if (e.name == "Cm_q_delta2")
+      EXPECT_NEAR(e.value, 98.5, 3 * e.standard_error);
+    if (e.name == "Cm_q") EXPECT_NEAR(e.value, -5.5, 3 * e.standard_error);
+  }
+  bool left = false;
+  for (const CandidateFit& k : d.rejected) {
+    left |= k.effect == "trim_moment" &&
+            k.rejected.find("whatever followed it") != std::string::npos;
+  }
+  EXPECT_TRUE(left) << text;
+}
+
 // An effect outside the catalog (a pitch reading that drifts 0.05 deg
 // over the Table 6 record) ends not_explained, with at most one effect
 // added, and the residuals described (the trend) for the engineer.

@@ -89,7 +89,11 @@
 // the one before the tie with them added (Diagnosis::alternatives holds
 // the complete model with each tied effect); otherwise it is the one
 // before the tie,
-// the tied effect and those after it reported as partial.
+// the tied effect and those after it reported as partial. When the branch
+// followed ends `not_explained`, the search is run again without the
+// effect it followed, and its answer is taken when it explains the
+// record, with or without a tie of its own (the effect left is named
+// among the rejected).
 // A roll-locked effect (Effect::roll_locked) on records that span less
 // than a revolution of roll ties with a drift in time (`drift_in_time`,
 // outside the catalog): the record is then `ambiguous` at best, and a
