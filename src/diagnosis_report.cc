@@ -129,6 +129,14 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["ambiguous_between"] = json::array();
   for (const CandidateFit& a : tied)
     out["ambiguous_between"].push_back(a.effect);
+  // The tied explanations outside the catalog: a fault to look for at the
+  // bench (or in the flow), not a coefficient.
+  out["ambiguous_outside_catalog"] = json::array();
+  for (const CandidateFit& a : tied) {
+    if (OutsideCatalog(a.effect)) {
+      out["ambiguous_outside_catalog"].push_back(a.effect);
+    }
+  }
   out["ambiguous_groups"] = json::array();
   for (const std::vector<CandidateFit>& tie : Ties(d)) {
     json group = json::array();

@@ -237,6 +237,10 @@ const Effect* FindEffect(const std::string& id) {
 
 const Effect* FindProbe(const std::string& id) { return FindIn(Probes(), id); }
 
+bool OutsideCatalog(const std::string& id) {
+  return id == kDriftInTime || FindProbe(id) != nullptr;
+}
+
 void RefitFromSolution(Case* c, double probable_error) {
   // Far above the noise (the fit without the effect lost the motion: a
   // missing roll damping over 48 s) the refit needs the growing windows.

@@ -276,6 +276,15 @@ std::string Drags(const FitResult& before,
       after.sum_of_residuals > 0.0
           ? std::max(1.0, before.sum_of_residuals / after.sum_of_residuals)
           : 1.0;
+  // The move is counted in the standard errors of the fit without the
+  // effect, even where the effect is nearly a coefficient's twin and the
+  // fit with it knows the coefficient far less well (a nonlinear damping
+  // on a coning run, whose amplitude hardly changes, against Cm_q): counted
+  // in the larger of the two fits' errors, tools/diagnose_suite gained a
+  // catalog case in two noise draws of three (such a damping beside a
+  // missing effect) and lost one outside it in every draw (a per-axis
+  // friction on two runs then got a tunnel damping, Cm_q dragged from -5.9
+  // to -7.7; truth -5.5). A missed effect is the smaller harm.
   std::string worst;
   double worst_ratio = max_drag * explained;
   for (const ParameterEstimate& e : before.parameters) {

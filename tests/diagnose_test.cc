@@ -216,6 +216,7 @@ TEST(Diagnose, RunsInABatchAndOnTheCommandLine) {
   EXPECT_EQ(j["verdict"], "explained");
   EXPECT_EQ(j["effects_added"], nlohmann::json::array({"flow_angularity"}));
   EXPECT_TRUE(j["ambiguous_between"].empty());
+  EXPECT_TRUE(j["ambiguous_outside_catalog"].empty());
   EXPECT_TRUE(j["partial"].empty());
   EXPECT_EQ(j["outside_catalog_at_noise_level"], false);
   const auto& final_theta_t = j["final_parameters"]["theta_T"];
@@ -422,8 +423,17 @@ TEST(Diagnose, AmbiguityIsAVerdictAndTwoSpinRatesSeparate) {
   const nlohmann::json j =
       nlohmann::json::parse(DiagnosisJson(one, ShortConfig({slow})));
   EXPECT_EQ(j["verdict"], "ambiguous");
-  // The pair, and over 90 deg of roll a drift in time as well.
+  // The pair, and over 90 deg of roll a drift in time as well: the one
+  // tied explanation outside the catalog.
   EXPECT_GE(j["ambiguous_between"].size(), 2u);
+  std::set<std::string> outside;
+  for (const std::string id : j["ambiguous_between"]) {
+    if (FindEffect(id) == nullptr) outside.insert(id);
+  }
+  EXPECT_FALSE(outside.empty()) << j.dump();
+  EXPECT_EQ(j["ambiguous_outside_catalog"].get<std::set<std::string>>(),
+            outside)
+      << j.dump();
 
   if (testing::kSanitized) return;  // the second half: plain build
   const std::string fast =

@@ -182,6 +182,9 @@ struct Effect {
 const std::vector<Effect>& EffectCatalog();
 // The entry called `id`, or nullptr.
 const Effect* FindEffect(const std::string& id);
+// Whether `id`, as a diagnosis names it (a step, a contender, a tie), is an
+// explanation outside the catalog: a probe, or `drift_in_time`.
+bool OutsideCatalog(const std::string& id);
 
 struct DiagnoseOptions {
   double noise_limit = 1.1;
