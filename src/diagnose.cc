@@ -1124,6 +1124,12 @@ Diagnosis Search(const Case& c,
   return d;
 }
 
+// Whether a diagnosis explains the record: outright, or with ties whose
+// every branch does (`ambiguous`).
+bool ExplainsRecord(const Diagnosis& d) {
+  return d.verdict == Verdict::kExplained || d.verdict == Verdict::kAmbiguous;
+}
+
 // The tied effect `first` as the search that followed it found it: its
 // record from the first step that had it among the contenders.
 CandidateFit FollowedFirst(const Diagnosis& d, const std::string& first) {
@@ -1166,10 +1172,7 @@ Diagnosis CatalogAlone(const Case& c,
   DiagnoseOptions without = options;
   without.probes = false;
   Diagnosis other = DiagnoseFrom(c, nominal, without);
-  if (other.verdict != Verdict::kExplained &&
-      other.verdict != Verdict::kAmbiguous) {
-    return d;
-  }
+  if (!ExplainsRecord(other)) return d;
   // The complete model: the final one, or the search's last (what an open
   // tie leaves out of the final model, pruning may have dropped).
   const double catalog_bic =
@@ -1219,10 +1222,7 @@ Diagnosis DiagnoseFrom(const Case& c,
   }
   std::string unused;
   Diagnosis other = Searched(c, nominal, without, &unused);
-  if (other.verdict != Verdict::kExplained &&
-      other.verdict != Verdict::kAmbiguous) {
-    return d;
-  }
+  if (!ExplainsRecord(other)) return d;
   CandidateFit followed = FollowedFirst(d, first);
   followed.rejected =
       "as good at its step as the effect that replaced it, but whatever "
