@@ -93,14 +93,15 @@ class ReportIterationCallback : public ceres::IterationCallback {
   std::vector<double> previous_;
 };
 
-}  // namespace
-
-StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
-                        const FreeLayout& free,
-                        const std::shared_ptr<const MotionModel>& model,
-                        const std::vector<std::string>& names,
-                        const StageSettings& settings,
-                        std::vector<double>* values) {
+// One Levenberg-Marquardt run (SolveStage); *held: whether it held each
+// coordinate, unseen by the data at the start.
+StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
+                            const FreeLayout& free,
+                            const std::shared_ptr<const MotionModel>& model,
+                            const std::vector<std::string>& names,
+                            const StageSettings& settings,
+                            std::vector<double>* values,
+                            std::vector<bool>* held) {
   const double tolerance = settings.tolerance;
   const double relative_tolerance = settings.relative_tolerance;
   StageOutcome outcome;
@@ -132,6 +133,7 @@ StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
     scale = ColumnScales(jtj, scale);
     null_columns = NullColumns(jtj);
   }
+  *held = null_columns;
   Assembly assembly = Assemble(segments, free, model, *values, scale);
   // A coordinate without any effect on the residuals would let
   // Levenberg-Marquardt step without bound along it (the cost never
@@ -178,6 +180,60 @@ StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
   }
   *values = FreeValues(assembly, free, scale);
   outcome.ressum = 2.0 * summary.final_cost;
+  return outcome;
+}
+
+// Whether a coordinate held by the last run now has an effect on the
+// residuals at `values`.
+bool HeldComesIntoView(const std::vector<PreparedSegment>& segments,
+                       const FreeLayout& free,
+                       const std::shared_ptr<const MotionModel>& model,
+                       const std::vector<double>& values,
+                       const std::vector<bool>& held) {
+  if (std::none_of(held.begin(), held.end(), [](bool h) { return h; })) {
+    return false;
+  }
+  Assembly a = Assemble(
+      segments, free, model, values, std::vector<double>(values.size(), 1.0));
+  Eigen::MatrixXd jtj;
+  double ressum;
+  if (!Information(a, &jtj, &ressum)) return false;
+  const std::vector<bool> now = NullColumns(jtj);
+  for (size_t g = 0; g < held.size(); ++g) {
+    if (held[g] && !now[g]) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
+                        const FreeLayout& free,
+                        const std::shared_ptr<const MotionModel>& model,
+                        const std::vector<std::string>& names,
+                        const StageSettings& settings,
+                        std::vector<double>* values) {
+  // A coordinate the data cannot see at the start may come into view as
+  // the others move: a bearing moment's angle (bearing_moment.h) does
+  // nothing while Cm_bearing is zero, where a diagnosis starts it, and had
+  // stayed at its start value, reported as fitted. Solved again from the
+  // answer, it is fitted then.
+  constexpr int kMostRuns = 3;
+  std::vector<bool> held;
+  StageOutcome outcome =
+      SolveStageOnce(segments, free, model, names, settings, values, &held);
+  for (int run = 1; run < kMostRuns && outcome.integrable &&
+                    HeldComesIntoView(segments, free, model, *values, held);
+       ++run) {
+    std::vector<double> trial = *values;
+    StageOutcome again =
+        SolveStageOnce(segments, free, model, names, settings, &trial, &held);
+    if (!again.integrable) break;
+    again.iterations += outcome.iterations;
+    again.failed_evaluations += outcome.failed_evaluations;
+    outcome = again;
+    *values = trial;
+  }
   return outcome;
 }
 

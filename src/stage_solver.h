@@ -36,7 +36,8 @@ struct StageSettings {
 
 // One Levenberg-Marquardt run from `values` (global free order, updated in
 // place). A coordinate the data cannot see at the start is held where it
-// is. `names` label the iteration log (-v=1).
+// is; when the run's answer lets the data see it, the run is repeated from
+// there (up to three runs). `names` label the iteration log (-v=1).
 StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
                         const FreeLayout& free,
                         const std::shared_ptr<const MotionModel>& model,

@@ -159,6 +159,14 @@ INSTANTIATE_TEST_SUITE_P(
         // deg at 5 deg.
         Hidden{"bearing_moment",
                {{"Cm_bearing", -0.01}, {"bearing_angle", 1.0}}},
+        // Near the noise (no continuation in the refit), the angle away
+        // from where diagnose starts it (1 deg): it does nothing while
+        // Cm_bearing is zero, and had been held there, reported as
+        // 1 +- 0.11 deg, Cm_bearing 11 standard errors off (stage_solver.h).
+        Hidden{"bearing_moment",
+               {{"Cm_bearing", -0.002}, {"bearing_angle", 0.5}},
+               false,
+               "bearing_moment_half_degree"},
         Hidden{"calibration_nonlinearity",
                {{"theta_cal3", 0.02}, {"psi_cal3", -0.02}}},
         Hidden{"roll_interaction",
