@@ -24,7 +24,9 @@ json Check(const ResidualCheck& r) {
            {{"peak_over_mean", r.peak_ratio},
             {"peak_over_neighbours", r.line_ratio},
             {"peak_frequency_hz", r.peak_frequency_hz}}},
-          {"at_noise_level", r.at_noise_level}};
+          {"at_noise_level", r.at_noise_level},
+          {"white", r.white},
+          {"below_sigma", r.below_sigma}};
 }
 
 // name -> {value, standard_error, rms_error, units}.

@@ -82,17 +82,50 @@ std::string AmbiguousText(const Diagnosis& d) {
               : "");
 }
 
+// White residuals larger than sigma: their size is all that is wrong, and
+// noise larger than configured makes that as well as a missing effect (a
+// clean record with 0.015-deg noise fitted with sigma 0.01 had been called
+// structured).
+std::string LargerThanSigma(const ResidualCheck& check,
+                            const std::string& lag1) {
+  return "the residuals are white (" + lag1 + ", no spectral line) but " +
+         FormatNumber("%.3g", check.probable_error) +
+         " times the configured sigma (rms theta " +
+         FormatNumber("%.3g", check.rms_deg.theta) + ", psi " +
+         FormatNumber("%.3g", check.rms_deg.psi) +
+         " deg): the noise may be larger than configured (a record of the "
+         "model at rest, or sigma set to these, tells) or an effect leaves "
+         "no structure on this record";
+}
+
+// At the noise level, but further below sigma than noise goes by chance:
+// sigma is larger than the noise, and the limits are loose by as much.
+std::string SmallerThanSigma(const ResidualCheck& check) {
+  if (!check.below_sigma) return "";
+  return "; but the residuals are " +
+         FormatNumber("%.2g", check.probable_error) +
+         " of the configured sigma (rms theta " +
+         FormatNumber("%.3g", check.rms_deg.theta) + ", psi " +
+         FormatNumber("%.3g", check.rms_deg.psi) +
+         " deg): sigma is larger than the noise, and an effect that raises "
+         "them " +
+         FormatNumber("%.2g", check.noise_limit / check.probable_error) +
+         "-fold passes unseen (set sigma to the residuals' rms)";
+}
+
 // The verdict text when the final model leaves the residuals structured:
 // what it holds, what was tried and not adopted, and the probe outside
 // the catalog that explains more, if one does.
 std::string NotExplainedText(const Diagnosis& d) {
   const ResidualCheck& check = d.final;
-  return "not explained by the catalog: the residuals remain structured "
-         "(probable error " +
-         FormatNumber("%.3g", check.probable_error) +
-         ", lag-1 autocorrelation theta " +
-         FormatNumber("%.2f", check.lag1.theta) + " psi " +
-         FormatNumber("%.2f", check.lag1.psi) + ")" +
+  const std::string lag1 = "lag-1 autocorrelation theta " +
+                           FormatNumber("%.2f", check.lag1.theta) + " psi " +
+                           FormatNumber("%.2f", check.lag1.psi);
+  return "not explained by the catalog: " +
+         (check.white ? LargerThanSigma(check, lag1)
+                      : "the residuals remain structured (probable error " +
+                            FormatNumber("%.3g", check.probable_error) + ", " +
+                            lag1 + ")") +
          (d.steps.empty() ? "" : " after adding " + Described(d.steps)) +
          (d.partial.empty()
               ? (d.outside_catalog.effect.empty()
@@ -138,9 +171,10 @@ void Conclude(Diagnosis* d) {
     d->verdict_text = AmbiguousText(*d);
   } else if (d->final.at_noise_level) {
     d->verdict = d->steps.empty() ? Verdict::kNoiseLevel : Verdict::kExplained;
-    d->verdict_text = d->steps.empty() ? "residuals at noise level"
-                                       : "explained: " + Described(d->steps) +
-                                             "; residuals at noise level";
+    d->verdict_text = (d->steps.empty() ? "residuals at noise level"
+                                        : "explained: " + Described(d->steps) +
+                                              "; residuals at noise level") +
+                      SmallerThanSigma(d->final);
   } else {
     d->verdict = Verdict::kNotExplained;
     d->verdict_text = NotExplainedText(*d);

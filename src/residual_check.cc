@@ -127,9 +127,12 @@ ResidualCheck CheckResiduals(const FitResult& fit,
   // removes are smooth): on two 47-sample runs with 19 free parameters the
   // true model's theta residual had -0.36, beyond the limit of 0.32.
   const double worst = std::max({lag[0], lag[1], lag[2]});
-  check.at_noise_level =
-      fit.probable_error < noise_limit && worst < whiteness_limit &&
-      check.peak_ratio < spectral_limit && check.line_ratio < line_limit;
+  check.noise_limit = noise_limit;
+  check.white = worst < whiteness_limit && check.peak_ratio < spectral_limit &&
+                check.line_ratio < line_limit;
+  check.at_noise_level = fit.probable_error < noise_limit && check.white;
+  check.below_sigma = fit.probable_error * fit.probable_error <
+                      1.0 - kZ999 * std::sqrt(2.0 / dof);
   return check;
 }
 

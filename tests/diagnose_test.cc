@@ -319,6 +319,44 @@ TEST(Diagnose, AddsNothingToCleanData) {
   EXPECT_LE(added, kSeeds / 20);
 }
 
+// A sigma that is not the noise: clean data whose noise (0.01 deg) is 1.5
+// times the configured sigma leaves white residuals too large, which the
+// verdict says (it had called them structured); with sigma twice the
+// noise they are at the noise level, and the verdict says how far below
+// sigma they are and what could hide there.
+TEST(Diagnose, SaysWhenSigmaIsNotTheNoise) {
+  const std::string dir = testing::ScratchDirectory("diagnose_sigma");
+  Simulate(Truth(), dir + "/data.csv", 31);
+  Case small = FitConfig(Truth(), dir + "/data.csv");
+  small.sigma = {0.0067, 0.0067, 0.0067};
+  const Diagnosis d = Diagnose(small, DiagnoseOptions());
+  EXPECT_TRUE(d.steps.empty()) << d.verdict_text;
+  EXPECT_TRUE(d.final.white) << d.verdict_text;
+  EXPECT_FALSE(d.final.at_noise_level);
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained"));
+  EXPECT_NE(d.verdict_text.find("the residuals are white"), std::string::npos)
+      << d.verdict_text;
+  EXPECT_NE(d.verdict_text.find("the noise may be larger than configured"),
+            std::string::npos)
+      << d.verdict_text;
+  EXPECT_EQ(d.verdict_text.find("structured"), std::string::npos)
+      << d.verdict_text;
+
+  Case large = FitConfig(Truth(), dir + "/data.csv");
+  large.sigma = {0.02, 0.02, 0.02};
+  const Diagnosis e = Diagnose(large, DiagnoseOptions());
+  EXPECT_EQ(VerdictToString(e.verdict), std::string("noise_level"));
+  EXPECT_TRUE(e.final.below_sigma);
+  EXPECT_NE(e.verdict_text.find("sigma is larger than the noise"),
+            std::string::npos)
+      << e.verdict_text;
+
+  Case right = FitConfig(Truth(), dir + "/data.csv");
+  const Diagnosis f = Diagnose(right, DiagnoseOptions());
+  EXPECT_EQ(f.verdict_text, "residuals at noise level");
+  EXPECT_FALSE(f.final.below_sigma);
+}
+
 }  // namespace
 }  // namespace fit3dof
 

@@ -215,6 +215,15 @@ struct ResidualCheck {
   // a colored spectrum (residual_check.cc).
   double line_ratio = 0.0;
   bool at_noise_level = false;
+  // Apart from their size: no channel's lag-1 autocorrelation and no line
+  // beyond the limits. White residuals larger than sigma are noise larger
+  // than configured as much as a missing effect; white residuals smaller
+  // than noise reaches with chance 1e-3 (below_sigma) mean sigma is larger
+  // than the noise, and an effect that raises them to `noise_limit` passes
+  // unseen.
+  bool white = false;
+  bool below_sigma = false;
+  double noise_limit = 0.0;  // the largest probable error noise reaches
 };
 
 struct CandidateScore {
