@@ -20,6 +20,41 @@ namespace {
 // A regression's share of a residual's variance below which it is not
 // worth naming.
 constexpr double kNamedShare = 0.1;
+
+// The upper point of the F distribution with (k, m) degrees of freedom
+// that a standard normal deviate z marks, by Paulson's cube-root normal
+// approximation (within a few percent for m >= 10), solved by bisection.
+double FQuantile(int k, int m, double z) {
+  const double a = 2.0 / (9.0 * k), b = 2.0 / (9.0 * m);
+  const auto deviate = [&](double f) {
+    const double c = std::cbrt(f);
+    return ((1.0 - b) * c - (1.0 - a)) / std::sqrt(b * c * c + a);
+  };
+  double lo = 0.0, hi = 1e4;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (deviate(mid) < z ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The share k regressors take of white noise's variance over n samples
+// with chance 1e-3, the residual checks' own (residual_check.cc): the
+// regression's F statistic (n - k - 1) R^2 / (k (1 - R^2)) at its upper
+// 0.1% point. On a 47-sample run six roll harmonics take 13% of noise on
+// average and 41% once in a thousand: noise alone had been described as
+// "a dependence on the roll angle, harmonics 1-3 (17%)".
+double ChanceShare(int k, int n) {
+  constexpr double kZ999 = 3.0902323061678132;
+  const int m = std::max(1, n - k - 1);
+  const double f = k * FQuantile(k, m, kZ999);
+  return f / (f + m);
+}
+
+// Whether a share is worth naming: above kNamedShare and above chance.
+bool Named(double share, int k, int n) {
+  return share > std::max(kNamedShare, ChanceShare(k, n));
+}
 // Frequencies within this fraction of a reference are called "at" it.
 constexpr double kNear = 0.05;
 
@@ -83,7 +118,7 @@ std::string DescribeChannel(const Channel& c,
   }
   const Eigen::VectorXd centred_t = t.array() - t.mean();
   const double trend = Share(centred_t, c.residual);
-  if (trend > kNamedShare) add("a trend in time (" + Percent(trend) + ")");
+  if (Named(trend, 1, n)) add("a trend in time (" + Percent(trend) + ")");
   // The angle to the powers 1-3: a calibration curve or a stiffness that
   // changes with amplitude.
   Eigen::MatrixXd powers(n, 3);
@@ -92,7 +127,7 @@ std::string DescribeChannel(const Channel& c,
     powers.col(p) = (c.angle / scale).array().pow(p + 1);
   }
   const double amplitude = Share(powers, c.residual);
-  if (amplitude > kNamedShare) {
+  if (Named(amplitude, 3, n)) {
     add(std::string("a dependence on the ") + c.name + " angle (" +
         Percent(amplitude) + ")");
   }
@@ -102,7 +137,7 @@ std::string DescribeChannel(const Channel& c,
     harmonics.col(2 * h - 1) = (h * roll).array().sin();
   }
   const double locked = Share(harmonics, c.residual);
-  if (locked > kNamedShare) {
+  if (Named(locked, 6, n)) {
     add("a dependence on the roll angle, harmonics 1-3 (" + Percent(locked) +
         ")");
   }

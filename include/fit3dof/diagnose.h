@@ -349,7 +349,9 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options);
 // What structured residuals show, for an engineer to act on: the strongest
 // lines of theta + i psi against the motion's modal frequencies and the
 // spin's harmonics, a trend in time, a dependence on the pitch or yaw
-// angle, a dependence on the roll angle (residual_description.cc).
+// angle, a dependence on the roll angle (residual_description.cc), each
+// named only above the share of the residual's variance that noise takes
+// with chance 1e-3.
 std::string DescribeResiduals(const FitResult& fit);
 
 std::string DiagnosisJson(const Diagnosis& d, const Case& noise_reference);
