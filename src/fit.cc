@@ -358,6 +358,37 @@ std::string Structure(const SegmentFit& s, int ch, bool several) {
   return text;
 }
 
+// White residuals further from sigma than noise goes with chance 1e-3
+// (the probable error, Eq. 26, is chi-square over its degrees of freedom):
+// a sigma that is not the noise, which the RMS errors (Eq. 27, scaled by
+// the probable error) allow for and the standard errors do not. Said
+// because diagnose reads the size of the residuals in sigma: too small a
+// sigma looks like a missing effect there, too large a one hides one.
+void WarnOfSigma(const Case& c, FitResult* result) {
+  if (std::any_of(
+          c.sigma_auto.begin(), c.sigma_auto.end(), [](bool a) { return a; })) {
+    return;
+  }
+  constexpr double kZ999 = 3.0902323061678132;
+  const double dof = std::max(
+      1.0, 3.0 * result->points - static_cast<double>(result->free_parameters));
+  const double e2 = result->probable_error * result->probable_error;
+  const double spread = kZ999 * std::sqrt(2.0 / dof);
+  if (std::abs(e2 - 1.0) <= spread) return;
+  const ChannelValues& rms = result->rms_residual_deg;
+  result->warnings.push_back(
+      "the residuals are white but " +
+      FormatNumber("%.3g", result->probable_error) + " times sigma (rms phi " +
+      FormatNumber("%.3g", rms.phi) + ", theta " +
+      FormatNumber("%.3g", rms.theta) + ", psi " +
+      FormatNumber("%.3g", rms.psi) + " deg): " +
+      (e2 > 1.0 ? "the noise is larger than configured, or an effect leaves "
+                  "no structure"
+                : "sigma is larger than the noise") +
+      "; the RMS errors allow for it, and fit3dof diagnose reads residuals "
+      "in sigma");
+}
+
 // Whether the residuals look like noise (FitResult::adequacy); a warning
 // when they do not.
 void JudgeAdequacy(const Case& c, FitResult* result) {
@@ -371,6 +402,7 @@ void JudgeAdequacy(const Case& c, FitResult* result) {
   }
   if (structured.empty()) {
     result->adequacy = "white";
+    WarnOfSigma(c, result);
     return;
   }
   result->adequacy = "structured: lag-1 autocorrelation " + structured;

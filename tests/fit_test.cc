@@ -236,6 +236,28 @@ TEST(Fit, NamesTheEquation43Dependence) {
   EXPECT_TRUE(Fit(Load("table6_sigma0.01.yaml")).warnings.empty());
 }
 
+// White residuals far from sigma (the record's noise is 0.01 deg): the fit
+// says that sigma is not the noise, either way; at sigma = the noise
+// (NamesTheEquation43Dependence's last line) it says nothing.
+TEST(Fit, SaysWhenSigmaIsNotTheNoise) {
+  Case c = Load("table6_sigma0.01.yaml");
+  c.segments[0].selection.fraction = testing::kSanitized ? 0.1 : 0.5;
+  const auto warned = [](const FitResult& r, const std::string& what) {
+    for (const std::string& w : r.warnings) {
+      if (w.find(what) != std::string::npos) return true;
+    }
+    return false;
+  };
+  c.sigma = {0.02, 0.02, 0.02};
+  const FitResult large = Fit(c);
+  EXPECT_EQ(large.adequacy, "white");
+  EXPECT_TRUE(warned(large, "sigma is larger than the noise"));
+  c.sigma = {0.006, 0.006, 0.006};
+  const FitResult small = Fit(c);
+  EXPECT_EQ(small.adequacy, "white");
+  EXPECT_TRUE(warned(small, "the noise is larger than configured"));
+}
+
 // Writes a record of the Table 6 model with other initial conditions.
 std::string WriteRecord(const std::string& dir,
                         const std::string& name,
