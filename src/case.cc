@@ -7,6 +7,7 @@
 
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <tuple>
@@ -59,6 +60,11 @@ std::vector<double> Case::Values() const {
     values[i] = parameters[i].value;
   ApplyTies(Ties(), values.data());
   return values;
+}
+
+bool Case::AnySigmaAuto() const {
+  return std::any_of(
+      sigma_auto.begin(), sigma_auto.end(), [](bool a) { return a; });
 }
 
 std::vector<bool> Case::FreeFlags() const {

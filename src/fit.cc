@@ -26,6 +26,7 @@
 #include "fit3dof/wild_points.h"
 #include "fit_problem.h"
 #include "format.h"
+#include "line_statistics.h"
 #include "multi_start.h"
 #include "noise_relaxation.h"
 #include "spectral_lines.h"
@@ -156,10 +157,8 @@ void Judge(const Case& c, const PipelineOutcome& outcome, FitResult* result) {
       result->starts_tried > 0 && result->starts_reached_best >= 2;
   // With sigma: auto the fit so far weighed the residuals by the noise the
   // data show without a model (StartNoiseWeights).
-  const bool automatic = std::any_of(
-      c.sigma_auto.begin(), c.sigma_auto.end(), [](bool a) { return a; });
   const std::string sigma =
-      automatic ? "the data's model-free noise level" : "sigma";
+      c.AnySigmaAuto() ? "the data's model-free noise level" : "sigma";
   if (above && !confirmed) {
     result->converged = false;
     result->termination =
@@ -365,16 +364,12 @@ std::string Structure(const SegmentFit& s, int ch, bool several) {
 // because diagnose reads the size of the residuals in sigma: too small a
 // sigma looks like a missing effect there, too large a one hides one.
 void WarnOfSigma(const Case& c, FitResult* result) {
-  if (std::any_of(
-          c.sigma_auto.begin(), c.sigma_auto.end(), [](bool a) { return a; })) {
+  if (c.AnySigmaAuto()) return;
+  const double e2 = result->probable_error * result->probable_error;
+  if (std::abs(e2 - 1.0) <=
+      ProbableErrorSpread(result->points, result->free_parameters)) {
     return;
   }
-  constexpr double kZ999 = 3.0902323061678132;
-  const double dof = std::max(
-      1.0, 3.0 * result->points - static_cast<double>(result->free_parameters));
-  const double e2 = result->probable_error * result->probable_error;
-  const double spread = kZ999 * std::sqrt(2.0 / dof);
-  if (std::abs(e2 - 1.0) <= spread) return;
   const ChannelValues& rms = result->rms_residual_deg;
   result->warnings.push_back(
       "the residuals are white but " +

@@ -84,4 +84,10 @@ double Explained(const Eigen::MatrixXd& u, const Eigen::VectorXd& r) {
   return utr.dot(utu.ldlt().solve(utr));
 }
 
+double ProbableErrorSpread(int points, int free_parameters) {
+  const double dof =
+      std::max(1.0, 3.0 * points - static_cast<double>(free_parameters));
+  return kZ999 * std::sqrt(2.0 / dof);
+}
+
 }  // namespace fit3dof

@@ -18,6 +18,15 @@ inline constexpr int kMostLines = 6;
 inline constexpr int kBackgroundBins = 32;
 inline constexpr double kFalseLineChance = 1e-4;
 
+// The upper 0.1% point of the standard normal: the chance the residual
+// checks allow noise (residual_check.cc, residual_description.cc, fit.cc).
+inline constexpr double kZ999 = 3.0902323061678132;
+
+// How far pure noise takes the probable error squared (Eq. 26, chi-square
+// over its degrees of freedom, sd sqrt(2 / dof)) from 1 either way with
+// chance 1e-3: kZ999 sqrt(2 / dof), dof = 3 points - free (at least 1).
+double ProbableErrorSpread(int points, int free_parameters);
+
 // Biased autocovariance c(k) = (1/N) sum_i r_i r_{i+k}.
 double Autocovariance(const Eigen::VectorXd& r, int k);
 

@@ -131,10 +131,7 @@ RelaxationOutcome RelaxNoiseWeights(const Case& c,
                                     FitProblem* problem,
                                     std::vector<double>* values) {
   RelaxationOutcome outcome;
-  if (std::none_of(
-          c.sigma_auto.begin(), c.sigma_auto.end(), [](bool a) { return a; })) {
-    return outcome;
-  }
+  if (!c.AnySigmaAuto()) return outcome;
   StageSettings settings;
   settings.tolerance = c.solver.tolerance;
   settings.max_iterations = c.solver.max_iterations;

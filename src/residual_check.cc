@@ -10,12 +10,10 @@
 #include <vector>
 
 #include "fit3dof/diagnose.h"
+#include "line_statistics.h"
 
 namespace fit3dof {
 namespace {
-
-// The upper 0.1% point of the standard normal.
-constexpr double kZ999 = 3.0902323061678132;
 
 // The largest ordinate of a periodogram `power` (k = 1 .. n - 1; k = 0,
 // the mean, unused) at `peak_k` against the mean of its neighbours (up to
@@ -114,10 +112,9 @@ ResidualCheck CheckResiduals(const FitResult& fit,
   // (sd sqrt(2 / dof)), a lag-1 autocorrelation of noise has sd
   // 1 / sqrt(n). On 47 samples E = 1.12 or a lag-1 autocorrelation of 0.4
   // is one noise record in twenty.
-  const double dof = std::max(
-      1.0, 3.0 * fit.points - static_cast<double>(fit.free_parameters));
-  const double noise_limit = std::max(
-      options.noise_limit, std::sqrt(1.0 + kZ999 * std::sqrt(2.0 / dof)));
+  const double spread = ProbableErrorSpread(fit.points, fit.free_parameters);
+  const double noise_limit =
+      std::max(options.noise_limit, std::sqrt(1.0 + spread));
   const double whiteness_limit =
       std::max(options.whiteness_limit,
                kZ999 / std::sqrt(std::max(1.0, 1.0 * fit.points)));
@@ -131,8 +128,7 @@ ResidualCheck CheckResiduals(const FitResult& fit,
   check.white = worst < whiteness_limit && check.peak_ratio < spectral_limit &&
                 check.line_ratio < line_limit;
   check.at_noise_level = fit.probable_error < noise_limit && check.white;
-  check.below_sigma = fit.probable_error * fit.probable_error <
-                      1.0 - kZ999 * std::sqrt(2.0 / dof);
+  check.below_sigma = fit.probable_error * fit.probable_error < 1.0 - spread;
   return check;
 }
 

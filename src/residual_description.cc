@@ -12,6 +12,7 @@
 #include "fit3dof/angles.h"
 #include "fit3dof/diagnose.h"
 #include "format.h"
+#include "line_statistics.h"
 #include "spectral_lines.h"
 
 namespace fit3dof {
@@ -45,7 +46,6 @@ double FQuantile(int k, int m, double z) {
 // average and 41% once in a thousand: noise alone had been described as
 // "a dependence on the roll angle, harmonics 1-3 (17%)".
 double ChanceShare(int k, int n) {
-  constexpr double kZ999 = 3.0902323061678132;
   const int m = std::max(1, n - k - 1);
   const double f = k * FQuantile(k, m, kZ999);
   return f / (f + m);

@@ -17,6 +17,16 @@ namespace {
 constexpr int kSamples = 800;
 constexpr double kNoise = 0.01;  // deg
 
+// A fit of the one segment `s`, 8 free parameters, probable error 1.
+FitResult FitOf(const SegmentFit& s) {
+  FitResult fit;
+  fit.segments = {s};
+  fit.points = s.data.size();
+  fit.free_parameters = 8;
+  fit.probable_error = 1.0;
+  return fit;
+}
+
 // A fit whose residuals (computed - measured) are `theta` and `psi` (deg),
 // white noise in roll, with probable error 1.
 FitResult Residuals(const std::vector<double>& theta,
@@ -28,12 +38,7 @@ FitResult Residuals(const std::vector<double>& theta,
     s.data.Append(0.06 * i, 0.0, 0.0, 0.0);
     s.computed.insert(s.computed.end(), {noise(*rng), theta[i], psi[i]});
   }
-  FitResult fit;
-  fit.segments = {s};
-  fit.points = kSamples;
-  fit.free_parameters = 8;
-  fit.probable_error = 1.0;
-  return fit;
+  return FitOf(s);
 }
 
 // White noise in theta and psi plus a line of `amplitude` (deg) at 41/48 Hz
@@ -118,12 +123,7 @@ FitResult ShortRun(double drift, int seed) {
                   psi + noise(rng));
     s.computed.insert(s.computed.end(), {phi, theta, psi});
   }
-  FitResult fit;
-  fit.segments = {s};
-  fit.points = n;
-  fit.free_parameters = 8;
-  fit.probable_error = 1.0;
-  return fit;
+  return FitOf(s);
 }
 
 // On 47 samples six roll harmonics take 13% of noise's variance on average:

@@ -187,6 +187,8 @@ struct Case {
   SimulateOptions simulate;
 
   ModelSpec Spec() const;
+  // Whether any channel's sigma is `auto`.
+  bool AnySigmaAuto() const;
   // Every parameter's value, tied ones as their tie makes them.
   std::vector<double> Values() const;
   std::vector<bool> FreeFlags() const;
