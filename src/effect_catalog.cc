@@ -22,7 +22,8 @@ const std::vector<Effect>& EffectCatalog() {
        false,
        {},
        "amplitude",
-       "|t1|, |t3| up to half of |Cm_alpha|"},
+       "|t1|, |t3| up to half of the pitch and yaw stiffness, |Cm_alpha + t1| "
+       "and |Cm_alpha + t3|"},
       {"tunnel_damping",
        "tunnel-fixed pitch and yaw damping (Eq. 39)",
        {"t2", "t4"},
@@ -30,7 +31,8 @@ const std::vector<Effect>& EffectCatalog() {
        false,
        {},
        "amplitude",
-       "|t2|, |t4| up to twice |Cm_q|"},
+       "|t2|, |t4| up to twice the pitch and yaw damping, |Cm_q + t2| and "
+       "|Cm_q + t4|"},
       {"flow_angularity",
        "flow angularity / zero offsets in pitch and yaw",
        {"theta_T", "psi_T"},

@@ -129,6 +129,38 @@ TEST(Implausible, ReadingErrorTrimAngleAndBearingAngle) {
             std::string::npos);
 }
 
+// The tunnel terms are judged by their names (t1..t4 are aliases, which
+// the estimates do not carry: the bounds had read zeros and never acted),
+// against the stiffness or damping the record holds, the body-fixed term
+// plus the tunnel one: along Eq. 43 each alone can go anywhere.
+TEST(Implausible, TunnelTermsAgainstTheRecordsStiffnessAndDamping) {
+  const auto stiffness = [](double cm_alpha, double t1, double t3) {
+    return Verdict("tunnel_stiffness",
+                   Fitted({{"Cm_alpha", cm_alpha},
+                           {"tunnel_Cm_theta", t1},
+                           {"tunnel_Cn_psi", t3}},
+                          8.0,
+                          8.0));
+  };
+  // The suite's truth, and a record's -0.23 shared out between the two.
+  EXPECT_EQ(stiffness(-0.23, 0.016, -0.0056), "");
+  EXPECT_EQ(stiffness(-0.151, -0.079, -0.079), "");
+  // A confident wrong answer on a 3-s run: Cm_alpha -1.29 (truth -0.23)
+  // and t1 = t3 = 1.06, half of |Cm_alpha| being 0.65.
+  EXPECT_NE(stiffness(-1.29, 1.06, 1.06).find("|t1|"), std::string::npos);
+  EXPECT_NE(stiffness(-0.23, 0.0, 0.2).find("|t3|"), std::string::npos);
+  const auto damping = [](double cm_q, double t2, double t4) {
+    return Verdict("tunnel_damping",
+                   Fitted({{"Cm_q", cm_q},
+                           {"tunnel_Cm_thetadot", t2},
+                           {"tunnel_Cn_psidot", t4}},
+                          8.0,
+                          8.0));
+  };
+  EXPECT_EQ(damping(-5.5, -1.65, 2.24), "");
+  EXPECT_NE(damping(-12.0, 9.0, 0.0).find("|t2|"), std::string::npos);
+}
+
 // A newcomer's fit may push an effect added before past its bound: the
 // model with both is judged by every effect in it.
 TEST(ImplausibleAmong, NamesTheEarlierEffectPushedPastItsBound) {
