@@ -497,6 +497,19 @@ CandidateFit DriftInTime() {
   return drift;
 }
 
+// The contenders other than contenders[best] with BIC below `within`.
+std::vector<CandidateFit> Near(const std::vector<Contender>& contenders,
+                               int best,
+                               double within) {
+  std::vector<CandidateFit> near;
+  for (int i = 0; i < static_cast<int>(contenders.size()); ++i) {
+    if (i != best && contenders[i].bic < within) {
+      near.push_back(contenders[i].record);
+    }
+  }
+  return near;
+}
+
 // Whatever explains a round's residual as well as contenders[best]
 // (diagnose.h): the other contenders within ambiguity_bic of its BIC, the
 // probe (when fitted) within it, and for a roll-locked effect on less than
@@ -510,15 +523,32 @@ std::vector<CandidateFit> Rivals(const std::vector<Contender>& contenders,
                                  const std::vector<TimeHistory>& data,
                                  const DiagnoseOptions& options) {
   const double within = contenders[best].bic + options.ambiguity_bic;
-  std::vector<CandidateFit> rivals;
-  for (int i = 0; i < static_cast<int>(contenders.size()); ++i) {
-    if (i != best && contenders[i].bic < within) {
-      rivals.push_back(contenders[i].record);
-    }
-  }
+  std::vector<CandidateFit> rivals = Near(contenders, best, within);
   if (probe != nullptr && probe->bic < within) rivals.push_back(probe->record);
   if (contenders[best].candidate->effect->roll_locked && !RollSeparates(data)) {
     rivals.push_back(DriftInTime());
+  }
+  return rivals;
+}
+
+// The rivals the final swap (Unresolved) tries for contenders[best]:
+// `rivals` (Rivals) and the other catalog contenders within rival_bic.
+// While effects are still missing, the round's BIC gaps hold their
+// signatures too: on one 3-s run with a tunnel stiffness, a nonlinear
+// damping and a body yaw asymmetry, a roll torque was adopted 21 below
+// the tunnel stiffness, and once the other two were in, the tunnel
+// stiffness swapped in for it lowered BIC by 3 more.
+std::vector<CandidateFit> WiderRivals(std::vector<CandidateFit> rivals,
+                                      const std::vector<Contender>& contenders,
+                                      int best,
+                                      const DiagnoseOptions& options) {
+  for (CandidateFit& k :
+       Near(contenders, best, contenders[best].bic + options.rival_bic)) {
+    if (std::none_of(rivals.begin(), rivals.end(), [&](const CandidateFit& r) {
+          return r.effect == k.effect;
+        })) {
+      rivals.push_back(std::move(k));
+    }
   }
   return rivals;
 }
@@ -691,9 +721,13 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
     Case swapped;
     FitResult swapped_fit;
     const Effect* effect = FindEffect(rival.effect);
+    // Twins are rivals unfitted only when they tied at the step; one
+    // that lost there by more (WiderRivals) must win the swap.
+    const bool tied_at_step =
+        step.bic_drop - rival.bic_drop < options.ambiguity_bic;
     const bool twins = own != nullptr && own->roll_locked &&
                        effect != nullptr && effect->roll_locked &&
-                       !twins_separate;
+                       !twins_separate && tied_at_step;
     const bool as_good =
         rival.effect == kDriftInTime || twins ||
         !RivalCase(without, rival.effect, &swapped) ||
@@ -968,9 +1002,13 @@ ResidualCheck SettleFinalModel(
     return d->initial;
   }
   std::vector<bool> tied(d->steps.size(), false);
-  if (tie >= 0 &&
+  // Rivals within rival_bic of a step are swapped in even when none tied.
+  const bool rivalled = std::any_of(
+      rivals.begin(), rivals.end(), [](const auto& r) { return !r.empty(); });
+  if (rivalled &&
       TieDissolves(data, options, rivals, &tie, &tied, d, current)) {
-    // The tied effect turned out redundant with the later ones in.
+    // The tied effect turned out redundant with the later ones in, or
+    // no rival explains the record as well with them.
     return CheckResiduals(d->FinalFit(), options);
   }
   ResidualCheck adopted;
@@ -1106,7 +1144,8 @@ Diagnosis Search(const Case& c,
       tie = static_cast<int>(d.steps.size());
       if (earned.size() > 1) *tied_first = best.record.effect;
     }
-    rivals.push_back(std::move(step_rivals));
+    rivals.push_back(
+        WiderRivals(std::move(step_rivals), contenders, earned[0], options));
     current = best.candidate->c;
     fit = best.fit;
     models.push_back(current);

@@ -66,7 +66,9 @@ std::string AmbiguousText(const Diagnosis& d) {
                     FormatNumber("%.1f", a.bic_drop) +
                     "; over this record's roll its signature is a slow "
                     "change in time)"
-              : " explain the residual alike (BIC lower by " + drops + ")") +
+              : " explain the record alike (BIC lower by " + drops +
+                    " where the first was added, and alike swapped for each "
+                    "other with the other effects in)") +
          (n > 2 ? "; none added; " : "; neither added; ") + d.separated_by +
          " would separate them" + later +
          (d.steps.empty() ? "" : "; added: " + Described(d.steps)) +

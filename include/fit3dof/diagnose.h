@@ -73,7 +73,11 @@
 // (another spin rate, amplitude or dynamic pressure). A rival that loses
 // by more once the other effects are in is no longer one; two roll-locked
 // effects stay rivals unless a record spins above half the pitch
-// frequency (nothing slower separates them). Ties at later
+// frequency (nothing slower separates them). The final swap also tries
+// the contenders within `rival_bic` (30) of a step's best, tied or not:
+// while effects are missing, a round's BIC gaps hold their signatures too
+// (a roll torque adopted 21 below a tunnel stiffness that, with the
+// others in, explained the record 3 better). Ties at later
 // steps are judged alike and reported beside the first
 // (Diagnosis::later_ties). A tie that leaves the residuals
 // structured is only part of the story: the search goes on with the
@@ -193,6 +197,7 @@ struct DiagnoseOptions {
   int refit = 5;
   double min_bic_drop = 10.0;
   double ambiguity_bic = 10.0;
+  double rival_bic = 30.0;
   double max_drag = 5.0;
   int held_out_blocks = 8;
   double gain_per_parameter = 2.0;
