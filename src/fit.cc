@@ -19,6 +19,7 @@
 #include "assembly.h"
 #include "continuation.h"
 #include "filter_error.h"
+#include "fit3dof/angles.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/interrupt.h"
 #include "fit3dof/parameters.h"
@@ -384,6 +385,43 @@ void WarnOfSigma(const Case& c, FitResult* result) {
       "in sigma");
 }
 
+// The shared estimate named `name`, or null.
+const ParameterEstimate* Shared(const FitResult& result,
+                                const std::string& name) {
+  for (const ParameterEstimate& e : result.parameters) {
+    if (e.segment.empty() && e.name == name) return &e;
+  }
+  return nullptr;
+}
+
+// A warning when a bearing moment's saturation angle is not determined
+// (standard error beyond its value, or none): Cm_bearing then lies on a
+// curved ridge along which Cm_bearing x bearing_angle, the saturated
+// moment (bearing_moment.h), stays nearly fixed, and its linear error bar
+// is far too short. On one 3-s run Cm_bearing = -0.0094 +- 0.0010 at an
+// angle of 3.4 +- 5.7 deg, and frozen anywhere from -0.0094 to -0.03 it
+// fitted the record as well (sum of residuals 10.85 to 10.87).
+void WarnOfBearingRidge(FitResult* result) {
+  const ParameterEstimate* moment = Shared(*result, "Cm_bearing");
+  const ParameterEstimate* angle = Shared(*result, "bearing_angle");
+  if (moment == nullptr || angle == nullptr || !moment->free || !angle->free ||
+      angle->standard_error < std::abs(angle->value)) {
+    return;
+  }
+  result->warnings.push_back(
+      "bearing_angle = " + FormatNumber("%.3g", angle->value) + " +- " +
+      FormatNumber("%.2g", angle->standard_error) +
+      " deg is not determined by the record: Cm_bearing (" +
+      FormatNumber("%.3g", moment->value) +
+      ") is determined only with it, along a ridge where the saturated "
+      "moment's coefficient, Cm_bearing x bearing_angle (" +
+      FormatNumber("%.3g", moment->value * angle->value * kDegree) +
+      "), stays nearly fixed, and its error bar (" +
+      FormatNumber("%.2g", moment->standard_error) +
+      ") is too short there; freeze bearing_angle at a value the bearing's "
+      "calibration gives, or quote the saturated moment");
+}
+
 // Whether the residuals look like noise (FitResult::adequacy); a warning
 // when they do not.
 void JudgeAdequacy(const Case& c, FitResult* result) {
@@ -447,6 +485,7 @@ FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
   result.correlation_names = problem.names;
   result.correlation = u.correlation;
   result.parameters = Estimates(c, problem, values, u);
+  WarnOfBearingRidge(&result);
   FitSegments(c, problem, values, u, &result);
   JudgeAdequacy(c, &result);
   result.seconds = std::chrono::duration<double>(
