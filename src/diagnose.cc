@@ -351,13 +351,11 @@ std::vector<int> Earned(const FitResult& current,
 // The pitch frequency of the fit (deg/s): sqrt(-Cm_alpha q S d / I_y);
 // 0 when the fit is not statically stable.
 double PitchFrequency(const Case& c, const FitResult& fit) {
-  for (const ParameterEstimate& e : fit.parameters) {
-    if (e.name != "Cm_alpha" || !e.segment.empty()) continue;
-    const double w2 = -e.value * c.flow.dynamic_pressure * c.body.area *
-                      c.body.diameter / c.body.Iy;
-    return w2 > 0.0 ? std::sqrt(w2) / kDegree : 0.0;
-  }
-  return 0.0;
+  const ParameterEstimate* cm_alpha = SharedEstimate(fit, "Cm_alpha");
+  if (cm_alpha == nullptr) return 0.0;
+  const double w2 = -cm_alpha->value * c.flow.dynamic_pressure * c.body.area *
+                    c.body.diameter / c.body.Iy;
+  return w2 > 0.0 ? std::sqrt(w2) / kDegree : 0.0;
 }
 
 // What a second run would change to tell effects a and b apart, for a

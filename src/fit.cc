@@ -385,15 +385,6 @@ void WarnOfSigma(const Case& c, FitResult* result) {
       "in sigma");
 }
 
-// The shared estimate named `name`, or null.
-const ParameterEstimate* Shared(const FitResult& result,
-                                const std::string& name) {
-  for (const ParameterEstimate& e : result.parameters) {
-    if (e.segment.empty() && e.name == name) return &e;
-  }
-  return nullptr;
-}
-
 // A warning when a bearing moment's saturation angle is not determined
 // (standard error beyond its value, or none): Cm_bearing then lies on a
 // curved ridge along which Cm_bearing x bearing_angle, the saturated
@@ -402,8 +393,8 @@ const ParameterEstimate* Shared(const FitResult& result,
 // angle of 3.4 +- 5.7 deg, and frozen anywhere from -0.0094 to -0.03 it
 // fitted the record as well (sum of residuals 10.85 to 10.87).
 void WarnOfBearingRidge(FitResult* result) {
-  const ParameterEstimate* moment = Shared(*result, "Cm_bearing");
-  const ParameterEstimate* angle = Shared(*result, "bearing_angle");
+  const ParameterEstimate* moment = SharedEstimate(*result, "Cm_bearing");
+  const ParameterEstimate* angle = SharedEstimate(*result, "bearing_angle");
   if (moment == nullptr || angle == nullptr || !moment->free || !angle->free ||
       angle->standard_error < std::abs(angle->value)) {
     return;
@@ -557,6 +548,14 @@ double SpinHz(const SegmentFit& s) {
   const double duration = s.data.t.back() - s.data.t.front();
   if (!(duration > 0.0)) return 0.0;
   return std::abs(s.computed[3 * (n - 1)] - s.computed[0]) / 360.0 / duration;
+}
+
+const ParameterEstimate* SharedEstimate(const FitResult& result,
+                                        const std::string& name) {
+  for (const ParameterEstimate& e : result.parameters) {
+    if (e.segment.empty() && e.name == name) return &e;
+  }
+  return nullptr;
 }
 
 Case CaseAtSolution(const Case& c, const FitResult& r) {

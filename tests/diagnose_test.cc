@@ -411,6 +411,16 @@ Case UntrimmedShortTruth(double spin) {
   return truth;
 }
 
+// *c in the asymmetric program with the body's own yaw stiffness: Cn_beta
+// untied from -Cm_alpha and `factor` times it. Returns Cn_beta.
+double UntieBodyYawStiffness(Case* c, double factor) {
+  *c = ToAsymmetric(*c);
+  ParameterSetting& cn_beta = c->parameters[FindParameter(c->model, "Cn_beta")];
+  cn_beta.tied_to = -1;
+  cn_beta.value *= factor;
+  return cn_beta.value;
+}
+
 // Two 3-s runs without trim, 30 deg/s at 8 deg and 60 deg/s at 4 deg,
 // each truth changed by `hide` before it is simulated (noise seeds `seed`
 // and seed + 1); the files, dir/run0.csv and dir/run1.csv.
@@ -727,15 +737,8 @@ TEST(Diagnose, OneRunNamesADriftOfThePitchReading) {
 TEST(Diagnose, NamesABodyFixedYawAsymmetryInTheAsymmetricProgram) {
   const std::string dir = testing::ScratchDirectory("diagnose_yaw_stiffness");
   double truth = 0.0;
-  const std::vector<std::string> files =
-      TwoShortRuns(dir, 31, [&truth](Case* c) {
-        *c = ToAsymmetric(*c);
-        ParameterSetting& cn_beta =
-            c->parameters[FindParameter(c->model, "Cn_beta")];
-        cn_beta.tied_to = -1;
-        cn_beta.value *= 1.003;
-        truth = cn_beta.value;
-      });
+  const std::vector<std::string> files = TwoShortRuns(
+      dir, 31, [&truth](Case* c) { truth = UntieBodyYawStiffness(c, 1.003); });
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.FinalFit().model, ModelKind::kAsymmetric) << text;
@@ -1015,12 +1018,7 @@ TEST(Diagnose, SwapsInARivalThatLostWhileAnEffectWasMissing) {
   const std::vector<std::pair<std::string, double>> hidden = {
       {"t1", 0.00064}, {"t3", -0.00022}, {"Cm_q_delta2", 930.0}};
   SetValues(&truth, hidden);
-  truth = ToAsymmetric(truth);
-  ParameterSetting& cn_beta =
-      truth.parameters[FindParameter(truth.model, "Cn_beta")];
-  cn_beta.tied_to = -1;
-  cn_beta.value *= 1.002;
-  truth.SettleTies();
+  UntieBodyYawStiffness(&truth, 1.002);
   const std::string data = SimulateShort(truth, dir + "/data.csv", 1);
   const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});

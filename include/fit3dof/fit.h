@@ -171,6 +171,11 @@ FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data);
 // The spin rate (Hz) of a segment's fitted motion, over the record.
 double SpinHz(const SegmentFit& s);
 
+// The estimate of the shared parameter (not a segment's own) named `name`,
+// or null.
+const ParameterEstimate* SharedEstimate(const FitResult& result,
+                                        const std::string& name);
+
 // The case with every free value at the fit's result and each segment's
 // initial conditions given as fitted.
 Case CaseAtSolution(const Case& c, const FitResult& result);
