@@ -30,6 +30,7 @@
 #include "line_statistics.h"
 #include "multi_start.h"
 #include "noise_relaxation.h"
+#include "profile_error_bar.h"
 #include "spectral_lines.h"
 #include "uncertainty.h"
 
@@ -385,32 +386,61 @@ void WarnOfSigma(const Case& c, FitResult* result) {
       "in sigma");
 }
 
-// A warning when a bearing moment's saturation angle is not determined
-// (standard error beyond its value, or none): Cm_bearing then lies on a
-// curved ridge along which Cm_bearing x bearing_angle, the saturated
-// moment (bearing_moment.h), stays nearly fixed, and its linear error bar
-// is far too short. On one 3-s run Cm_bearing = -0.0094 +- 0.0010 at an
-// angle of 3.4 +- 5.7 deg, and frozen anywhere from -0.0094 to -0.03 it
-// fitted the record as well (sum of residuals 10.85 to 10.87).
-void WarnOfBearingRidge(FitResult* result) {
+// A bearing moment whose saturation angle is not determined (standard
+// error beyond its value, or none): Cm_bearing then lies on a curved ridge
+// along which Cm_bearing x bearing_angle, the saturated moment
+// (bearing_moment.h), stays nearly fixed, and its linear error bar is far
+// too short (profile_error_bar.h). Its error bars are widened to the
+// profile's, and a warning says so.
+void CheckBearingRidge(const Case& c,
+                       const std::vector<TimeHistory>& data,
+                       FitResult* result) {
   const ParameterEstimate* moment = SharedEstimate(*result, "Cm_bearing");
   const ParameterEstimate* angle = SharedEstimate(*result, "bearing_angle");
   if (moment == nullptr || angle == nullptr || !moment->free || !angle->free ||
       angle->standard_error < std::abs(angle->value)) {
     return;
   }
+  ProfileErrorBar profile;
+  const bool profiled = ProfileOf(c, data, *result, "Cm_bearing", &profile);
+  const double linear = moment->standard_error;
+  std::string error_bar =
+      std::isnan(linear)
+          ? "it has no error bar of its own"
+          : "its error bar from the solution's curvature (" +
+                FormatNumber("%.2g", linear) + ") is too short there";
+  if (profiled) {
+    const double scale = profile.rms_error / profile.linear;
+    ParameterEstimate& widened =
+        result->parameters[moment - result->parameters.data()];
+    widened.rms_error *= scale;
+    widened.standard_error *= scale;
+    error_bar =
+        "its error bar is the profile's (" +
+        FormatNumber("%.2g", widened.standard_error) +
+        ", refitted with Cm_bearing frozen out to +-" +
+        FormatNumber("%.2g", profile.farthest) +
+        (profile.bounded ? ""
+                         : ", where the sum of squares rose by less than E^2") +
+        "), not the solution's curvature's (" + FormatNumber("%.2g", linear) +
+        ")";
+    result->pipeline.push_back("Cm_bearing's error bar from its profile: " +
+                               std::to_string(profile.refits) + " refits, x" +
+                               FormatNumber("%.3g", scale));
+  }
   result->warnings.push_back(
-      "bearing_angle = " + FormatNumber("%.3g", angle->value) + " +- " +
-      FormatNumber("%.2g", angle->standard_error) +
-      " deg is not determined by the record: Cm_bearing (" +
+      "bearing_angle = " + FormatNumber("%.3g", angle->value) +
+      (std::isnan(angle->standard_error)
+           ? " deg (no error bar)"
+           : " +- " + FormatNumber("%.2g", angle->standard_error) + " deg") +
+      " is not determined by the record: Cm_bearing (" +
       FormatNumber("%.3g", moment->value) +
       ") is determined only with it, along a ridge where the saturated "
       "moment's coefficient, Cm_bearing x bearing_angle (" +
       FormatNumber("%.3g", moment->value * angle->value * kDegree) +
-      "), stays nearly fixed, and its error bar (" +
-      FormatNumber("%.2g", moment->standard_error) +
-      ") is too short there; freeze bearing_angle at a value the bearing's "
-      "calibration gives, or quote the saturated moment");
+      "), stays nearly fixed, and " + error_bar +
+      "; freeze bearing_angle at a value the bearing's calibration gives, or "
+      "quote the saturated moment");
 }
 
 // Whether the residuals look like noise (FitResult::adequacy); a warning
@@ -476,7 +506,7 @@ FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
   result.correlation_names = problem.names;
   result.correlation = u.correlation;
   result.parameters = Estimates(c, problem, values, u);
-  WarnOfBearingRidge(&result);
+  CheckBearingRidge(c, data, &result);
   FitSegments(c, problem, values, u, &result);
   JudgeAdequacy(c, &result);
   result.seconds = std::chrono::duration<double>(
