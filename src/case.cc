@@ -150,14 +150,16 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
                   a.method,
                   a.max_probable_error,
                   a.multi_start,
-                  a.starts) == std::tie(b.max_iterations,
-                                        b.tolerance,
-                                        b.step,
-                                        b.continuation,
-                                        b.method,
-                                        b.max_probable_error,
-                                        b.multi_start,
-                                        b.starts);
+                  a.starts,
+                  a.profile_ridges) == std::tie(b.max_iterations,
+                                                b.tolerance,
+                                                b.step,
+                                                b.continuation,
+                                                b.method,
+                                                b.max_probable_error,
+                                                b.multi_start,
+                                                b.starts,
+                                                b.profile_ridges);
 }
 
 bool operator==(const ProcessNoiseModel& a, const ProcessNoiseModel& b) {

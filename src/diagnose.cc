@@ -134,6 +134,16 @@ std::vector<ParameterEstimate> Own(const FitResult& fit,
   return own;
 }
 
+// A fit diagnose reports (the final model's, an alternative's), of the
+// search's case `model`, with the profiles the search skipped.
+void Reported(const Case& model,
+              const std::vector<TimeHistory>& data,
+              FitResult* fit) {
+  Case c = model;
+  c.solver.profile_ridges = true;
+  CheckRidges(c, data, fit);
+}
+
 // The case `c` fitted from `from`, its solution, into *fit; false (and a
 // warning naming the refit, `what`) when the fit fails.
 bool FitFrom(const Case& c,
@@ -840,10 +850,10 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
 
 // Whether the effects adopted after a tie are needed with `rival` in
 // place of the tied effect too: `without` (their model without any of the
-// tied effects, fitted as `without_fit`) with the rival, fitted into
-// *rival_fit, lowers BIC by min_bic_drop below the rival alone on the model
-// before the tie (`before_tie`, fitted as `before`), and every effect in
-// it (`effects` and the rival) stays within its bounds.
+// tied effects, fitted as `without_fit`) with the rival (*with_rival),
+// fitted into *rival_fit, lowers BIC by min_bic_drop below the rival alone on
+// the model before the tie (`before_tie`, fitted as `before`), and every effect
+// in it (`effects` and the rival) stays within its bounds.
 bool AdoptedWithRival(const std::vector<TimeHistory>& data,
                       const DiagnoseOptions& options,
                       const std::vector<const Effect*>& effects,
@@ -852,11 +862,12 @@ bool AdoptedWithRival(const std::vector<TimeHistory>& data,
                       const Case& before_tie,
                       const FitResult& before,
                       const std::string& rival,
+                      Case* with_rival,
                       FitResult* rival_fit) {
-  Case with_rival, rival_alone;
+  Case rival_alone;
   FitResult rival_alone_fit;
-  return RivalCase(CaseAtSolution(without, without_fit), rival, &with_rival) &&
-         FitFrom(with_rival, without_fit, data, "with " + rival, rival_fit) &&
+  return RivalCase(CaseAtSolution(without, without_fit), rival, with_rival) &&
+         FitFrom(*with_rival, without_fit, data, "with " + rival, rival_fit) &&
          RivalCase(CaseAtSolution(before_tie, before), rival, &rival_alone) &&
          FitFrom(rival_alone,
                  before,
@@ -864,7 +875,7 @@ bool AdoptedWithRival(const std::vector<TimeHistory>& data,
                  "with " + rival + " alone",
                  &rival_alone_fit) &&
          Bic(*rival_fit) < Bic(rival_alone_fit) - options.min_bic_drop &&
-         ImplausibleAmong(effects, with_rival, *rival_fit).empty();
+         ImplausibleAmong(effects, *with_rival, *rival_fit).empty();
 }
 
 // After a tie (at step `tie`; `tied` marks every step that stays in
@@ -925,12 +936,14 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
        last + 1}};
   bool known = alternatives[0].check.at_noise_level;
   std::vector<FitResult> rival_fits;
+  std::vector<Case> rival_cases;
   for (size_t r = 1; r < d->ambiguous.size(); ++r) {
     const std::string& rival = d->ambiguous[r].effect;
     // A drift in time is no model (a straight drift of the readings stands
     // in for it) and is tested only when it is the one rival.
     if (rival == kDriftInTime && d->ambiguous.size() > 2) continue;
     FitResult rival_fit;
+    Case with_rival;
     if (!AdoptedWithRival(data,
                           options,
                           effects,
@@ -939,6 +952,7 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
                           models[tie],
                           before,
                           rival,
+                          &with_rival,
                           &rival_fit)) {
       VLOG(1) << "not needed, or not plausible, with " << rival;
       return false;
@@ -947,6 +961,7 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
         {rival, CheckResiduals(rival_fit, options), rival_fit.parameters, -1});
     known = known && alternatives.back().check.at_noise_level;
     rival_fits.push_back(std::move(rival_fit));
+    rival_cases.push_back(std::move(with_rival));
   }
   // The drag rule guards against an effect absorbing an unknown structure;
   // when every complete model reaches the noise, what the final model
@@ -954,7 +969,11 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
   if (!known && !Drags(before, without_fit, names, options.max_drag).empty()) {
     return false;
   }
+  Reported(models[last + 1], data, &d->fits[last + 1]);
+  alternatives[0].parameters = d->fits[last + 1].parameters;
   for (size_t r = 0; r < rival_fits.size(); ++r) {
+    Reported(rival_cases[r], data, &rival_fits[r]);
+    alternatives[r + 1].parameters = rival_fits[r].parameters;
     d->fits.push_back(std::move(rival_fits[r]));
     alternatives[r + 1].fit = static_cast<int>(d->fits.size()) - 1;
   }
@@ -1091,7 +1110,11 @@ Diagnosis Search(const Case& c,
                  std::string* tied_first) {
   tied_first->clear();
   Diagnosis d;
-  Case current = c;
+  // The search's fits skip the profiles (fit.h, CheckRidges); the fits it
+  // reports get them (Reported).
+  Case quiet = c;
+  quiet.solver.profile_ridges = false;
+  Case current = quiet;
   FitResult fit = nominal;
   const std::vector<TimeHistory> data = FittedData(fit);
   d.fits.push_back(fit);
@@ -1151,9 +1174,10 @@ Diagnosis Search(const Case& c,
   }
   d.partial_fit = d.fits.size() - 1;
   d.final = SettleFinalModel(
-      c, data, options, models, tie, rivals, check, &d, &current);
+      quiet, data, options, models, tie, rivals, check, &d, &current);
+  Reported(current, data, &d.fits[d.final_fit]);
   if (!d.ambiguous.empty()) {
-    d.separated_by = SeparatedBy(d.ambiguous, c, d.FinalFit(), data);
+    d.separated_by = SeparatedBy(d.ambiguous, quiet, d.FinalFit(), data);
   }
   d.final_case = FinalCase(c, current, d.FinalFit());
   FinalValues(&d);

@@ -242,7 +242,9 @@ const std::map<std::string, Bound>& Bounds() {
          if (moment > stiffness) {
            return Exceeds("|Cm_bearing|", moment, stiffness) + " (|Cm_alpha|)";
          }
-         const double angle = v("bearing_angle");
+         // The fade depends on the angle's square (bearing_moment.h): a
+         // fit may end at either sign.
+         const double angle = std::abs(v("bearing_angle"));
          if (!(angle > 0.0) || angle > v.largest_deg) {
            return "bearing_angle " + FormatNumber("%.3g", angle) +
                   " deg lies outside the record's angles (0-" +

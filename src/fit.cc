@@ -386,61 +386,54 @@ void WarnOfSigma(const Case& c, FitResult* result) {
       "in sigma");
 }
 
-// A bearing moment whose saturation angle is not determined (standard
-// error beyond its value, or none): Cm_bearing then lies on a curved ridge
-// along which Cm_bearing x bearing_angle, the saturated moment
-// (bearing_moment.h), stays nearly fixed, and its linear error bar is far
-// too short (profile_error_bar.h). Its error bars are widened to the
-// profile's, and a warning says so.
-void CheckBearingRidge(const Case& c,
-                       const std::vector<TimeHistory>& data,
-                       FitResult* result) {
-  const ParameterEstimate* moment = SharedEstimate(*result, "Cm_bearing");
-  const ParameterEstimate* angle = SharedEstimate(*result, "bearing_angle");
-  if (moment == nullptr || angle == nullptr || !moment->free || !angle->free ||
-      angle->standard_error < std::abs(angle->value)) {
-    return;
-  }
-  ProfileErrorBar profile;
-  const bool profiled = ProfileOf(c, data, *result, "Cm_bearing", &profile);
+// The start of the warning on a bearing moment's ridge (CheckRidges).
+constexpr char kBearingRidge[] = "bearing_angle = ";
+// The pipeline's entry once Cm_bearing's error bar is the profile's.
+constexpr char kBearingProfile[] = "Cm_bearing's error bar from its profile";
+
+// The warning on a bearing moment whose angle the record does not
+// determine; `error_bar` says what Cm_bearing's error bar is.
+std::string BearingRidgeWarning(const ParameterEstimate& moment,
+                                const ParameterEstimate& angle,
+                                const std::string& error_bar) {
+  // The fade depends on the angle's square (bearing_moment.h): its sign
+  // means nothing, the saturated moment has Cm_bearing's.
+  const double size = std::abs(angle.value);
+  return kBearingRidge + FormatNumber("%.3g", size) +
+         (std::isnan(angle.standard_error)
+              ? " deg (no error bar)"
+              : " +- " + FormatNumber("%.2g", angle.standard_error) + " deg") +
+         " is not determined by the record: Cm_bearing (" +
+         FormatNumber("%.3g", moment.value) +
+         ") is determined only with it, along a ridge where the saturated "
+         "moment's coefficient, Cm_bearing x bearing_angle (" +
+         FormatNumber("%.3g", moment.value * size * kDegree) +
+         "), stays nearly fixed, and " + error_bar +
+         "; freeze bearing_angle at a value the bearing's calibration gives, "
+         "or quote the saturated moment";
+}
+
+// Cm_bearing's error bars widened to its profile's (`profile`); the
+// description for the warning.
+std::string WidenToProfile(const ProfileErrorBar& profile,
+                           ParameterEstimate* moment,
+                           FitResult* result) {
   const double linear = moment->standard_error;
-  std::string error_bar =
-      std::isnan(linear)
-          ? "it has no error bar of its own"
-          : "its error bar from the solution's curvature (" +
-                FormatNumber("%.2g", linear) + ") is too short there";
-  if (profiled) {
-    const double scale = profile.rms_error / profile.linear;
-    ParameterEstimate& widened =
-        result->parameters[moment - result->parameters.data()];
-    widened.rms_error *= scale;
-    widened.standard_error *= scale;
-    error_bar =
-        "its error bar is the profile's (" +
-        FormatNumber("%.2g", widened.standard_error) +
-        ", refitted with Cm_bearing frozen out to +-" +
-        FormatNumber("%.2g", profile.farthest) +
-        (profile.bounded ? ""
-                         : ", where the sum of squares rose by less than E^2") +
-        "), not the solution's curvature's (" + FormatNumber("%.2g", linear) +
-        ")";
-    result->pipeline.push_back("Cm_bearing's error bar from its profile: " +
-                               std::to_string(profile.refits) + " refits, x" +
-                               FormatNumber("%.3g", scale));
-  }
-  result->warnings.push_back(
-      "bearing_angle = " + FormatNumber("%.3g", angle->value) +
-      (std::isnan(angle->standard_error)
-           ? " deg (no error bar)"
-           : " +- " + FormatNumber("%.2g", angle->standard_error) + " deg") +
-      " is not determined by the record: Cm_bearing (" +
-      FormatNumber("%.3g", moment->value) +
-      ") is determined only with it, along a ridge where the saturated "
-      "moment's coefficient, Cm_bearing x bearing_angle (" +
-      FormatNumber("%.3g", moment->value * angle->value * kDegree) +
-      "), stays nearly fixed, and " + error_bar +
-      "; freeze bearing_angle at a value the bearing's calibration gives, or "
-      "quote the saturated moment");
+  const double scale = profile.rms_error / profile.linear;
+  moment->rms_error *= scale;
+  moment->standard_error *= scale;
+  result->pipeline.push_back(std::string(kBearingProfile) + ": " +
+                             std::to_string(profile.refits) + " refits, x" +
+                             FormatNumber("%.3g", scale));
+  return "its error bar is the profile's (" +
+         FormatNumber("%.2g", moment->standard_error) +
+         ", refitted with Cm_bearing frozen out to +-" +
+         FormatNumber("%.2g", profile.farthest) +
+         (profile.bounded
+              ? ""
+              : ", where the sum of squares rose by less than E^2") +
+         "), not the solution's curvature's (" + FormatNumber("%.2g", linear) +
+         ")";
 }
 
 // Whether the residuals look like noise (FitResult::adequacy); a warning
@@ -467,6 +460,45 @@ void JudgeAdequacy(const Case& c, FitResult* result) {
 }
 
 }  // namespace
+
+void CheckRidges(const Case& c,
+                 const std::vector<TimeHistory>& data,
+                 FitResult* result) {
+  const ParameterEstimate* moment = SharedEstimate(*result, "Cm_bearing");
+  const ParameterEstimate* angle = SharedEstimate(*result, "bearing_angle");
+  if (moment == nullptr || angle == nullptr || !moment->free || !angle->free ||
+      angle->standard_error < std::abs(angle->value)) {
+    return;
+  }
+  const auto& pipeline = result->pipeline;
+  if (std::any_of(pipeline.begin(), pipeline.end(), [](const std::string& p) {
+        return p.rfind(kBearingProfile, 0) == 0;
+      })) {
+    return;  // profiled already
+  }
+  std::string error_bar =
+      std::isnan(moment->standard_error)
+          ? "it has no error bar of its own"
+          : "its error bar from the solution's curvature (" +
+                FormatNumber("%.2g", moment->standard_error) +
+                ") is too short there";
+  ProfileErrorBar profile;
+  if (c.solver.profile_ridges &&
+      ProfileOf(c, data, *result, "Cm_bearing", &profile)) {
+    error_bar =
+        WidenToProfile(profile,
+                       &result->parameters[moment - result->parameters.data()],
+                       result);
+  }
+  auto& warnings = result->warnings;
+  warnings.erase(std::remove_if(warnings.begin(),
+                                warnings.end(),
+                                [](const std::string& w) {
+                                  return w.rfind(kBearingRidge, 0) == 0;
+                                }),
+                 warnings.end());
+  warnings.push_back(BearingRidgeWarning(*moment, *angle, error_bar));
+}
 
 FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
   const auto start_time = std::chrono::steady_clock::now();
@@ -506,7 +538,7 @@ FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
   result.correlation_names = problem.names;
   result.correlation = u.correlation;
   result.parameters = Estimates(c, problem, values, u);
-  CheckBearingRidge(c, data, &result);
+  CheckRidges(c, data, &result);
   FitSegments(c, problem, values, u, &result);
   JudgeAdequacy(c, &result);
   result.seconds = std::chrono::duration<double>(

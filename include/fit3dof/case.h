@@ -150,6 +150,11 @@ struct SolverOptions {
   double max_probable_error = 3.0;
   bool multi_start = true;  // restart from a spread of points when above it
   int starts = 8;
+  // Error bars along known curved ridges from the profile of the sum of
+  // squares (fit.h, CheckRidges), at a few refits each. Not a config key:
+  // diagnose turns it off for the fits of its search, whose decisions do
+  // not read those error bars, and profiles the fits it reports.
+  bool profile_ridges = true;
 };
 
 struct SimulateOptions {

@@ -168,6 +168,21 @@ FitResult Fit(const Case& c);
 // and its out-of-sample checks on the samples the first fit used.
 FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data);
 
+// Error bars along the known curved ridges of the sum of squares: a
+// bearing moment whose angle the record does not determine (standard error
+// beyond its value, or none), where Cm_bearing is determined only along
+// the ridge Cm_bearing x bearing_angle = const and its linear error bar
+// (Eq. 27) sees only the ridge's width. With c.solver.profile_ridges,
+// Cm_bearing's error bars (RMS and standard) become its profile's
+// (src/profile_error_bar.h: the fit repeated with Cm_bearing frozen on
+// either side); in any case a warning names the ridge. `fit` is the fit of
+// case `c` to `data` (as FitSamples takes them). FitSamples calls it;
+// diagnose, which fits without profiles while it searches, calls it on
+// the fits it reports. A fit profiled already is left as it is.
+void CheckRidges(const Case& c,
+                 const std::vector<TimeHistory>& data,
+                 FitResult* fit);
+
 // The spin rate (Hz) of a segment's fitted motion, over the record.
 double SpinHz(const SegmentFit& s);
 
