@@ -1176,6 +1176,9 @@ Diagnosis Search(const Case& c,
   d.final = SettleFinalModel(
       quiet, data, options, models, tie, rivals, check, &d, &current);
   Reported(current, data, &d.fits[d.final_fit]);
+  if (!d.partial.empty()) {
+    Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
+  }
   if (!d.ambiguous.empty()) {
     d.separated_by = SeparatedBy(d.ambiguous, quiet, d.FinalFit(), data);
   }

@@ -1034,5 +1034,61 @@ TEST(Diagnose, SwapsInARivalThatLostWhileAnEffectWasMissing) {
   }
 }
 
+// Whether `fit` holds Cm_bearing's error bar from its profile.
+bool Profiled(const FitResult& fit) {
+  return std::any_of(
+      fit.pipeline.begin(), fit.pipeline.end(), [](const std::string& p) {
+        return p.rfind("Cm_bearing's error bar from its profile", 0) == 0;
+      });
+}
+
+// A bearing moment on one 3-s run, where its angle is not determined:
+// Cm_bearing lies on the ridge Cm_bearing x bearing_angle = const, and its
+// linear error bar sees only the ridge's width (profile_error_bar_test).
+// The search fits without profiles; every fit it reports with the bearing
+// moment in (the final model, the partial one that an open tie leaves, the
+// alternatives) gets Cm_bearing's error bar from its profile, covering the
+// truth. At 30 deg/s the bearing moment explains the record, or ties with
+// a dynamic pressure drift (the record shows the stiffness changing, not
+// whether with time or amplitude).
+TEST(Diagnose, ReportsTheBearingMomentWithItsProfileErrorBar) {
+  constexpr double kMoment = -0.02;
+  int reported = 0;
+  for (const std::uint64_t seed : {1, 3}) {
+    const std::string dir = testing::ScratchDirectory(
+        "diagnose_bearing_ridge_" + std::to_string(seed));
+    Case truth = UntrimmedShortTruth(30.0);
+    SetValues(&truth,
+              std::map<std::string, double>{{"Cm_bearing", kMoment},
+                                            {"bearing_angle", 1.0}});
+    const std::string data = SimulateShort(truth, dir + "/data.csv", seed);
+    const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
+    const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+    EXPECT_TRUE(d.verdict == Verdict::kExplained ||
+                d.verdict == Verdict::kAmbiguous)
+        << text;
+    std::vector<const FitResult*> fits = {&d.FinalFit()};
+    if (!d.partial.empty()) fits.push_back(&d.fits[d.partial_fit]);
+    for (const AlternativeModel& a : d.alternatives) {
+      if (a.fit >= 0) fits.push_back(&d.fits[a.fit]);
+    }
+    for (const FitResult* fit : fits) {
+      const ParameterEstimate* moment = SharedEstimate(*fit, "Cm_bearing");
+      const ParameterEstimate* angle = SharedEstimate(*fit, "bearing_angle");
+      if (moment == nullptr || !moment->free ||
+          angle->standard_error < std::abs(angle->value)) {
+        continue;
+      }
+      ++reported;
+      EXPECT_TRUE(Profiled(*fit))
+          << "seed " << seed << ": " << ::testing::PrintToString(fit->pipeline);
+      EXPECT_LT(std::abs(moment->value - kMoment), 3.0 * moment->standard_error)
+          << "seed " << seed << ": " << moment->value << " +- "
+          << moment->standard_error;
+    }
+  }
+  EXPECT_GE(reported, 2);
+}
+
 }  // namespace
 }  // namespace fit3dof
