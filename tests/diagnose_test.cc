@@ -1067,6 +1067,16 @@ TEST(Diagnose, ReportsTheBearingMomentWithItsProfileErrorBar) {
     EXPECT_TRUE(d.verdict == Verdict::kExplained ||
                 d.verdict == Verdict::kAmbiguous)
         << text;
+    // The final model's coefficients cover the truth, also when the tie
+    // leaves the bearing moment out of it (WidenForTie).
+    for (const auto& [name, value] :
+         {std::pair{"Cm_alpha", -0.23}, std::pair{"Cm_q", -5.5}}) {
+      const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
+      EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
+          << "seed " << seed << ": " << name << " = " << e->value << " +- "
+          << e->standard_error << "\n"
+          << text;
+    }
     std::vector<const FitResult*> fits = {&d.FinalFit()};
     if (!d.partial.empty()) fits.push_back(&d.fits[d.partial_fit]);
     for (const AlternativeModel& a : d.alternatives) {
