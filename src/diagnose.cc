@@ -410,12 +410,17 @@ DiagnosisStep Step(const Contender& c, const std::vector<Contender>& all) {
 // it tied over came out 0.047 +- 0.007 deg (truth 0.02). So each of its
 // free estimates' error bars also covers the largest shift of its value
 // in the complete models (each alternative's, or the search's last, which
-// holds the first of the tied effects):
+// holds the first of the tied effects, or a rival swapped in for it with
+// the other effects in, Diagnosis::tie_models), and the error that model
+// gives it:
 //
-//   error' = sqrt(error^2 + shift^2),
+//   error' = max over the models m of sqrt(max(error, error_m)^2 +
+//                                          (value_m - value)^2),
 //
-// Burnham and Anderson's unconditional variance with the largest shift in
-// place of the weighted spread (the tied models' weights are alike).
+// Burnham and Anderson's unconditional variance with the worst model in
+// place of the weighted sum (the tied models' weights are alike): where a
+// tied tunnel stiffness leaves only Cm_alpha + t1 determined (Eq. 43),
+// the final Cm_alpha is as uncertain as in that model.
 void WidenForTie(Diagnosis* d) {
   if (d->ambiguous.empty()) return;
   std::vector<size_t> complete;
@@ -423,25 +428,37 @@ void WidenForTie(Diagnosis* d) {
     if (a.fit >= 0) complete.push_back(a.fit);
   }
   if (!d->partial.empty()) complete.push_back(d->partial_fit);
+  std::vector<const std::vector<ParameterEstimate>*> models;
+  for (const size_t k : complete) {
+    if (k != d->final_fit) models.push_back(&d->fits[k].parameters);
+  }
+  for (const auto& m : d->tie_models) models.push_back(&m);
   FitResult& final_fit = d->fits[d->final_fit];
   std::string widest;
   double widest_ratio = 1.0;
   for (ParameterEstimate& e : final_fit.parameters) {
     if (!e.free || !e.segment.empty() || !(e.standard_error > 0.0)) continue;
-    double shift = 0.0;
-    for (const size_t k : complete) {
-      if (k == d->final_fit) continue;
-      const ParameterEstimate* other = SharedEstimate(d->fits[k], e.name);
-      if (other != nullptr && other->free) {
-        shift = std::max(shift, std::abs(other->value - e.value));
+    // The worst case over the complete models of the error about the
+    // final value: each model's own error (at least the final one's) and
+    // its shift.
+    double widened = e.standard_error;
+    for (const std::vector<ParameterEstimate>* m : models) {
+      for (const ParameterEstimate& other : *m) {
+        if (!other.free || !other.segment.empty() || other.name != e.name) {
+          continue;
+        }
+        const double own =
+            std::isnan(other.standard_error)
+                ? e.standard_error
+                : std::max(e.standard_error, other.standard_error);
+        widened = std::max(widened, std::hypot(own, other.value - e.value));
       }
     }
-    const double widened = std::hypot(e.standard_error, shift);
     if (widened / e.standard_error > widest_ratio) {
       widest_ratio = widened / e.standard_error;
       widest = e.name;
     }
-    e.rms_error = std::hypot(e.rms_error, shift);
+    e.rms_error *= widened / e.standard_error;
     e.standard_error = widened;
   }
   if (!widest.empty()) {
@@ -756,14 +773,17 @@ bool SpinSeparatesRollLocked(const Case& c,
 // (not fitted) always does, and so does a roll-locked rival of a
 // roll-locked effect unless a segment spins fast enough to separate them
 // (on two runs at 30 and 60 deg/s a trim moment had won the swap from the
-// roll reading error that was there); a rival in the model is none.
+// roll reading error that was there); a rival in the model is none. The
+// fits of the rivals that were fitted and kept the tie open go into
+// *as_good_fits.
 std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
                                      const DiagnosisStep& step,
                                      const std::vector<DiagnosisStep>& steps,
                                      const Case& at,
                                      const FitResult& fit,
                                      const std::vector<TimeHistory>& data,
-                                     const DiagnoseOptions& options) {
+                                     const DiagnoseOptions& options,
+                                     std::vector<FitResult>* as_good_fits) {
   const Case without = WithoutStep(at, step);
   const Effect* own = FindEffect(step.effect);
   const bool twins_separate = SpinSeparatesRollLocked(at, fit, data);
@@ -776,6 +796,7 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
     }
     Case swapped;
     FitResult swapped_fit;
+    bool fitted = false;
     const Effect* effect = FindEffect(rival.effect);
     // Twins are rivals unfitted only when they tied at the step; one
     // that lost there by more (WiderRivals) must win the swap.
@@ -787,17 +808,18 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
     const bool as_good =
         rival.effect == kDriftInTime || twins ||
         !RivalCase(without, rival.effect, &swapped) ||
-        !FitFrom(swapped,
-                 fit,
-                 data,
-                 "with " + rival.effect + " for " + step.effect,
-                 &swapped_fit) ||
+        !(fitted = FitFrom(swapped,
+                           fit,
+                           data,
+                           "with " + rival.effect + " for " + step.effect,
+                           &swapped_fit)) ||
         (Bic(swapped_fit) < Bic(fit) + options.ambiguity_bic &&
          (effect == nullptr ||
           Implausible(*effect, swapped, swapped_fit).empty()));
     VLOG(1) << step.effect << " swapped for " << rival.effect << ": "
             << (as_good ? "as good" : "worse");
     if (as_good) open.push_back(rival);
+    if (as_good && fitted) as_good_fits->push_back(std::move(swapped_fit));
   }
   return open;
 }
@@ -876,8 +898,10 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
     // A step pruned away is not in doubt; but it is not adopted either.
     (*tied)[i] = true;
     if (kept == pruned.steps.end()) continue;
-    const std::vector<CandidateFit> open =
-        Unresolved(rivals[i], *kept, pruned.steps, at, fit, data, options);
+    std::vector<FitResult> swapped;
+    const std::vector<CandidateFit> open = Unresolved(
+        rivals[i], *kept, pruned.steps, at, fit, data, options, &swapped);
+    for (const FitResult& f : swapped) d->tie_models.push_back(f.parameters);
     (*tied)[i] = !open.empty();
     if (open.empty()) continue;
     if (first < 0) first = static_cast<int>(i);

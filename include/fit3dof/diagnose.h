@@ -340,6 +340,10 @@ struct Diagnosis {
   // The fit whose values the partial steps report: the last model the
   // search had them in.
   size_t partial_fit = 0;
+  // The parameters of each complete model that kept a tie open (a rival
+  // swapped in for a tied effect, the other effects in): the final model's
+  // error bars cover their values too (diagnose.cc, WidenForTie).
+  std::vector<std::vector<ParameterEstimate>> tie_models;
 
   // The final model's fit.
   const FitResult& FinalFit() const { return fits[final_fit]; }
