@@ -423,15 +423,14 @@ DiagnosisStep Step(const Contender& c, const std::vector<Contender>& all) {
 // the final Cm_alpha is as uncertain as in that model.
 void WidenForTie(Diagnosis* d) {
   if (d->ambiguous.empty()) return;
-  std::vector<size_t> complete;
-  for (const AlternativeModel& a : d->alternatives) {
-    if (a.fit >= 0) complete.push_back(a.fit);
-  }
-  if (!d->partial.empty()) complete.push_back(d->partial_fit);
   std::vector<const std::vector<ParameterEstimate>*> models;
-  for (const size_t k : complete) {
+  auto add_fit = [&](size_t k) {
     if (k != d->final_fit) models.push_back(&d->fits[k].parameters);
+  };
+  for (const AlternativeModel& a : d->alternatives) {
+    if (a.fit >= 0) add_fit(a.fit);
   }
+  if (!d->partial.empty()) add_fit(d->partial_fit);
   for (const auto& m : d->tie_models) models.push_back(&m);
   FitResult& final_fit = d->fits[d->final_fit];
   std::string widest;
@@ -443,16 +442,13 @@ void WidenForTie(Diagnosis* d) {
     // its shift.
     double widened = e.standard_error;
     for (const std::vector<ParameterEstimate>* m : models) {
-      for (const ParameterEstimate& other : *m) {
-        if (!other.free || !other.segment.empty() || other.name != e.name) {
-          continue;
-        }
-        const double own =
-            std::isnan(other.standard_error)
-                ? e.standard_error
-                : std::max(e.standard_error, other.standard_error);
-        widened = std::max(widened, std::hypot(own, other.value - e.value));
-      }
+      const ParameterEstimate* other = SharedEstimate(*m, e.name);
+      if (other == nullptr || !other->free) continue;
+      const double own =
+          std::isnan(other->standard_error)
+              ? e.standard_error
+              : std::max(e.standard_error, other->standard_error);
+      widened = std::max(widened, std::hypot(own, other->value - e.value));
     }
     if (widened / e.standard_error > widest_ratio) {
       widest_ratio = widened / e.standard_error;
@@ -1045,10 +1041,13 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
   // The drag rule guards against an effect absorbing an unknown structure;
   // when every complete model reaches the noise, what the final model
   // leaves is known (the tie's signature), and the coefficients may move.
-  if (!known && !Drags(before, without_fit, names, options.max_drag).empty()) {
-    VLOG(1) << "the adopted effects drag the coefficients: "
-            << Drags(before, without_fit, names, options.max_drag);
-    return false;
+  if (!known) {
+    const std::string drags =
+        Drags(before, without_fit, names, options.max_drag);
+    if (!drags.empty()) {
+      VLOG(1) << "the adopted effects drag the coefficients: " << drags;
+      return false;
+    }
   }
   Reported(models[last + 1], data, &d->fits[last + 1]);
   alternatives[0].parameters = d->fits[last + 1].parameters;

@@ -612,12 +612,17 @@ double SpinHz(const SegmentFit& s) {
   return std::abs(s.computed[3 * (n - 1)] - s.computed[0]) / 360.0 / duration;
 }
 
-const ParameterEstimate* SharedEstimate(const FitResult& result,
-                                        const std::string& name) {
-  for (const ParameterEstimate& e : result.parameters) {
+const ParameterEstimate* SharedEstimate(
+    const std::vector<ParameterEstimate>& estimates, const std::string& name) {
+  for (const ParameterEstimate& e : estimates) {
     if (e.segment.empty() && e.name == name) return &e;
   }
   return nullptr;
+}
+
+const ParameterEstimate* SharedEstimate(const FitResult& result,
+                                        const std::string& name) {
+  return SharedEstimate(result.parameters, name);
 }
 
 Case CaseAtSolution(const Case& c, const FitResult& r) {

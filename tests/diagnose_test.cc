@@ -69,14 +69,7 @@ std::string Simulate(const Case& truth,
   for (int i = 0; i < 800; ++i) times.push_back(0.06 * i);
   Case c = truth;
   c.solver.step = 0.002;
-  TimeHistory data = SimulateAt(c, c.Values(), times);
-  NoiseOptions noise;
-  noise.enabled = true;
-  noise.sigma = {0.01, 0.01, 0.01};
-  noise.seed = seed;
-  AddNoise(noise, &data);
-  WriteTimeHistory(path, data);
-  return path;
+  return testing::WriteNoisyRecord(c, times, seed, path);
 }
 
 struct Hidden {
@@ -393,14 +386,7 @@ std::string SimulateShort(const Case& truth,
   for (double t = 0.0; t <= 3.0; t += 0.0645) times.push_back(t);
   Case c = truth;
   c.solver.step = 0.002;
-  TimeHistory data = SimulateAt(c, c.Values(), times);
-  NoiseOptions noise;
-  noise.enabled = true;
-  noise.sigma = {0.01, 0.01, 0.01};
-  noise.seed = seed;
-  AddNoise(noise, &data);
-  WriteTimeHistory(path, data);
-  return path;
+  return testing::WriteNoisyRecord(c, times, seed, path);
 }
 
 // ShortTruth without its trim moment.

@@ -11,9 +11,7 @@
 #include <vector>
 
 #include "fit3dof/config.h"
-#include "fit3dof/noise.h"
 #include "fit3dof/parameters.h"
-#include "fit3dof/simulator.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
 
@@ -51,14 +49,8 @@ Case ShortRunFit(const std::string& dir, std::uint64_t seed) {
   Case c = LoadConfig(config);
   std::vector<double> times;
   for (double t = 0.0; t <= 3.0; t += 0.06435) times.push_back(t);
-  TimeHistory data = SimulateAt(c, c.Values(), times);
-  NoiseOptions noise;
-  noise.enabled = true;
-  noise.sigma = {0.01, 0.01, 0.01};
-  noise.seed = seed;
-  AddNoise(noise, &data);
-  const std::string path = dir + "/data.csv";
-  WriteTimeHistory(path, data);
+  const std::string path =
+      testing::WriteNoisyRecord(c, times, seed, dir + "/data.csv");
   auto free = [&](const char* name, double guess) {
     c.parameters[FindParameter(c.model, name)] = {guess, true, false};
   };

@@ -10,6 +10,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fit3dof/noise.h"
+#include "fit3dof/simulator.h"
+
 namespace fit3dof::testing {
 
 namespace fs = std::filesystem;
@@ -63,6 +66,20 @@ CommandResult RunFit3dof(const std::string& arguments) {
   const int status = ::pclose(pipe);
   result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+std::string WriteNoisyRecord(const Case& truth,
+                             const std::vector<double>& times,
+                             std::uint64_t seed,
+                             const std::string& path) {
+  TimeHistory data = SimulateAt(truth, truth.Values(), times);
+  NoiseOptions noise;
+  noise.enabled = true;
+  noise.sigma = {0.01, 0.01, 0.01};
+  noise.seed = seed;
+  AddNoise(noise, &data);
+  WriteTimeHistory(path, data);
+  return path;
 }
 
 }  // namespace fit3dof::testing

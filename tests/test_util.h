@@ -6,8 +6,12 @@
 #ifndef FIT3DOF_TESTS_TEST_UTIL_H_
 #define FIT3DOF_TESTS_TEST_UTIL_H_
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "fit3dof/case.h"
 
 namespace fit3dof::testing {
 
@@ -44,6 +48,14 @@ struct CommandResult {
   int exit_status = -1;
   std::string output;  // stdout and stderr together
 };
+
+// Writes to `path` the motion of `truth` (SimulateAt, its own solver step)
+// at `times` with 0.01 deg of noise on each channel (seed `seed`), and
+// returns `path`.
+std::string WriteNoisyRecord(const Case& truth,
+                             const std::vector<double>& times,
+                             std::uint64_t seed,
+                             const std::string& path);
 
 // Runs the built fit3dof binary with the given arguments (shell-quoted by
 // the caller where needed).

@@ -187,9 +187,11 @@ void CheckRidges(const Case& c,
 double SpinHz(const SegmentFit& s);
 
 // The estimate of the shared parameter (not a segment's own) named `name`,
-// or null.
+// or null: in a fit's estimates, or in a list of them.
 const ParameterEstimate* SharedEstimate(const FitResult& result,
                                         const std::string& name);
+const ParameterEstimate* SharedEstimate(
+    const std::vector<ParameterEstimate>& estimates, const std::string& name);
 
 // The case with every free value at the fit's result and each segment's
 // initial conditions given as fitted.
