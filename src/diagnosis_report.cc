@@ -190,6 +190,7 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
            FormatNumber("%.3g", s.after.rms_deg.psi) + " deg (noise " +
            FormatNumber("%.3g", sigma.theta) + ", " +
            FormatNumber("%.3g", sigma.psi) + " deg)\n";
+    if (!s.note.empty()) out += "  " + s.note + "\n";
     before = s.after;
   }
   for (const DiagnosisStep& s : d.partial) {

@@ -53,6 +53,15 @@
 //     residual, so no error bar of the fit without it covers the move; an
 //     effect that explains everything may move them as far as it must,
 //     one that explains a little must not move them far);
+//     Effects that only together explain the record may each drag alone
+//     (each moves the coefficients that the others biased): when the
+//     round's best contender (lowest BIC) is refused for its drag, it is
+//     fitted with one or two of the next three contenders (a joint set),
+//     and the lowest-BIC set that reaches the noise level, keeps every
+//     effect in the model within its bounds and predicts the held-out
+//     part better (as below, per parameter it adds) is adopted, its
+//     effects as steps in turn (DiagnosisStep::note); a step adopted alone
+//     has rivals, so does each of them (a roll-locked one its twins too);
 //   - out of sample: each segment cut into `held_out_blocks` (8) runs of
 //     samples, every other one held out (the first, where the initial
 //     conditions hold, kept); fitted to the kept samples with and without
@@ -204,6 +213,8 @@ struct DiagnoseOptions {
   int max_steps = 5;
   std::vector<std::string> effects;  // restrict the catalog (empty: all)
   bool probes = true;                // fit the probes outside the catalog
+  // Fit a contender refused for its drag with the next ones (a joint set).
+  bool joint_sets = true;
 };
 
 struct ResidualCheck {
@@ -261,7 +272,9 @@ struct DiagnosisStep {
   std::vector<CandidateScore> ranking;
   std::vector<CandidateFit> contenders;  // every refit of the step
   ResidualCheck after;
-  std::string note;  // why a pruned step was dropped
+  // Why a pruned step was dropped, or that the step was adopted together
+  // with others (a joint set).
+  std::string note;
   // Diagnosis::fits of the model before and after the step (for a pruned
   // step: with and without it; `fit3dof diagnose` writes them to stepN/).
   int fit_before = -1;
