@@ -380,26 +380,27 @@ struct JointSet {
 constexpr int kJointPool = 4;
 
 // `at` with the effects of `members` (indices into `contenders`) added in
-// turn into *model (its `added`: the last member's terms); *added_each
-// gets each member's terms. False when one cannot be added.
+// turn into *model (its `added`: the last member's terms); *terms gets the
+// number of terms they add. False when one cannot be added.
 bool WithEffects(const Case& at,
                  const std::vector<Contender>& contenders,
                  const std::vector<int>& members,
                  Candidate* model,
-                 std::vector<std::vector<std::string>>* added_each) {
+                 int* terms) {
   Case c = at;
-  added_each->clear();
+  std::vector<std::string> added;
+  *terms = 0;
   for (int m : members) {
-    const Effect& e = *contenders[m].candidate->effect;
     Case next;
-    std::vector<std::string> added;
-    if (!CandidateCase(c, e, &next, &added)) return false;
+    if (!CandidateCase(c, *contenders[m].candidate->effect, &next, &added)) {
+      return false;
+    }
     c = std::move(next);
-    added_each->push_back(std::move(added));
+    *terms += static_cast<int>(added.size());
   }
   *model = Candidate{contenders[members.back()].candidate->effect,
                      std::move(c),
-                     added_each->back(),
+                     std::move(added),
                      contenders[members.back()].candidate->score};
   return true;
 }
@@ -456,7 +457,7 @@ bool Jointly(const Case& current,
   const Case at = CaseAtSolution(current, fit);
   const int n = static_cast<int>(sets.size());
   std::vector<Candidate> models(n);
-  std::vector<std::vector<std::vector<std::string>>> terms(n);
+  std::vector<int> terms(n, 0);
   std::vector<FitResult> fits(n);
   std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
   ParallelFor(n, [&](int i) {
@@ -471,15 +472,13 @@ bool Jointly(const Case& current,
     return Bic(fits[a]) < Bic(fits[b]);
   });
   for (int i : order) {
-    int count = 0;
-    for (const auto& t : terms[i]) count += static_cast<int>(t.size());
     double gain = 0.0;
     if (!EarnedTogether(models[i].c,
                         fits[i],
                         sets[i],
                         contenders,
                         added,
-                        count,
+                        terms[i],
                         options,
                         out_of_sample,
                         &gain)) {
@@ -505,9 +504,6 @@ bool Jointly(const Case& current,
     }
     joint->models.push_back(models[i]);
     joint->fits.push_back(fits[i]);
-    for (size_t j = 0; j < joint->models.size(); ++j) {
-      joint->models[j].added = terms[i][j];
-    }
     return true;
   }
   return false;

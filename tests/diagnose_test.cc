@@ -745,6 +745,24 @@ TEST(Diagnose, NamesABodyFixedYawAsymmetryInTheAsymmetricProgram) {
   EXPECT_EQ(text.find("()"), std::string::npos) << text;
 }
 
+// The true Cm_alpha and Cm_q of the short runs.
+const std::map<std::string, double> kShortCoefficients = {{"Cm_alpha", -0.23},
+                                                          {"Cm_q", -5.5}};
+
+// `d`'s final model holds each of `truths` (name -> true value) within 3
+// standard errors; `context` follows a failure's message.
+void ExpectFinalCovers(const Diagnosis& d,
+                       const std::map<std::string, double>& truths,
+                       const std::string& context) {
+  for (const auto& [name, value] : truths) {
+    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
+    ASSERT_NE(e, nullptr) << name << "\n" << context;
+    EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
+        << name << " = " << e->value << " +- " << e->standard_error << "\n"
+        << context;
+  }
+}
+
 // `d` explains the record with the true effects `truth`, named or in a
 // tie, adds none other, and its final model covers the true Cm_alpha and
 // Cm_q (-0.23, -5.5) within 3 standard errors.
@@ -766,13 +784,7 @@ void ExpectTruthAddedOrTied(const Diagnosis& d,
   for (const std::string& id : truth) {
     EXPECT_TRUE(named.count(id)) << id << "\n" << text;
   }
-  for (const auto& [name, value] :
-       {std::pair{"Cm_alpha", -0.23}, std::pair{"Cm_q", -5.5}}) {
-    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
-    EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
-        << name << " = " << e->value << " +- " << e->standard_error << "\n"
-        << text;
-  }
+  ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
 // Three effects on one short run (a Magnus moment, a nonlinear damping, a
@@ -1100,14 +1112,8 @@ TEST(Diagnose, ReportsTheBearingMomentWithItsProfileErrorBar) {
         << text;
     // The final model's coefficients cover the truth, also when the tie
     // leaves the bearing moment out of it (WidenForTie).
-    for (const auto& [name, value] :
-         {std::pair{"Cm_alpha", -0.23}, std::pair{"Cm_q", -5.5}}) {
-      const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
-      EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
-          << "seed " << seed << ": " << name << " = " << e->value << " +- "
-          << e->standard_error << "\n"
-          << text;
-    }
+    ExpectFinalCovers(
+        d, kShortCoefficients, "seed " + std::to_string(seed) + "\n" + text);
     std::vector<const FitResult*> fits = {&d.FinalFit()};
     if (!d.partial.empty()) fits.push_back(&d.fits[d.partial_fit]);
     for (const AlternativeModel& a : d.alternatives) {
@@ -1162,15 +1168,9 @@ TEST(Diagnose, AdoptsEffectsThatEarnTheirPlaceOnlyTogether) {
                 "magnus", "nonlinear_damping", "calibration_nonlinearity"}))
       << text;
   EXPECT_TRUE(together) << text;
-  std::map<std::string, double> truths = {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}};
+  std::map<std::string, double> truths = kShortCoefficients;
   truths.insert(hidden.begin(), hidden.end());
-  for (const auto& [name, value] : truths) {
-    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
-    ASSERT_NE(e, nullptr) << name << "\n" << text;
-    EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
-        << name << " = " << e->value << " +- " << e->standard_error << "\n"
-        << text;
-  }
+  ExpectFinalCovers(d, truths, text);
 }
 
 }  // namespace
