@@ -555,6 +555,43 @@ DiagnosisStep Step(const Contender& c, const std::vector<Contender>& all) {
   return step;
 }
 
+// Each free estimate of `final_fit` widened to cover `models` (see
+// WidenForTie), with a line in its pipeline naming them (`by`) when one
+// grew.
+void WidenErrorBars(
+    const std::vector<const std::vector<ParameterEstimate>*>& models,
+    const std::string& by,
+    FitResult* final_fit) {
+  std::string widest;
+  double widest_ratio = 1.0;
+  for (ParameterEstimate& e : final_fit->parameters) {
+    if (!e.free || !e.segment.empty() || !(e.standard_error > 0.0)) continue;
+    // The worst case over the models of the error about the final value:
+    // each model's own error (at least the final one's) and its shift.
+    double widened = e.standard_error;
+    for (const std::vector<ParameterEstimate>* m : models) {
+      const ParameterEstimate* other = SharedEstimate(*m, e.name);
+      if (other == nullptr || !other->free) continue;
+      const double own =
+          std::isnan(other->standard_error)
+              ? e.standard_error
+              : std::max(e.standard_error, other->standard_error);
+      widened = std::max(widened, std::hypot(own, other->value - e.value));
+    }
+    if (widened / e.standard_error > widest_ratio) {
+      widest_ratio = widened / e.standard_error;
+      widest = e.name;
+    }
+    e.rms_error *= widened / e.standard_error;
+    e.standard_error = widened;
+  }
+  if (!widest.empty()) {
+    final_fit->pipeline.push_back("error bars widened by " + by +
+                                  " (the largest shift: " + widest + ", x" +
+                                  FormatNumber("%.3g", widest_ratio) + ")");
+  }
+}
+
 // The final model of a record that an open tie leaves ambiguous holds
 // none of the tied effects, and what one of them would change in it the
 // record cannot say: a calibration error fitted without the bearing moment
@@ -583,37 +620,166 @@ void WidenForTie(Diagnosis* d) {
   }
   if (!d->partial.empty()) add_fit(d->partial_fit);
   for (const auto& m : d->tie_models) models.push_back(&m);
-  FitResult& final_fit = d->fits[d->final_fit];
-  std::string widest;
-  double widest_ratio = 1.0;
-  for (ParameterEstimate& e : final_fit.parameters) {
-    if (!e.free || !e.segment.empty() || !(e.standard_error > 0.0)) continue;
-    // The worst case over the complete models of the error about the
-    // final value: each model's own error (at least the final one's) and
-    // its shift.
-    double widened = e.standard_error;
-    for (const std::vector<ParameterEstimate>* m : models) {
-      const ParameterEstimate* other = SharedEstimate(*m, e.name);
-      if (other == nullptr || !other->free) continue;
-      const double own =
-          std::isnan(other->standard_error)
-              ? e.standard_error
-              : std::max(e.standard_error, other->standard_error);
-      widened = std::max(widened, std::hypot(own, other->value - e.value));
-    }
-    if (widened / e.standard_error > widest_ratio) {
-      widest_ratio = widened / e.standard_error;
-      widest = e.name;
-    }
-    e.rms_error *= widened / e.standard_error;
-    e.standard_error = widened;
+  WidenErrorBars(models, "the tie's complete models", &d->fits[d->final_fit]);
+}
+
+// A complete model of the diagnosis, its fit and its effects.
+struct CompleteModel {
+  Case c;
+  const FitResult* fit;
+  std::vector<const Effect*> effects;
+};
+
+// The final model and, when steps stayed partial, the last model of the
+// search (which holds them).
+std::vector<CompleteModel> CompleteModels(const Diagnosis& d,
+                                          const std::vector<Case>& models,
+                                          const Case& current) {
+  std::vector<CompleteModel> complete = {{current, &d.FinalFit(), {}}};
+  for (const DiagnosisStep& s : d.steps) {
+    complete[0].effects.push_back(FindEffect(s.effect));
   }
-  if (!widest.empty()) {
-    final_fit.pipeline.push_back(
-        "error bars widened by the tie's complete models (the largest "
-        "shift: " +
-        widest + ", x" + FormatNumber("%.3g", widest_ratio) + ")");
+  if (!d.partial.empty() && d.partial_fit != d.final_fit) {
+    complete.push_back({models[d.partial_fit], &d.fits[d.partial_fit], {}});
+    for (const auto* steps : {&d.steps, &d.partial}) {
+      for (const DiagnosisStep& s : *steps) {
+        complete.back().effects.push_back(FindEffect(s.effect));
+      }
+    }
   }
+  return complete;
+}
+
+// The catalog effects among the steps' rivals, each once.
+std::vector<const Effect*> RivalEffects(
+    const std::vector<std::vector<CandidateFit>>& rivals) {
+  std::vector<const Effect*> effects;
+  for (const std::vector<CandidateFit>& step : rivals) {
+    for (const CandidateFit& r : step) {
+      const Effect* e = FindEffect(r.effect);
+      if (e != nullptr &&
+          std::find(effects.begin(), effects.end(), e) == effects.end()) {
+        effects.push_back(e);
+      }
+    }
+  }
+  return effects;
+}
+
+// Whether effect `id` is in a tie the diagnosis leaves open.
+bool InTie(const Diagnosis& d, const std::string& id) {
+  auto in = [&](const std::vector<CandidateFit>& tie) {
+    return std::any_of(tie.begin(), tie.end(), [&](const CandidateFit& k) {
+      return k.effect == id;
+    });
+  };
+  return in(d.ambiguous) ||
+         std::any_of(d.later_ties.begin(), d.later_ties.end(), in);
+}
+
+// The rivals of the steps (`rivals`, within rival_bic of a step's best)
+// that the record cannot exclude beside a complete model (tied effects
+// aside: WidenForTie covers them): added to it
+// (not swapped in, as the final swap tries them), its BIC rises by less
+// than ambiguity_bic and every effect stays within its bounds. Their fits
+// go into d->not_excluded (bic_drop against the model without) and their
+// parameters into d->not_excluded_models.
+//
+// On a 3-s coning run with a tunnel damping, a Magnus moment and a flow
+// angularity, the tunnel damping and Cm_q absorbed the Magnus moment (one
+// mode of motion hardly tells Cm_q from Cm_p_alpha), and the model with
+// the damping and the angularity reached the noise with Cm_q at -3.84 +-
+// 0.01 (truth -5.5). The Magnus moment, 24 below the damping at the first
+// step, lowered BIC by 3 more beside them, with Cm_q at -6.4 +- 1.4.
+void FindNotExcluded(const std::vector<std::vector<CandidateFit>>& rivals,
+                     const std::vector<Case>& models,
+                     const Case& current,
+                     const std::vector<TimeHistory>& data,
+                     const DiagnoseOptions& options,
+                     Diagnosis* d) {
+  const std::vector<CompleteModel> complete =
+      CompleteModels(*d, models, current);
+  // A tied effect's models are the tie's (WidenForTie).
+  std::vector<const Effect*> effects;
+  for (const Effect* e : RivalEffects(rivals)) {
+    if (!InTie(*d, e->id)) effects.push_back(e);
+  }
+  struct Beside {
+    const CompleteModel* model;
+    const Effect* effect;
+    Case c;
+    std::vector<std::string> added;
+    FitResult fit;
+  };
+  std::vector<Beside> trials;
+  for (const CompleteModel& m : complete) {
+    for (const Effect* e : effects) {
+      if (std::find(m.effects.begin(), m.effects.end(), e) == m.effects.end()) {
+        trials.push_back({&m, e, Case(), {}, FitResult()});
+      }
+    }
+  }
+  std::vector<char> fitted(trials.size(), false);  // written in parallel
+  ParallelFor(static_cast<int>(trials.size()), [&](int i) {
+    Beside& t = trials[i];
+    fitted[i] = CandidateCase(CaseAtSolution(t.model->c, *t.model->fit),
+                              *t.effect,
+                              &t.c,
+                              &t.added) &&
+                FitFrom(t.c,
+                        *t.model->fit,
+                        data,
+                        "with " + t.effect->id + " beside",
+                        &t.fit);
+  });
+  for (size_t i = 0; i < trials.size(); ++i) {
+    const Beside& t = trials[i];
+    if (!fitted[i]) continue;
+    std::vector<const Effect*> all = t.model->effects;
+    all.push_back(t.effect);
+    const double rise = Bic(t.fit) - Bic(*t.model->fit);
+    const std::string implausible = ImplausibleAmong(all, t.c, t.fit);
+    VLOG(1) << t.effect->id << " beside the complete model: BIC "
+            << (rise >= 0.0 ? "+" : "") << rise << " " << implausible;
+    if (!(rise < options.ambiguity_bic) || !implausible.empty()) continue;
+    d->not_excluded_models.push_back(t.fit.parameters);
+    // Each effect once: beside the final model when it is not excluded
+    // there.
+    if (std::any_of(
+            d->not_excluded.begin(),
+            d->not_excluded.end(),
+            [&](const CandidateFit& k) { return k.effect == t.effect->id; })) {
+      continue;
+    }
+    CandidateFit k;
+    k.effect = t.effect->id;
+    k.parameters = Own(t.fit, t.added);
+    k.bic_drop = -rise;
+    k.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+    k.rejected = "not needed beside the " +
+                 std::string(t.model == &complete[0] ? "final" : "search's") +
+                 " model, nor excluded (BIC " + FormatNumber("%+.1f", rise) +
+                 ")";
+    d->not_excluded.push_back(std::move(k));
+  }
+}
+
+// The final error bars cover the models of the effects the record cannot
+// exclude (FindNotExcluded) as they cover a tie's (WidenForTie): neither
+// the search nor the final swap added or swapped them in, but the values
+// the record allows with them are as much its answer.
+void WidenForNotExcluded(Diagnosis* d) {
+  std::vector<const std::vector<ParameterEstimate>*> models;
+  for (const auto& m : d->not_excluded_models) models.push_back(&m);
+  std::string which;
+  for (const CandidateFit& k : d->not_excluded) {
+    if (which.find(k.effect) == std::string::npos) {
+      which += (which.empty() ? "" : ", ") + k.effect;
+    }
+  }
+  WidenErrorBars(models,
+                 "effects the record cannot exclude beside it (" + which + ")",
+                 &d->fits[d->final_fit]);
 }
 
 // final.yaml reruns the fit: the solution with the user's solver settings
@@ -1527,6 +1693,8 @@ Diagnosis Search(const Case& c,
     Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
   }
   WidenForTie(&d);
+  FindNotExcluded(rivals, models, current, data, options, &d);
+  WidenForNotExcluded(&d);
   if (!d.ambiguous.empty()) {
     d.separated_by = SeparatedBy(d.ambiguous, quiet, d.FinalFit(), data);
   }

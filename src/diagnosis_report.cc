@@ -155,6 +155,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
                                    {"check", Check(a.check)},
                                    {"parameters", Estimates(a.parameters)}});
   }
+  out["not_excluded"] = Contenders(d.not_excluded);
   if (!d.residual_description.empty()) {
     out["residual_description"] = d.residual_description;
   }
@@ -223,6 +224,10 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
            (d.outside_at_noise_level ? "; residuals at the noise level with it"
                                      : "") +
            "\n";
+  }
+  for (const CandidateFit& k : d.not_excluded) {
+    out += "  not excluded, the final error bars cover it: " + k.effect + " (" +
+           Values(k.parameters) + "): " + k.rejected + "\n";
   }
   for (const CandidateFit& r : d.rejected) {
     out += "  not added: " + r.effect + " (" + Values(r.parameters) +

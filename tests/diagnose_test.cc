@@ -221,6 +221,7 @@ TEST(Diagnose, RunsInABatchAndOnTheCommandLine) {
   EXPECT_TRUE(j["ambiguous_between"].empty());
   EXPECT_TRUE(j["ambiguous_outside_catalog"].empty());
   EXPECT_TRUE(j["partial"].empty());
+  EXPECT_TRUE(j["not_excluded"].is_array());
   EXPECT_EQ(j["outside_catalog_at_noise_level"], false);
   const auto& final_theta_t = j["final_parameters"]["theta_T"];
   EXPECT_NEAR(final_theta_t["value"].get<double>(),
@@ -1171,6 +1172,39 @@ TEST(Diagnose, AdoptsEffectsThatEarnTheirPlaceOnlyTogether) {
   std::map<std::string, double> truths = kShortCoefficients;
   truths.insert(hidden.begin(), hidden.end());
   ExpectFinalCovers(d, truths, text);
+}
+
+// A 3-s coning run (one mode of motion) with a tunnel damping, a Magnus
+// moment and a flow angularity. The damping and Cm_q absorb the Magnus
+// moment, and the model without it reaches the noise with Cm_q near -3.8
+// +- 0.01 (truth -5.5). The Magnus moment beside that model is neither
+// needed nor excluded, so the final error bars must cover the truth.
+TEST(Diagnose, ErrorBarsCoverAnEffectTheRecordCannotExclude) {
+  if (testing::kSanitized) GTEST_SKIP() << "plain build only (time)";
+  const std::string dir = testing::ScratchDirectory("diagnose_not_excluded");
+  Case truth = UntrimmedShortTruth(30.0);
+  const std::map<std::string, double> hidden = {{"psidot0", 78.0},
+                                                {"Cm_p_alpha", 50.5},
+                                                {"tunnel_Cm_thetadot", -0.058},
+                                                {"tunnel_Cn_psidot", 0.079},
+                                                {"theta_T", -0.009},
+                                                {"psi_T", 0.010}};
+  SetValues(&truth, hidden);
+  const std::string data = SimulateShort(truth, dir + "/data.csv", 3);
+  const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  bool magnus = false;
+  for (const auto* fits : {&d.not_excluded, &d.ambiguous}) {
+    for (const CandidateFit& k : *fits) magnus |= k.effect == "magnus";
+  }
+  for (const DiagnosisStep& s : d.steps) magnus |= s.effect == "magnus";
+  EXPECT_TRUE(magnus) << text;
+  if (!d.not_excluded.empty()) {
+    EXPECT_NE(text.find("not excluded, the final error bars cover it"),
+              std::string::npos)
+        << text;
+  }
+  ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
 }  // namespace

@@ -143,6 +143,13 @@
 // the answer (a reading lag had beaten a Magnus moment at the first step
 // of a record a Magnus moment, a nonlinear damping and a calibration error
 // explain).
+// A step's rivals within `rival_bic` that the final swap did not take in
+// are also tried beside the complete model (added, not swapped). One the
+// record cannot exclude there (BIC less than `ambiguity_bic` higher,
+// within bounds) is not added, but the final error bars cover its model's
+// values as they cover a tie's (Diagnosis::not_excluded). A Magnus moment
+// beside a tunnel damping that had absorbed it on one coning run moved
+// Cm_q by 130 of its errors.
 // When the record is explained by several effects, each is checked again
 // with the others in (backward elimination): one whose removal keeps the
 // residuals at the noise level and costs less than `min_bic_drop` of BIC
@@ -357,6 +364,15 @@ struct Diagnosis {
   // swapped in for a tied effect, the other effects in): the final model's
   // error bars cover their values too (diagnose.cc, WidenForTie).
   std::vector<std::vector<ParameterEstimate>> tie_models;
+  // The rivals of the steps (within rival_bic of a step's best) that the
+  // record cannot exclude beside a complete model (the final one, or the
+  // last of the search when steps stayed partial): added to it, BIC rises
+  // by less than ambiguity_bic (bic_drop is minus the rise) and every
+  // effect stays within its bounds. Not added; the final model's error bars
+  // cover their models' values too (not_excluded_models, diagnose.cc
+  // WidenForNotExcluded).
+  std::vector<CandidateFit> not_excluded;
+  std::vector<std::vector<ParameterEstimate>> not_excluded_models;
 
   // The final model's fit.
   const FitResult& FinalFit() const { return fits[final_fit]; }
