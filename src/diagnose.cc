@@ -697,6 +697,10 @@ void FindNotExcluded(const std::vector<std::vector<CandidateFit>>& rivals,
                      const std::vector<TimeHistory>& data,
                      const DiagnoseOptions& options,
                      Diagnosis* d) {
+  // A record left not explained keeps the nominal fit as its final model,
+  // and what might have absorbed part of its unknown structure says
+  // nothing about that fit's errors (Conclude's rule).
+  if (d->ambiguous.empty() && !d->final.at_noise_level) return;
   const std::vector<CompleteModel> complete =
       CompleteModels(*d, models, current);
   // A tied effect's models are the tie's (WidenForTie).
@@ -1691,6 +1695,11 @@ Diagnosis Search(const Case& c,
   Reported(current, data, &d.fits[d.final_fit]);
   if (!d.partial.empty()) {
     Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
+  }
+  for (const ParameterEstimate& e : d.FinalFit().parameters) {
+    if (e.free && e.segment.empty()) {
+      d.model_standard_errors[e.name] = e.standard_error;
+    }
   }
   WidenForTie(&d);
   FindNotExcluded(rivals, models, current, data, options, &d);

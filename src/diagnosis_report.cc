@@ -165,6 +165,16 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
                                : Contender(d.outside_catalog);
   out["outside_catalog_at_noise_level"] = d.outside_at_noise_level;
   out["final_parameters"] = Estimates(d.final_parameters);
+  // Where a tie or an effect not excluded widened an error bar, the final
+  // model's own error too: the one to quote if that effect is known absent
+  // (a tunnel calibration, say).
+  for (const auto& [name, error] : d.model_standard_errors) {
+    auto e = out["final_parameters"].find(name);
+    if (e != out["final_parameters"].end() &&
+        (*e)["standard_error"] != JsonNumber(error)) {
+      (*e)["model_standard_error"] = JsonNumber(error);
+    }
+  }
   out["initial_rms_residual_deg"] = JsonChannels(d.initial.rms_deg);
   out["final_rms_residual_deg"] = JsonChannels(d.final.rms_deg);
   out["noise_sigma_deg"] = JsonChannels(c.sigma);

@@ -1199,6 +1199,10 @@ TEST(Diagnose, ErrorBarsCoverAnEffectTheRecordCannotExclude) {
   }
   for (const DiagnosisStep& s : d.steps) magnus |= s.effect == "magnus";
   EXPECT_TRUE(magnus) << text;
+  // The final model's own error stays on record beside the widened one.
+  EXPECT_LT(d.model_standard_errors.at("Cm_q"),
+            SharedEstimate(d.FinalFit(), "Cm_q")->standard_error)
+      << text;
   if (!d.not_excluded.empty()) {
     EXPECT_NE(text.find("not excluded, the final error bars cover it"),
               std::string::npos)

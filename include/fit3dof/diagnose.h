@@ -164,6 +164,7 @@
 #ifndef FIT3DOF_DIAGNOSE_H_
 #define FIT3DOF_DIAGNOSE_H_
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -373,6 +374,9 @@ struct Diagnosis {
   // WidenForNotExcluded).
   std::vector<CandidateFit> not_excluded;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
+  // The final model's own standard errors (within that model, before a
+  // tie or an effect not excluded widened them), by name.
+  std::map<std::string, double> model_standard_errors;
 
   // The final model's fit.
   const FitResult& FinalFit() const { return fits[final_fit]; }
