@@ -147,7 +147,8 @@
 // are also tried beside the complete model (added, not swapped). One the
 // record cannot exclude there (BIC less than `ambiguity_bic` higher,
 // within bounds) is not added, but the final error bars cover its model's
-// values as they cover a tie's (Diagnosis::not_excluded). A Magnus moment
+// values, weighted by its BIC weight against the model without it
+// (Diagnosis::not_excluded). A Magnus moment
 // beside a tunnel damping that had absorbed it on one coning run moved
 // Cm_q by 130 of its errors.
 // When the record is explained by several effects, each is checked again
@@ -374,6 +375,7 @@ struct Diagnosis {
   // WidenForNotExcluded).
   std::vector<CandidateFit> not_excluded;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
+  std::vector<double> not_excluded_weights;  // each model's BIC weight
   // The final model's own standard errors (within that model, before a
   // tie or an effect not excluded widened them), by name.
   std::map<std::string, double> model_standard_errors;
