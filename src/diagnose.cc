@@ -701,7 +701,7 @@ bool InTie(const Diagnosis& d, const std::string& id) {
 // mode of motion hardly tells Cm_q from Cm_p_alpha), and the model with
 // the damping and the angularity reached the noise with Cm_q at -3.84 +-
 // 0.01 (truth -5.5). The Magnus moment, 24 below the damping at the first
-// step, lowered BIC by 3 more beside them, with Cm_q at -6.4 +- 1.4.
+// step, raised BIC by only 1.0 beside them, with Cm_q at -6.4 +- 1.4.
 void FindNotExcluded(const std::vector<std::vector<CandidateFit>>& rivals,
                      const std::vector<Case>& models,
                      const Case& current,
@@ -792,11 +792,9 @@ void FindNotExcluded(const std::vector<std::vector<CandidateFit>>& rivals,
 void WidenForNotExcluded(Diagnosis* d) {
   std::vector<const std::vector<ParameterEstimate>*> models;
   for (const auto& m : d->not_excluded_models) models.push_back(&m);
-  std::string which;
+  std::string which;  // not_excluded holds each effect once
   for (const CandidateFit& k : d->not_excluded) {
-    if (which.find(k.effect) == std::string::npos) {
-      which += (which.empty() ? "" : ", ") + k.effect;
-    }
+    which += (which.empty() ? "" : ", ") + k.effect;
   }
   WidenErrorBars(models,
                  d->not_excluded_weights,
