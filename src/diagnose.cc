@@ -557,7 +557,9 @@ DiagnosisStep Step(const Contender& c, const std::vector<Contender>& all) {
 
 // Each free estimate of `final_fit` widened to cover `models`, each with
 // its weight against the final model (`weights`, or 1 for each when
-// empty), with a line in its pipeline naming them (`by`) when one grew.
+// empty), with a line in its pipeline naming them (`by`) when one grew;
+// each widened estimate's error before any widening goes into
+// *model_errors (a second widening keeps the first's).
 // For a model m of weight w the error about the final value is
 //
 //   sqrt((1 - w) error^2 + w (max(error, error_m)^2 + (value_m - value)^2)),
@@ -569,7 +571,8 @@ void WidenErrorBars(
     const std::vector<const std::vector<ParameterEstimate>*>& models,
     const std::vector<double>& weights,
     const std::string& by,
-    FitResult* final_fit) {
+    FitResult* final_fit,
+    std::map<std::string, double>* model_errors) {
   std::string widest;
   double widest_ratio = 1.0;
   for (ParameterEstimate& e : final_fit->parameters) {
@@ -592,6 +595,7 @@ void WidenErrorBars(
       widest_ratio = widened / error;
       widest = e.name;
     }
+    if (widened > error) model_errors->emplace(e.name, error);
     e.rms_error *= widened / error;
     e.standard_error = widened;
   }
@@ -630,8 +634,11 @@ void WidenForTie(Diagnosis* d) {
   }
   if (!d->partial.empty()) add_fit(d->partial_fit);
   for (const auto& m : d->tie_models) models.push_back(&m);
-  WidenErrorBars(
-      models, {}, "the tie's complete models", &d->fits[d->final_fit]);
+  WidenErrorBars(models,
+                 {},
+                 "the tie's complete models",
+                 &d->fits[d->final_fit],
+                 &d->model_standard_errors);
 }
 
 // A complete model of the diagnosis, its fit and its effects.
@@ -799,7 +806,8 @@ void WidenForNotExcluded(Diagnosis* d) {
   WidenErrorBars(models,
                  d->not_excluded_weights,
                  "effects the record cannot exclude beside it (" + which + ")",
-                 &d->fits[d->final_fit]);
+                 &d->fits[d->final_fit],
+                 &d->model_standard_errors);
 }
 
 // final.yaml reruns the fit: the solution with the user's solver settings
@@ -1711,11 +1719,6 @@ Diagnosis Search(const Case& c,
   Reported(current, data, &d.fits[d.final_fit]);
   if (!d.partial.empty()) {
     Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
-  }
-  for (const ParameterEstimate& e : d.FinalFit().parameters) {
-    if (e.free && e.segment.empty()) {
-      d.model_standard_errors[e.name] = e.standard_error;
-    }
   }
   WidenForTie(&d);
   FindNotExcluded(rivals, models, current, data, options, &d);

@@ -170,8 +170,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   // (a tunnel calibration, say).
   for (const auto& [name, error] : d.model_standard_errors) {
     auto e = out["final_parameters"].find(name);
-    if (e != out["final_parameters"].end() &&
-        (*e)["standard_error"] != JsonNumber(error)) {
+    if (e != out["final_parameters"].end()) {
       (*e)["model_standard_error"] = JsonNumber(error);
     }
   }

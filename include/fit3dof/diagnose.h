@@ -150,7 +150,7 @@
 // values, weighted by its BIC weight against the model without it
 // (Diagnosis::not_excluded). A Magnus moment
 // beside a tunnel damping that had absorbed it on one coning run moved
-// Cm_q by 130 of its errors.
+// Cm_q by 138 of its errors.
 // When the record is explained by several effects, each is checked again
 // with the others in (backward elimination): one whose removal keeps the
 // residuals at the noise level and costs less than `min_bic_drop` of BIC
@@ -376,8 +376,9 @@ struct Diagnosis {
   std::vector<CandidateFit> not_excluded;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
   std::vector<double> not_excluded_weights;  // each model's BIC weight
-  // The final model's own standard errors (within that model, before a
-  // tie or an effect not excluded widened them), by name.
+  // The final model's own standard errors of the estimates a tie or an
+  // effect not excluded widened (within that model, before widening), by
+  // name.
   std::map<std::string, double> model_standard_errors;
 
   // The final model's fit.
