@@ -359,6 +359,10 @@ std::vector<int> Earned(const FitResult& current,
       break;
     }
     Judge(current, added, options, out_of_sample, &c);
+    VLOG(1) << current.name << ": " << c.record.effect << " (BIC drop "
+            << c.record.bic_drop << ") "
+            << (c.record.rejected.empty() ? "earns its place"
+                                          : "refused: " + c.record.rejected);
     if (c.record.rejected.empty()) earned.push_back(static_cast<int>(i));
   }
   return earned;
@@ -425,9 +429,9 @@ bool EarnedTogether(const Case& c,
   return *gain > options.gain_per_parameter * terms;
 }
 
-// When the round's best contender (lowest BIC) was refused only for
-// dragging the coefficients, the effects missing beside it may be what
-// makes the drag: each alone explains part of the record and moves the
+// When a contender was refused only for dragging the coefficients, and
+// none better (lower BIC) earned its place, the effects missing beside it
+// may be what makes the drag: each alone explains part of the record and moves the
 // coefficients that the others biased (on the 48-s Table 6 record with a
 // tunnel stiffness, a nonlinear damping and a body yaw asymmetry, the
 // stiffness alone moved Cm_alpha by 3700 of its errors while lowering
@@ -435,8 +439,14 @@ bool EarnedTogether(const Case& c,
 // up the missing damping, was out of its bounds). The drag rule lets a
 // model that explains the record to the noise move them; so does it a
 // set: the refused contender with one or two of the next three, fitted
-// together, earns its place together (EarnedTogether). The lowest-BIC set
-// that does goes into *joint; false when none.
+// together, earns its place together (EarnedTogether). The best contender
+// may be refused otherwise and the dragged one come second: on a 3-s run
+// with a tunnel damping, a Magnus moment and a flow angularity, a body yaw
+// asymmetry (predicting nothing held out) came before the dragged
+// damping, the Magnus moment was taken alone, and nothing after it
+// earned its place. `earned` (Earned) tells which contenders were judged
+// better than every one that earned its place. The lowest-BIC set that
+// earns its place goes into *joint; false when none.
 bool Jointly(const Case& current,
              const FitResult& fit,
              const std::vector<TimeHistory>& data,
@@ -444,15 +454,19 @@ bool Jointly(const Case& current,
              const std::vector<const Effect*>& added,
              OutOfSample* out_of_sample,
              const std::vector<Contender>& contenders,
+             const std::vector<int>& earned,
              JointSet* joint) {
-  if (!options.joint_sets || contenders.empty() || !contenders[0].dragged) {
-    return false;
-  }
-  const int pool = std::min<int>(kJointPool, contenders.size());
+  if (!options.joint_sets) return false;
+  const int judged = earned.empty() ? static_cast<int>(contenders.size())
+                                    : earned[0];
+  int lead = 0;
+  while (lead < judged && !contenders[lead].dragged) ++lead;
+  if (lead >= judged) return false;
+  const int pool = std::min<int>(lead + kJointPool, contenders.size());
   std::vector<std::vector<int>> sets;
-  for (int a = 1; a < pool; ++a) {
-    sets.push_back({0, a});
-    for (int b = a + 1; b < pool; ++b) sets.push_back({0, a, b});
+  for (int a = lead + 1; a < pool; ++a) {
+    sets.push_back({lead, a});
+    for (int b = a + 1; b < pool; ++b) sets.push_back({lead, a, b});
   }
   const Case at = CaseAtSolution(current, fit);
   const int n = static_cast<int>(sets.size());
@@ -489,15 +503,15 @@ bool Jointly(const Case& current,
     // The prefixes: the first member's contender, the pair before a triple.
     int pair = -1;
     if (sets[i].size() == 3) {
-      const std::vector<int> prefix = {0, sets[i][1]};
+      const std::vector<int> prefix = {lead, sets[i][1]};
       pair = static_cast<int>(std::find(sets.begin(), sets.end(), prefix) -
                               sets.begin());
       if (!fitted[pair]) continue;
     }
     joint->members = sets[i];
     joint->prediction_gain = gain;
-    joint->models = {*contenders[0].candidate};
-    joint->fits = {contenders[0].fit};
+    joint->models = {*contenders[lead].candidate};
+    joint->fits = {contenders[lead].fit};
     if (pair >= 0) {
       joint->models.push_back(models[pair]);
       joint->fits.push_back(fits[pair]);
@@ -1679,6 +1693,7 @@ Diagnosis Search(const Case& c,
                                                     added,
                                                     &out_of_sample,
                                                     contenders,
+                                                    earned,
                                                     &joint)) {
       check = TakeJointSteps(joint,
                              contenders,
