@@ -431,8 +431,8 @@ bool EarnedTogether(const Case& c,
 
 // When a contender was refused only for dragging the coefficients, and
 // none better (lower BIC) earned its place, the effects missing beside it
-// may be what makes the drag: each alone explains part of the record and moves the
-// coefficients that the others biased (on the 48-s Table 6 record with a
+// may be what makes the drag: each alone explains part of the record and moves
+// the coefficients that the others biased (on the 48-s Table 6 record with a
 // tunnel stiffness, a nonlinear damping and a body yaw asymmetry, the
 // stiffness alone moved Cm_alpha by 3700 of its errors while lowering
 // the probable error 1.4-fold, and asymmetric_body, whose Cn_r then took
@@ -457,8 +457,8 @@ bool Jointly(const Case& current,
              const std::vector<int>& earned,
              JointSet* joint) {
   if (!options.joint_sets) return false;
-  const int judged = earned.empty() ? static_cast<int>(contenders.size())
-                                    : earned[0];
+  const int judged =
+      earned.empty() ? static_cast<int>(contenders.size()) : earned[0];
   int lead = 0;
   while (lead < judged && !contenders[lead].dragged) ++lead;
   if (lead >= judged) return false;
