@@ -379,8 +379,8 @@ struct JointSet {
   double prediction_gain = 0.0;
 };
 
-// The round's best contenders a joint set is drawn from: the refused one
-// and up to three more.
+// The contenders a joint set is drawn from: the one refused for its drag
+// and up to three after it.
 constexpr int kJointPool = 4;
 
 // `at` with the effects of `members` (indices into `contenders`) added in

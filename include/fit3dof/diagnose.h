@@ -54,8 +54,9 @@
 //     effect that explains everything may move them as far as it must,
 //     one that explains a little must not move them far);
 //     Effects that only together explain the record may each drag alone
-//     (each moves the coefficients that the others biased): when the
-//     round's best contender (lowest BIC) is refused for its drag, it is
+//     (each moves the coefficients that the others biased): when a
+//     contender is refused for its drag and none with a lower BIC earned
+//     its place (the best may be refused otherwise), the first such is
 //     fitted with one or two of the next three contenders (a joint set),
 //     and the lowest-BIC set that reaches the noise level, keeps every
 //     effect in the model within its bounds and predicts the held-out
