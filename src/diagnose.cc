@@ -1305,6 +1305,75 @@ bool AdoptedWithRival(const std::vector<TimeHistory>& data,
          ImplausibleAmong(effects, *with_rival, *rival_fit).empty();
 }
 
+// Whether the effects adopted after a tie (`effects`, with those before
+// it) are needed without any of the tied effects: `without` (the complete
+// model without the tied step, fitted as `without_fit`) lowers BIC by
+// min_bic_drop below `before` (the model before the tie) and keeps every
+// effect within its bounds.
+bool NeededWithoutTied(const DiagnoseOptions& options,
+                       const std::vector<const Effect*>& effects,
+                       const Case& without,
+                       const FitResult& without_fit,
+                       const FitResult& before) {
+  const std::string implausible =
+      ImplausibleAmong(effects, without, without_fit);
+  if (Bic(without_fit) < Bic(before) - options.min_bic_drop &&
+      implausible.empty()) {
+    return true;
+  }
+  VLOG(1) << "without any of the tied effects: BIC "
+          << Bic(before) - Bic(without_fit) << " below the model before "
+          << "the tie; " << implausible;
+  return false;
+}
+
+// The complete model with `rival` in place of the tied step `tied`: the
+// search's last model (`full`, fitted as `full_fit`, which holds a later
+// tie's followed effect too) with the rival swapped in, fitted into *fit.
+// A complete model without the later tie's effect stays structured (on a
+// short run a tunnel damping tied with a body asymmetry, a flow angularity
+// with a roll reading error, and neither first alternative reached the
+// noise without the angularity).
+bool CompleteWithRival(const std::vector<TimeHistory>& data,
+                       const Case& full,
+                       const FitResult& full_fit,
+                       const DiagnosisStep& tied,
+                       const std::string& rival,
+                       Case* with_rival,
+                       FitResult* fit) {
+  const Case without = WithoutStep(CaseAtSolution(full, full_fit), tied);
+  return RivalCase(without, rival, with_rival) &&
+         FitFrom(*with_rival, full_fit, data, "complete with " + rival, fit);
+}
+
+// Whether each of `steps` is needed in each complete model (`cases`,
+// fitted as `fits`): without it BIC rises by more than min_bic_drop. A
+// tied effect stands in for the tie only then: on a pair of runs a roll
+// damping adopted after a roll torque (tied with a tunnel stiffness) went
+// implausible without the torque, because it was there to cancel it.
+bool NeededInEach(const std::vector<TimeHistory>& data,
+                  const DiagnoseOptions& options,
+                  const std::vector<const Case*>& cases,
+                  const std::vector<const FitResult*>& fits,
+                  const std::vector<DiagnosisStep>& steps) {
+  for (size_t m = 0; m < cases.size(); ++m) {
+    for (const DiagnosisStep& s : steps) {
+      FitResult without_fit;
+      const Case without = WithoutStep(CaseAtSolution(*cases[m], *fits[m]), s);
+      if (!FitFrom(
+              without, *fits[m], data, "without " + s.effect, &without_fit)) {
+        return false;
+      }
+      if (!(Bic(without_fit) > Bic(*fits[m]) + options.min_bic_drop)) {
+        VLOG(1) << s.effect << " not needed in a complete model: BIC +"
+                << Bic(without_fit) - Bic(*fits[m]) << " without it";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 // After a tie (at step `tie`; `tied` marks every step that stays in
 // doubt) followed to an explained record: the steps after it up to the
 // next tie are adopted when the record needs them whichever of the tied
@@ -1313,7 +1382,13 @@ bool AdoptedWithRival(const std::vector<TimeHistory>& data,
 // before the tie with them added, d->alternatives holds the complete model
 // with each of the tied effects,
 // *final gets the final model's residual check, and true is returned;
-// otherwise nothing changes.
+// otherwise nothing changes. When the adopted effects need one of the tied
+// effects (without any, they leave their bounds or explain nothing) and
+// every complete model reaches the noise, the final model is the complete
+// one with the first tied effect standing in for the tie
+// (Diagnosis::stand_in): on a Table 6 record a roll damping and a roll
+// torque are twins at constant spin, and without either the calibration
+// error the bearing moment needs went out of its bounds.
 bool AdoptAfterTie(const std::vector<TimeHistory>& data,
                    const DiagnoseOptions& options,
                    const std::vector<Case>& models,
@@ -1341,7 +1416,6 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
       names.push_back(e.name);
     }
   }
-  // Without any of the tied effects, against the model before the tie.
   const Case without =
       WithoutStep(CaseAtSolution(models[last + 1], complete), d->steps[tie]);
   FitResult without_fit;
@@ -1352,22 +1426,19 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
                &without_fit)) {
     return false;
   }
-  const std::string implausible =
-      ImplausibleAmong(effects, without, without_fit);
-  if (!(Bic(without_fit) < Bic(before) - options.min_bic_drop) ||
-      !implausible.empty()) {
-    VLOG(1) << "without any of the tied effects: BIC "
-            << Bic(before) - Bic(without_fit) << " below the model before "
-            << "the tie; " << implausible;
-    return false;
-  }
+  const bool stand_in =
+      !NeededWithoutTied(options, effects, without, without_fit, before);
+  // The complete models: with every step the search took (a later tie's
+  // followed effects in).
+  const int full = static_cast<int>(d->partial_fit);
+  const bool later = last + 1 < static_cast<int>(d->steps.size());
   // With each rival instead of the first, against that rival alone on the
   // model before the tie.
   std::vector<AlternativeModel> alternatives = {
       {d->steps[tie].effect,
-       CheckResiduals(complete, options),
-       complete.parameters,
-       last + 1}};
+       CheckResiduals(d->fits[full], options),
+       d->fits[full].parameters,
+       full}};
   bool known = alternatives[0].check.at_noise_level;
   std::vector<FitResult> rival_fits;
   std::vector<Case> rival_cases;
@@ -1391,11 +1462,41 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
       VLOG(1) << "not needed, or not plausible, with " << rival;
       return false;
     }
+    if (later && !CompleteWithRival(data,
+                                    models[full],
+                                    d->fits[full],
+                                    d->steps[tie],
+                                    rival,
+                                    &with_rival,
+                                    &rival_fit)) {
+      return false;
+    }
     alternatives.push_back(
         {rival, CheckResiduals(rival_fit, options), rival_fit.parameters, -1});
     known = known && alternatives.back().check.at_noise_level;
     rival_fits.push_back(std::move(rival_fit));
     rival_cases.push_back(std::move(with_rival));
+  }
+  if (stand_in && (!known || rival_fits.empty() || later)) {
+    VLOG(1) << "a stand-in for the tie needs every complete model at the "
+            << "noise";
+    return false;
+  }
+  if (stand_in) {
+    std::vector<const Case*> cases = {&models[last + 1]};
+    std::vector<const FitResult*> fits = {&complete};
+    for (size_t r = 0; r < rival_fits.size(); ++r) {
+      cases.push_back(&rival_cases[r]);
+      fits.push_back(&rival_fits[r]);
+    }
+    if (!NeededInEach(
+            data,
+            options,
+            cases,
+            fits,
+            {d->steps.begin() + tie + 1, d->steps.begin() + last + 1})) {
+      return false;
+    }
   }
   // The drag rule guards against an effect absorbing an unknown structure;
   // when every complete model reaches the noise, what the final model
@@ -1408,8 +1509,8 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
       return false;
     }
   }
-  Reported(models[last + 1], data, &d->fits[last + 1]);
-  alternatives[0].parameters = d->fits[last + 1].parameters;
+  Reported(models[full], data, &d->fits[full]);
+  alternatives[0].parameters = d->fits[full].parameters;
   for (size_t r = 0; r < rival_fits.size(); ++r) {
     Reported(rival_cases[r], data, &rival_fits[r]);
     alternatives[r + 1].parameters = rival_fits[r].parameters;
@@ -1417,16 +1518,22 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
     alternatives[r + 1].fit = static_cast<int>(d->fits.size()) - 1;
   }
   d->alternatives = std::move(alternatives);
-  d->fits.push_back(without_fit);
-  d->final_fit = d->fits.size() - 1;
+  if (stand_in) {
+    d->stand_in = d->steps[tie].effect;
+    d->final_fit = last + 1;
+    *current = models[last + 1];
+  } else {
+    d->fits.push_back(without_fit);
+    d->final_fit = d->fits.size() - 1;
+    *current = without;
+  }
   d->partial.assign(1, d->steps[tie]);
   d->partial.insert(
       d->partial.end(), d->steps.begin() + last + 1, d->steps.end());
   d->steps.erase(d->steps.begin() + last + 1, d->steps.end());
   d->steps.erase(d->steps.begin() + tie);
-  *final = CheckResiduals(without_fit, options);
+  *final = CheckResiduals(d->FinalFit(), options);
   d->steps.back().after = *final;
-  *current = without;
   return true;
 }
 
@@ -1732,7 +1839,7 @@ Diagnosis Search(const Case& c,
   d.final = SettleFinalModel(
       quiet, data, options, models, tie, rivals, check, &d, &current);
   Reported(current, data, &d.fits[d.final_fit]);
-  if (!d.partial.empty()) {
+  if (!d.partial.empty() && d.partial_fit != d.final_fit) {
     Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
   }
   WidenForTie(&d);

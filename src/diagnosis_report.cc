@@ -155,6 +155,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
                                    {"check", Check(a.check)},
                                    {"parameters", Estimates(a.parameters)}});
   }
+  out["tie_stand_in"] = d.stand_in.empty() ? json(nullptr) : json(d.stand_in);
   out["not_excluded"] = Contenders(d.not_excluded);
   if (!d.residual_description.empty()) {
     out["residual_description"] = d.residual_description;
@@ -219,6 +220,11 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
                 : " (" + Values(a.parameters) + "), BIC lower by " +
                       FormatNumber("%.1f", a.bic_drop)) +
            "\n";
+  }
+  if (!d.stand_in.empty()) {
+    out += "  the final model holds " + d.stand_in +
+           " in the tie's place (the effects added need one of the tied "
+           "effects); its error bars cover each complete model\n";
   }
   for (const AlternativeModel& a : d.alternatives) {
     out += "  complete model with " + a.effect + ": probable error " +

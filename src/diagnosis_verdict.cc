@@ -77,6 +77,10 @@ std::string AmbiguousText(const Diagnosis& d) {
               : " (needed with each of the tied effects; the complete model "
                 "with each: probable error " +
                     ProbableErrors(d.alternatives) + ")") +
+         (d.stand_in.empty() ? ""
+                             : "; the final model holds " + d.stand_in +
+                                   " in the tie's place (the effects added "
+                                   "need one of them)") +
          (d.partial.size() > 1
               ? "; with the first in the model, " +
                     Described({d.partial.begin() + 1, d.partial.end()}) +

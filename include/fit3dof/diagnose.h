@@ -101,8 +101,12 @@
 // dragging the coefficients (a Magnus moment beside a roll-synchronous
 // reading error that ties with a trim moment). The final model is then
 // the one before the tie with them added (Diagnosis::alternatives holds
-// the complete model with each tied effect); otherwise it is the one
-// before the tie,
+// the complete model with each tied effect); when they need one of the
+// tied effects (without any, they leave their bounds: a calibration error
+// beside a bearing moment, with a roll damping and a roll torque tied)
+// and every complete model reaches the noise, it is the complete model
+// with the first tied effect standing in for the tie
+// (Diagnosis::stand_in); otherwise it is the one before the tie,
 // the tied effect and those after it reported as partial. When the branch
 // followed ends `not_explained`, the search is run again without the
 // effect it followed, and its answer is taken when it explains the
@@ -338,6 +342,13 @@ struct Diagnosis {
   // them, the tied effect in `effect`, the first as the search followed
   // it.
   std::vector<AlternativeModel> alternatives;
+  // When the effects adopted after the tie need one of the tied effects
+  // (without any, they leave their bounds or explain nothing) and every
+  // alternative reaches the noise: the tied effect the final model holds in
+  // the tie's place (the first, as the search followed it), else empty.
+  // It is not among the steps (not claimed); its terms are in the final
+  // model, whose error bars cover every alternative's values.
+  std::string stand_in;
   // When the residuals stay structured: what they show, and the contenders
   // of the last round, each with why it did not earn its place.
   std::string residual_description;
