@@ -1356,22 +1356,135 @@ bool NeededInEach(const std::vector<TimeHistory>& data,
                   const std::vector<const Case*>& cases,
                   const std::vector<const FitResult*>& fits,
                   const std::vector<DiagnosisStep>& steps) {
-  for (size_t m = 0; m < cases.size(); ++m) {
-    for (const DiagnosisStep& s : steps) {
-      FitResult without_fit;
-      const Case without = WithoutStep(CaseAtSolution(*cases[m], *fits[m]), s);
-      if (!FitFrom(
-              without, *fits[m], data, "without " + s.effect, &without_fit)) {
-        return false;
-      }
-      if (!(Bic(without_fit) > Bic(*fits[m]) + options.min_bic_drop)) {
-        VLOG(1) << s.effect << " not needed in a complete model: BIC +"
-                << Bic(without_fit) - Bic(*fits[m]) << " without it";
-        return false;
-      }
+  const int n = static_cast<int>(cases.size() * steps.size());
+  std::vector<FitResult> without(n);
+  std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
+  ParallelFor(n, [&](int k) {
+    const size_t m = k / steps.size();
+    const DiagnosisStep& s = steps[k % steps.size()];
+    fitted[k] = FitFrom(WithoutStep(CaseAtSolution(*cases[m], *fits[m]), s),
+                        *fits[m],
+                        data,
+                        "without " + s.effect,
+                        &without[k]);
+  });
+  for (int k = 0; k < n; ++k) {
+    const FitResult& with = *fits[k / steps.size()];
+    if (!fitted[k] || !(Bic(without[k]) > Bic(with) + options.min_bic_drop)) {
+      VLOG(1) << steps[k % steps.size()].effect
+              << " not needed in a complete model: BIC +"
+              << Bic(without[k]) - Bic(with) << " without it";
+      return false;
     }
   }
   return true;
+}
+
+// The effects of the model AdoptAfterTie adopts (the steps before the tie
+// and `adopt`, indices into d.steps) into *effects, and the terms `adopt`
+// added into *names.
+void AdoptedEffects(const Diagnosis& d,
+                    int tie,
+                    const std::vector<int>& adopt,
+                    std::vector<const Effect*>* effects,
+                    std::vector<std::string>* names) {
+  effects->clear();
+  names->clear();
+  for (int i = 0; i < tie; ++i)
+    effects->push_back(FindEffect(d.steps[i].effect));
+  for (int i : adopt) {
+    effects->push_back(FindEffect(d.steps[i].effect));
+    for (const ParameterEstimate& e : d.steps[i].step_parameters) {
+      names->push_back(e.name);
+    }
+  }
+}
+
+// The steps of `adopt` (indices into d.steps, after the tie) that go with
+// the tied effect rather than after it: out of their bounds in `without`
+// (the complete model without the tied effect, fitted as `without_fit`),
+// and not needed with a rival of the tie in its place (without them, that
+// model's BIC rises by less than min_bic_drop). On a pair of runs a roll
+// damping adopted after a roll torque (tied with a tunnel stiffness) drove
+// the roll without the torque, and with the stiffness instead BIC was 4.8
+// lower without it: it was the torque's companion.
+std::vector<int> TieCompanions(const std::vector<TimeHistory>& data,
+                               const DiagnoseOptions& options,
+                               const Diagnosis& d,
+                               const std::vector<int>& adopt,
+                               const Case& without,
+                               const FitResult& without_fit) {
+  std::vector<int> companions;
+  const Case at = CaseAtSolution(without, without_fit);
+  for (int i : adopt) {
+    const DiagnosisStep& step = d.steps[i];
+    if (Implausible(*FindEffect(step.effect), without, without_fit).empty()) {
+      continue;
+    }
+    for (size_t r = 1; r < d.ambiguous.size(); ++r) {
+      Case with_rival;
+      FitResult rival_fit, alone;
+      if (!RivalCase(at, d.ambiguous[r].effect, &with_rival) ||
+          !FitFrom(with_rival, without_fit, data, "companions", &rival_fit) ||
+          !FitFrom(WithoutStep(CaseAtSolution(with_rival, rival_fit), step),
+                   rival_fit,
+                   data,
+                   "without " + step.effect,
+                   &alone)) {
+        continue;
+      }
+      if (Bic(alone) < Bic(rival_fit) + options.min_bic_drop) {
+        VLOG(1) << step.effect << " goes with the tied effect: with "
+                << d.ambiguous[r].effect << " BIC +"
+                << Bic(alone) - Bic(rival_fit) << " without it";
+        companions.push_back(i);
+        break;
+      }
+    }
+  }
+  return companions;
+}
+
+// `companions` (TieCompanions) taken out of *adopt and of *without, which
+// is refitted into *without_fit; false when nothing is left to adopt or
+// the fit fails (true, unchanged, when there are none).
+bool WithoutCompanions(const std::vector<TimeHistory>& data,
+                       const Diagnosis& d,
+                       const std::vector<int>& companions,
+                       std::vector<int>* adopt,
+                       Case* without,
+                       FitResult* without_fit) {
+  if (companions.empty()) return true;
+  Case c = CaseAtSolution(*without, *without_fit);
+  for (int i : companions) {
+    c = WithoutStep(c, d.steps[i]);
+    adopt->erase(std::find(adopt->begin(), adopt->end(), i));
+  }
+  FitResult fit;
+  if (adopt->empty() ||
+      !FitFrom(c, *without_fit, data, "without the tie's companions", &fit)) {
+    return false;
+  }
+  *without = std::move(c);
+  *without_fit = std::move(fit);
+  return true;
+}
+
+// The steps of `d` split at an adopted tie: the tied step, the steps after
+// it not in `adopt` (its companions) and those after `last` go to
+// d->partial; the steps before it and `adopt` stay.
+void SplitAtTie(int tie,
+                const std::vector<int>& adopt,
+                int last,
+                Diagnosis* d) {
+  std::vector<DiagnosisStep> steps(d->steps.begin(), d->steps.begin() + tie);
+  d->partial.assign(1, d->steps[tie]);
+  for (int i = tie + 1; i < static_cast<int>(d->steps.size()); ++i) {
+    const bool adopted =
+        i <= last && std::find(adopt.begin(), adopt.end(), i) != adopt.end();
+    (adopted ? steps : d->partial).push_back(d->steps[i]);
+  }
+  d->steps = std::move(steps);
 }
 
 // After a tie (at step `tie`; `tied` marks every step that stays in
@@ -1404,20 +1517,14 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
   VLOG(1) << "after the tie at step " << tie << ": " << last - tie
           << " step(s) before the next tie";
   if (last == tie) return false;
-  const FitResult& complete = d->fits[last + 1];
+  // The complete model through `last` (its fit and case).
+  const int through = last + 1;
+  const FitResult& complete = d->fits[through];
   const FitResult& before = d->fits[tie];
-  std::vector<const Effect*> effects;  // the adopted model's
-  std::vector<std::string> names;      // the terms added after the tie
-  for (int i = 0; i <= last; ++i) {
-    if (i == tie) continue;
-    effects.push_back(FindEffect(d->steps[i].effect));
-    if (i < tie) continue;
-    for (const ParameterEstimate& e : d->steps[i].step_parameters) {
-      names.push_back(e.name);
-    }
-  }
-  const Case without =
-      WithoutStep(CaseAtSolution(models[last + 1], complete), d->steps[tie]);
+  std::vector<int> adopt;  // the steps after the tie to adopt
+  for (int i = tie + 1; i <= last; ++i) adopt.push_back(i);
+  Case without =
+      WithoutStep(CaseAtSolution(models[through], complete), d->steps[tie]);
   FitResult without_fit;
   if (!FitFrom(without,
                complete,
@@ -1426,12 +1533,29 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
                &without_fit)) {
     return false;
   }
-  const bool stand_in =
-      !NeededWithoutTied(options, effects, without, without_fit, before);
+  std::vector<const Effect*> effects;  // the adopted model's
+  std::vector<std::string> names;      // the terms added after the tie
+  AdoptedEffects(*d, tie, adopt, &effects, &names);
+  // A step out of its bounds without the tied effect may be its companion
+  // (TieCompanions): it goes with it.
+  std::vector<int> companions;
+  bool needed =
+      NeededWithoutTied(options, effects, without, without_fit, before);
+  if (!needed) {
+    companions = TieCompanions(data, options, *d, adopt, without, without_fit);
+    if (!WithoutCompanions(
+            data, *d, companions, &adopt, &without, &without_fit)) {
+      return false;
+    }
+    AdoptedEffects(*d, tie, adopt, &effects, &names);
+    needed = !companions.empty() &&
+             NeededWithoutTied(options, effects, without, without_fit, before);
+  }
+  const bool stand_in = !needed;
   // The complete models: with every step the search took (a later tie's
   // followed effects in).
-  const int full = static_cast<int>(d->partial_fit);
   const bool later = last + 1 < static_cast<int>(d->steps.size());
+  const int full = later ? static_cast<int>(d->partial_fit) : through;
   // With each rival instead of the first, against that rival alone on the
   // model before the tie.
   std::vector<AlternativeModel> alternatives = {
@@ -1477,26 +1601,22 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
     rival_fits.push_back(std::move(rival_fit));
     rival_cases.push_back(std::move(with_rival));
   }
-  if (stand_in && (!known || rival_fits.empty() || later)) {
+  if (stand_in &&
+      (!known || rival_fits.empty() || later || !companions.empty())) {
     VLOG(1) << "a stand-in for the tie needs every complete model at the "
             << "noise";
     return false;
   }
   if (stand_in) {
-    std::vector<const Case*> cases = {&models[last + 1]};
+    std::vector<const Case*> cases = {&models[through]};
     std::vector<const FitResult*> fits = {&complete};
     for (size_t r = 0; r < rival_fits.size(); ++r) {
       cases.push_back(&rival_cases[r]);
       fits.push_back(&rival_fits[r]);
     }
-    if (!NeededInEach(
-            data,
-            options,
-            cases,
-            fits,
-            {d->steps.begin() + tie + 1, d->steps.begin() + last + 1})) {
-      return false;
-    }
+    std::vector<DiagnosisStep> steps;
+    for (int i : adopt) steps.push_back(d->steps[i]);
+    if (!NeededInEach(data, options, cases, fits, steps)) return false;
   }
   // The drag rule guards against an effect absorbing an unknown structure;
   // when every complete model reaches the noise, what the final model
@@ -1520,18 +1640,14 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
   d->alternatives = std::move(alternatives);
   if (stand_in) {
     d->stand_in = d->steps[tie].effect;
-    d->final_fit = last + 1;
-    *current = models[last + 1];
+    d->final_fit = through;
+    *current = models[through];
   } else {
     d->fits.push_back(without_fit);
     d->final_fit = d->fits.size() - 1;
     *current = without;
   }
-  d->partial.assign(1, d->steps[tie]);
-  d->partial.insert(
-      d->partial.end(), d->steps.begin() + last + 1, d->steps.end());
-  d->steps.erase(d->steps.begin() + last + 1, d->steps.end());
-  d->steps.erase(d->steps.begin() + tie);
+  SplitAtTie(tie, adopt, last, d);
   *final = CheckResiduals(d->FinalFit(), options);
   d->steps.back().after = *final;
   return true;

@@ -1291,5 +1291,32 @@ TEST(Diagnose, KeepsATiedEffectTheOthersNeedAsTheTiesStandIn) {
   EXPECT_EQ(json["tie_stand_in"], tied[0]);
 }
 
+// Two runs with a tunnel stiffness, a nonlinear damping and a body yaw
+// asymmetry: a roll torque ties with the stiffness and is followed; the
+// damping, the asymmetry and a roll damping are taken after it. Without
+// the torque the roll damping drives the roll (out of its bounds), and
+// with the stiffness in its place it is worth nothing: it goes with the
+// torque (partial), and the damping and the asymmetry, needed whichever
+// of the tied effects is in, are added. Before, nothing was added.
+TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Case c = LoadConfig(
+      testing::SourcePath("tests/data/pair_stiffness_damping_asymmetry.yaml"));
+  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  std::set<std::string> added, tied, partial;
+  for (const DiagnosisStep& s : d.steps) added.insert(s.effect);
+  for (const CandidateFit& k : d.ambiguous) tied.insert(k.effect);
+  for (const DiagnosisStep& s : d.partial) partial.insert(s.effect);
+  EXPECT_EQ(added,
+            std::set<std::string>({"nonlinear_damping", "asymmetric_body"}))
+      << text;
+  EXPECT_TRUE(tied.count("tunnel_stiffness")) << text;
+  EXPECT_TRUE(partial.count("roll_damping")) << text;
+  EXPECT_TRUE(d.stand_in.empty()) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
 }  // namespace
 }  // namespace fit3dof

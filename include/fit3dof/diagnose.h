@@ -101,13 +101,17 @@
 // dragging the coefficients (a Magnus moment beside a roll-synchronous
 // reading error that ties with a trim moment). The final model is then
 // the one before the tie with them added (Diagnosis::alternatives holds
-// the complete model with each tied effect); when they need one of the
-// tied effects (without any, they leave their bounds: a calibration error
-// beside a bearing moment, with a roll damping and a roll torque tied)
-// and every complete model reaches the noise, it is the complete model
-// with the first tied effect standing in for the tie
-// (Diagnosis::stand_in); otherwise it is the one before the tie,
-// the tied effect and those after it reported as partial. When the branch
+// the complete model with each tied effect, a later tie's followed effect
+// in). A step out of its bounds without the tied effect that a rival in
+// its place does not need goes with the tied effect (partial): a roll
+// damping taken after a roll torque that ties with a tunnel stiffness.
+// When they need one of the tied effects (without any, they leave their
+// bounds: a calibration error beside a bearing moment, with a roll
+// damping and a roll torque tied), every complete model reaches the noise
+// and each of them is needed in each, it is the complete model with the
+// first tied effect standing in for the tie (Diagnosis::stand_in);
+// otherwise it is the one before the tie, the tied effect and those after
+// it reported as partial. When the branch
 // followed ends `not_explained`, the search is run again without the
 // effect it followed, and its answer is taken when it explains the
 // record, with or without a tie of its own (the effect left is named
