@@ -1390,8 +1390,9 @@ void AdoptedEffects(const Diagnosis& d,
                     std::vector<std::string>* names) {
   effects->clear();
   names->clear();
-  for (int i = 0; i < tie; ++i)
+  for (int i = 0; i < tie; ++i) {
     effects->push_back(FindEffect(d.steps[i].effect));
+  }
   for (int i : adopt) {
     effects->push_back(FindEffect(d.steps[i].effect));
     for (const ParameterEstimate& e : d.steps[i].step_parameters) {
