@@ -295,7 +295,8 @@ PYBIND11_MODULE(_fit3dof, m) {
           &Diagnosis::fits,
           "the nominal fit, then one per step taken (kept, partial "
           "or pruned), then one per pruning, then after a tie those of "
-          "the alternatives and of the model without it; final_fit "
+          "the alternatives and of the model without it (none with a "
+          "stand-in); final_fit "
           "is the "
           "final model's")
       .def_property_readonly("final_fit",

@@ -372,7 +372,8 @@ struct Diagnosis {
   Case final_case;
   // The fit before the first step, then one per step the loop took (kept,
   // partial or pruned, in the order taken), then one per pruning, then
-  // after a tie those of the alternatives and of the model without it.
+  // after a tie those of the alternatives and of the model without it
+  // (none with a stand-in: the final model is then a step's).
   std::vector<FitResult> fits;
   size_t final_fit = 0;  // which of them is the final model's
   // The fit whose values the partial steps report: the last model the
