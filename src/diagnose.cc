@@ -1025,6 +1025,30 @@ Case WithoutStep(const Case& at, const DiagnosisStep& step) {
   return without;
 }
 
+// Each model (`cases`, fitted as `fits`) refitted from its solution
+// without each of `steps` in turn, all in parallel: (*without)[k], for
+// k = m * steps.size() + i, is model m without steps[i], and (*fitted)[k]
+// whether that fit ran.
+void FitWithoutEach(const std::vector<TimeHistory>& data,
+                    const std::vector<const Case*>& cases,
+                    const std::vector<const FitResult*>& fits,
+                    const std::vector<DiagnosisStep>& steps,
+                    std::vector<FitResult>* without,
+                    std::vector<char>* fitted) {
+  const int n = static_cast<int>(cases.size() * steps.size());
+  without->assign(n, FitResult());
+  fitted->assign(n, false);  // not vector<bool>: written in parallel
+  ParallelFor(n, [&](int k) {
+    const size_t m = k / steps.size();
+    const DiagnosisStep& s = steps[k % steps.size()];
+    (*fitted)[k] = FitFrom(WithoutStep(CaseAtSolution(*cases[m], *fits[m]), s),
+                           *fits[m],
+                           data,
+                           "without " + s.effect,
+                           &(*without)[k]);
+  });
+}
+
 // Backward elimination (diagnose.h): while the record is explained by two
 // or more effects, the one whose removal costs least is dropped if the
 // residuals stay at the noise level and BIC rises by less than
@@ -1037,16 +1061,9 @@ void Prune(const std::vector<TimeHistory>& data,
     const FitResult& fit = d->FinalFit();
     const Case at = CaseAtSolution(*current, fit);
     const int n = static_cast<int>(d->steps.size());
-    std::vector<FitResult> without(n);
-    // Not vector<bool>: written in parallel.
-    std::vector<char> fitted(n, false);
-    ParallelFor(n, [&](int i) {
-      fitted[i] = FitFrom(WithoutStep(at, d->steps[i]),
-                          fit,
-                          data,
-                          "without " + d->steps[i].effect,
-                          &without[i]);
-    });
+    std::vector<FitResult> without;
+    std::vector<char> fitted;
+    FitWithoutEach(data, {current}, {&fit}, d->steps, &without, &fitted);
     int drop = -1;
     double least = options.min_bic_drop;
     for (int i = 0; i < n; ++i) {
@@ -1356,19 +1373,10 @@ bool NeededInEach(const std::vector<TimeHistory>& data,
                   const std::vector<const Case*>& cases,
                   const std::vector<const FitResult*>& fits,
                   const std::vector<DiagnosisStep>& steps) {
-  const int n = static_cast<int>(cases.size() * steps.size());
-  std::vector<FitResult> without(n);
-  std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
-  ParallelFor(n, [&](int k) {
-    const size_t m = k / steps.size();
-    const DiagnosisStep& s = steps[k % steps.size()];
-    fitted[k] = FitFrom(WithoutStep(CaseAtSolution(*cases[m], *fits[m]), s),
-                        *fits[m],
-                        data,
-                        "without " + s.effect,
-                        &without[k]);
-  });
-  for (int k = 0; k < n; ++k) {
+  std::vector<FitResult> without;
+  std::vector<char> fitted;
+  FitWithoutEach(data, cases, fits, steps, &without, &fitted);
+  for (size_t k = 0; k < without.size(); ++k) {
     const FitResult& with = *fits[k / steps.size()];
     if (!fitted[k] || !(Bic(without[k]) > Bic(with) + options.min_bic_drop)) {
       VLOG(1) << steps[k % steps.size()].effect
@@ -1448,14 +1456,13 @@ std::vector<int> TieCompanions(const std::vector<TimeHistory>& data,
 
 // `companions` (TieCompanions) taken out of *adopt and of *without, which
 // is refitted into *without_fit; false when nothing is left to adopt or
-// the fit fails (true, unchanged, when there are none).
+// the fit fails.
 bool WithoutCompanions(const std::vector<TimeHistory>& data,
                        const Diagnosis& d,
                        const std::vector<int>& companions,
                        std::vector<int>* adopt,
                        Case* without,
                        FitResult* without_fit) {
-  if (companions.empty()) return true;
   Case c = CaseAtSolution(*without, *without_fit);
   for (int i : companions) {
     c = WithoutStep(c, d.steps[i]);
@@ -1471,18 +1478,15 @@ bool WithoutCompanions(const std::vector<TimeHistory>& data,
   return true;
 }
 
-// The steps of `d` split at an adopted tie: the tied step, the steps after
-// it not in `adopt` (its companions) and those after `last` go to
+// The steps of `d` split at an adopted tie: the tied step and the steps
+// after it not in `adopt` (its companions, those after the next tie) go to
 // d->partial; the steps before it and `adopt` stay.
-void SplitAtTie(int tie,
-                const std::vector<int>& adopt,
-                int last,
-                Diagnosis* d) {
+void SplitAtTie(int tie, const std::vector<int>& adopt, Diagnosis* d) {
   std::vector<DiagnosisStep> steps(d->steps.begin(), d->steps.begin() + tie);
   d->partial.assign(1, d->steps[tie]);
   for (int i = tie + 1; i < static_cast<int>(d->steps.size()); ++i) {
     const bool adopted =
-        i <= last && std::find(adopt.begin(), adopt.end(), i) != adopt.end();
+        std::find(adopt.begin(), adopt.end(), i) != adopt.end();
     (adopted ? steps : d->partial).push_back(d->steps[i]);
   }
   d->steps = std::move(steps);
@@ -1544,18 +1548,23 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
       NeededWithoutTied(options, effects, without, without_fit, before);
   if (!needed) {
     companions = TieCompanions(data, options, *d, adopt, without, without_fit);
+  }
+  if (!companions.empty()) {
     if (!WithoutCompanions(
             data, *d, companions, &adopt, &without, &without_fit)) {
       return false;
     }
     AdoptedEffects(*d, tie, adopt, &effects, &names);
-    needed = !companions.empty() &&
-             NeededWithoutTied(options, effects, without, without_fit, before);
+    needed = NeededWithoutTied(options, effects, without, without_fit, before);
   }
   const bool stand_in = !needed;
   // The complete models: with every step the search took (a later tie's
   // followed effects in).
   const bool later = last + 1 < static_cast<int>(d->steps.size());
+  if (stand_in && (later || !companions.empty())) {
+    VLOG(1) << "no stand-in for the tie with a later tie or companions";
+    return false;
+  }
   const int full = later ? static_cast<int>(d->partial_fit) : through;
   // With each rival instead of the first, against that rival alone on the
   // model before the tie.
@@ -1602,8 +1611,7 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
     rival_fits.push_back(std::move(rival_fit));
     rival_cases.push_back(std::move(with_rival));
   }
-  if (stand_in &&
-      (!known || rival_fits.empty() || later || !companions.empty())) {
+  if (stand_in && (!known || rival_fits.empty())) {
     VLOG(1) << "a stand-in for the tie needs every complete model at the "
             << "noise";
     return false;
@@ -1648,7 +1656,7 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
     d->final_fit = d->fits.size() - 1;
     *current = without;
   }
-  SplitAtTie(tie, adopt, last, d);
+  SplitAtTie(tie, adopt, d);
   *final = CheckResiduals(d->FinalFit(), options);
   d->steps.back().after = *final;
   return true;

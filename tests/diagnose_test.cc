@@ -1214,12 +1214,6 @@ TEST(Diagnose, ErrorBarsCoverAnEffectTheRecordCannotExclude) {
   ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
-}  // namespace
-}  // namespace fit3dof
-
-namespace fit3dof {
-namespace {
-
 // tools/diagnose_suite's `short` tunnel damping + Magnus moment + flow
 // angularity (draw 0), kept as tests/data/short_damping_magnus_angularity.
 // csv. At the first round a body yaw asymmetry lowers BIC most but
