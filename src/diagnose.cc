@@ -682,12 +682,12 @@ std::vector<CompleteModel> CompleteModels(const Diagnosis& d,
   return complete;
 }
 
-// The catalog effects among the steps' rivals, each once.
-std::vector<const Effect*> RivalEffects(
-    const std::vector<std::vector<CandidateFit>>& rivals) {
+// The catalog effects among the rounds' candidates, each once.
+std::vector<const Effect*> CatalogEffects(
+    const std::vector<std::vector<CandidateFit>>& rounds) {
   std::vector<const Effect*> effects;
-  for (const std::vector<CandidateFit>& step : rivals) {
-    for (const CandidateFit& r : step) {
+  for (const std::vector<CandidateFit>& round : rounds) {
+    for (const CandidateFit& r : round) {
       const Effect* e = FindEffect(r.effect);
       if (e != nullptr &&
           std::find(effects.begin(), effects.end(), e) == effects.end()) {
@@ -709,9 +709,10 @@ bool InTie(const Diagnosis& d, const std::string& id) {
          std::any_of(d.later_ties.begin(), d.later_ties.end(), in);
 }
 
-// The rivals of the steps (`rivals`, within rival_bic of a step's best)
-// that the record cannot exclude beside a complete model (tied effects
-// aside: WidenForTie covers them): added to it
+// The contenders of the search's rounds (`contended`: each lowered BIC by
+// more than min_bic_drop where it was tried) that the record cannot
+// exclude beside a complete model (tied effects aside: WidenForTie covers
+// them): added to it
 // (not swapped in, as the final swap tries them), its BIC rises by less
 // than ambiguity_bic and every effect stays within its bounds. Their fits
 // go into d->not_excluded (bic_drop against the model without) and their
@@ -722,8 +723,11 @@ bool InTie(const Diagnosis& d, const std::string& id) {
 // mode of motion hardly tells Cm_q from Cm_p_alpha), and the model with
 // the damping and the angularity reached the noise with Cm_q at -3.84 +-
 // 0.01 (truth -5.5). The Magnus moment, 24 below the damping at the first
-// step, raised BIC by only 1.0 beside them, with Cm_q at -6.4 +- 1.4.
-void FindNotExcluded(const std::vector<std::vector<CandidateFit>>& rivals,
+// step, raised BIC by only 1.0 beside them, with Cm_q at -6.4 +- 1.4. On
+// another noise draw it was 35 below (outside rival_bic) and, when only
+// the steps' rivals were tried here, never tried: Cm_q ended 129 of its
+// errors off.
+void FindNotExcluded(const std::vector<std::vector<CandidateFit>>& contended,
                      const std::vector<Case>& models,
                      const Case& current,
                      const std::vector<TimeHistory>& data,
@@ -737,7 +741,7 @@ void FindNotExcluded(const std::vector<std::vector<CandidateFit>>& rivals,
       CompleteModels(*d, models, current);
   // A tied effect's models are the tie's (WidenForTie).
   std::vector<const Effect*> effects;
-  for (const Effect* e : RivalEffects(rivals)) {
+  for (const Effect* e : CatalogEffects(contended)) {
     if (!InTie(*d, e->id)) effects.push_back(e);
   }
   struct Beside {
@@ -1890,6 +1894,9 @@ Diagnosis Search(const Case& c,
   // whether each step tied.
   int tie = -1;
   std::vector<std::vector<CandidateFit>> rivals;
+  // Each round's contenders, the effects tried beside the complete model
+  // (FindNotExcluded).
+  std::vector<std::vector<CandidateFit>> contended;
   for (int step = 0; step < options.max_steps && !check.at_noise_level;
        ++step) {
     if (Polish(current, data, &fit)) {
@@ -1907,6 +1914,8 @@ Diagnosis Search(const Case& c,
         ScoredCandidates(current, fit, options);
     std::vector<Contender> contenders =
         Contenders(candidates, fit, data, options);
+    contended.emplace_back();
+    for (const Contender& k : contenders) contended.back().push_back(k.record);
     OutOfSample out_of_sample(current, fit, options);
     std::vector<const Effect*> added;
     for (const DiagnosisStep& s : d.steps)
@@ -1968,7 +1977,7 @@ Diagnosis Search(const Case& c,
     Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
   }
   WidenForTie(&d);
-  FindNotExcluded(rivals, models, current, data, options, &d);
+  FindNotExcluded(contended, models, current, data, options, &d);
   WidenForNotExcluded(&d);
   if (!d.ambiguous.empty()) {
     d.separated_by = SeparatedBy(d.ambiguous, quiet, d.FinalFit(), data);

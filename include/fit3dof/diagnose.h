@@ -152,8 +152,10 @@
 // the answer (a reading lag had beaten a Magnus moment at the first step
 // of a record a Magnus moment, a nonlinear damping and a calibration error
 // explain).
-// A step's rivals within `rival_bic` that the final swap did not take in
-// are also tried beside the complete model (added, not swapped). One the
+// Every effect that was a contender at some round of the search (it
+// lowered BIC by more than `min_bic_drop` there, however far behind the
+// round's best) and is neither in the model nor in a tie is also tried
+// beside the complete model (added, not swapped). One the
 // record cannot exclude there (BIC less than `ambiguity_bic` higher,
 // within bounds) is not added, but the final error bars cover its model's
 // values, weighted by its BIC weight against the model without it
