@@ -156,8 +156,10 @@
 // lowered BIC by more than `min_bic_drop` there, however far behind the
 // round's best) and is neither in the model nor in a tie is also tried
 // beside the complete model (added, not swapped). One the
-// record cannot exclude there (BIC less than `ambiguity_bic` higher,
-// within bounds) is not added, but the final error bars cover its model's
+// record cannot exclude there (BIC less than `ambiguity_bic` higher, the
+// model's effects within their bounds, its own within two of its standard
+// errors of them: on a ridge the point fit lands anywhere the record
+// allows) is not added, but the final error bars cover its model's
 // values, weighted by its BIC weight against the model without it
 // (Diagnosis::not_excluded). A Magnus moment
 // beside a tunnel damping that had absorbed it on one coning run moved
@@ -385,11 +387,12 @@ struct Diagnosis {
   // swapped in for a tied effect, the other effects in): the final model's
   // error bars cover their values too (diagnose.cc, WidenForTie).
   std::vector<std::vector<ParameterEstimate>> tie_models;
-  // The rivals of the steps (within rival_bic of a step's best) that the
-  // record cannot exclude beside a complete model (the final one, or the
-  // last of the search when steps stayed partial): added to it, BIC rises
-  // by less than ambiguity_bic (bic_drop is minus the rise) and every
-  // effect stays within its bounds. Not added; the final model's error bars
+  // The contenders of the search's rounds that the record cannot exclude
+  // beside a complete model (the final one, or the last of the search when
+  // steps stayed partial): added to it, BIC rises by less than
+  // ambiguity_bic (bic_drop is minus the rise), the model's effects stay
+  // within their bounds and its own within two of its standard errors of
+  // them. Not added; the final model's error bars
   // cover their models' values too (not_excluded_models, diagnose.cc
   // WidenForNotExcluded).
   std::vector<CandidateFit> not_excluded;
