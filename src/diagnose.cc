@@ -682,22 +682,6 @@ std::vector<CompleteModel> CompleteModels(const Diagnosis& d,
   return complete;
 }
 
-// The catalog effects among the rounds' candidates, each once.
-std::vector<const Effect*> CatalogEffects(
-    const std::vector<std::vector<CandidateFit>>& rounds) {
-  std::vector<const Effect*> effects;
-  for (const std::vector<CandidateFit>& round : rounds) {
-    for (const CandidateFit& r : round) {
-      const Effect* e = FindEffect(r.effect);
-      if (e != nullptr &&
-          std::find(effects.begin(), effects.end(), e) == effects.end()) {
-        effects.push_back(e);
-      }
-    }
-  }
-  return effects;
-}
-
 // Whether effect `id` is in a tie the diagnosis leaves open.
 bool InTie(const Diagnosis& d, const std::string& id) {
   auto in = [&](const std::vector<CandidateFit>& tie) {
@@ -746,9 +730,9 @@ std::string ImplausibleBeside(const std::vector<const Effect*>& model,
 // The contenders of the search's rounds (`contended`: each lowered BIC by
 // more than min_bic_drop where it was tried) that the record cannot
 // exclude beside a complete model (tied effects aside: WidenForTie covers
-// them): added to it
-// (not swapped in, as the final swap tries them), its BIC rises by less
-// than ambiguity_bic and every effect stays within its bounds. Their fits
+// them): added to it (not swapped in, as the final swap tries them), its
+// BIC rises by less than ambiguity_bic and the effects stay within their
+// bounds (ImplausibleBeside: its own within two of its errors). Their fits
 // go into d->not_excluded (bic_drop against the model without) and their
 // parameters into d->not_excluded_models.
 //
@@ -761,7 +745,7 @@ std::string ImplausibleBeside(const std::vector<const Effect*>& model,
 // another noise draw it was 35 below (outside rival_bic) and, when only
 // the steps' rivals were tried here, never tried: Cm_q ended 129 of its
 // errors off.
-void FindNotExcluded(const std::vector<std::vector<CandidateFit>>& contended,
+void FindNotExcluded(const std::vector<const Effect*>& contended,
                      const std::vector<Case>& models,
                      const Case& current,
                      const std::vector<TimeHistory>& data,
@@ -775,7 +759,7 @@ void FindNotExcluded(const std::vector<std::vector<CandidateFit>>& contended,
       CompleteModels(*d, models, current);
   // A tied effect's models are the tie's (WidenForTie).
   std::vector<const Effect*> effects;
-  for (const Effect* e : CatalogEffects(contended)) {
+  for (const Effect* e : contended) {
     if (!InTie(*d, e->id)) effects.push_back(e);
   }
   struct Beside {
@@ -1927,9 +1911,9 @@ Diagnosis Search(const Case& c,
   // whether each step tied.
   int tie = -1;
   std::vector<std::vector<CandidateFit>> rivals;
-  // Each round's contenders, the effects tried beside the complete model
-  // (FindNotExcluded).
-  std::vector<std::vector<CandidateFit>> contended;
+  // Every round's contenders, each once: the effects tried beside the
+  // complete model (FindNotExcluded).
+  std::vector<const Effect*> contended;
   for (int step = 0; step < options.max_steps && !check.at_noise_level;
        ++step) {
     if (Polish(current, data, &fit)) {
@@ -1947,8 +1931,12 @@ Diagnosis Search(const Case& c,
         ScoredCandidates(current, fit, options);
     std::vector<Contender> contenders =
         Contenders(candidates, fit, data, options);
-    contended.emplace_back();
-    for (const Contender& k : contenders) contended.back().push_back(k.record);
+    for (const Contender& k : contenders) {
+      const Effect* e = k.candidate->effect;
+      if (std::find(contended.begin(), contended.end(), e) == contended.end()) {
+        contended.push_back(e);
+      }
+    }
     OutOfSample out_of_sample(current, fit, options);
     std::vector<const Effect*> added;
     for (const DiagnosisStep& s : d.steps)
