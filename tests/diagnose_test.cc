@@ -25,6 +25,14 @@
 namespace fit3dof {
 namespace {
 
+// The effect ids of `items` (DiagnosisStep or CandidateFit), each once.
+template <typename T>
+std::set<std::string> EffectIds(const std::vector<T>& items) {
+  std::set<std::string> ids;
+  for (const T& item : items) ids.insert(item.effect);
+  return ids;
+}
+
 // The parameters of `c` named in `values` (name-value pairs) set to theirs.
 template <typename Values>
 void SetValues(Case* c, const Values& values) {
@@ -248,8 +256,7 @@ TEST(Diagnose, FindsTwoHiddenEffects) {
   Simulate(truth, dir + "/data.csv", 5);
   const Diagnosis d =
       Diagnose(FitConfig(Truth(), dir + "/data.csv"), DiagnoseOptions());
-  std::set<std::string> found;
-  for (const DiagnosisStep& s : d.steps) found.insert(s.effect);
+  const std::set<std::string> found = EffectIds(d.steps);
   EXPECT_TRUE(found.count("tunnel_stiffness"))
       << FormatDiagnosis(d, ChannelValues{0.01, 0.01, 0.01});
   EXPECT_TRUE(found.count("flow_angularity"))
@@ -276,8 +283,7 @@ TEST(Diagnose, DropsAnEffectTheOthersMakeRedundant) {
       Diagnose(FitConfig(Truth(), dir + "/data.csv"), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(VerdictToString(d.verdict), std::string("explained")) << text;
-  std::set<std::string> found;
-  for (const DiagnosisStep& s : d.steps) found.insert(s.effect);
+  const std::set<std::string> found = EffectIds(d.steps);
   EXPECT_EQ(found, (std::set<std::string>{"magnus", "nonlinear_damping"}))
       << text;
   for (const ParameterEstimate& e : d.final_parameters) {
@@ -449,6 +455,13 @@ Case ShortConfig(const std::vector<std::string>& files) {
   return c;
 }
 
+// The diagnosis, with the default options, of a suite record kept in
+// tests/data (`file`, under that directory) fitted from ShortConfig.
+Diagnosis DiagnoseRecord(const std::string& file) {
+  return Diagnose(ShortConfig({testing::SourcePath("tests/data/" + file)}),
+                  DiagnoseOptions());
+}
+
 // At one slow spin (90 deg of roll in the record) a body-fixed trim moment
 // and a roll-synchronous reading error leave the same signature: the
 // verdict says so, adds neither, and names what would separate them.
@@ -461,8 +474,7 @@ TEST(Diagnose, AmbiguityIsAVerdictAndTwoSpinRatesSeparate) {
   const std::string text = FormatDiagnosis(one, {0.01, 0.01, 0.01});
   EXPECT_EQ(VerdictToString(one.verdict), std::string("ambiguous")) << text;
   EXPECT_TRUE(one.steps.empty()) << text;
-  std::set<std::string> pair;
-  for (const CandidateFit& a : one.ambiguous) pair.insert(a.effect);
+  const std::set<std::string> pair = EffectIds(one.ambiguous);
   EXPECT_TRUE(pair.count("trim_moment")) << text;
   EXPECT_NE(one.separated_by.find("spin"), std::string::npos) << text;
   const nlohmann::json j =
@@ -819,8 +831,7 @@ TEST(Diagnose, FollowsTheOtherBranchOfATieThatLeavesTheRecordUnexplained) {
   const Diagnosis d = Diagnose(ShortConfig({data}), branches);
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(VerdictToString(d.verdict), std::string("explained")) << text;
-  std::set<std::string> added;
-  for (const DiagnosisStep& s : d.steps) added.insert(s.effect);
+  const std::set<std::string> added = EffectIds(d.steps);
   EXPECT_TRUE(added.count("magnus")) << text;
   EXPECT_FALSE(added.count("asymmetric_body")) << text;
   bool left = false;
@@ -867,8 +878,7 @@ TEST(Diagnose, AdoptsWhatATieLeavesUndisputed) {
   EXPECT_EQ(VerdictToString(d.verdict), std::string("ambiguous")) << text;
   ASSERT_EQ(d.steps.size(), 1u) << text;
   EXPECT_EQ(d.steps[0].effect, "magnus") << text;
-  std::set<std::string> tied;
-  for (const CandidateFit& a : d.ambiguous) tied.insert(a.effect);
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
   EXPECT_TRUE(tied.count("roll_interaction")) << text;
   ASSERT_EQ(d.alternatives.size(), 2u) << text;
   bool checked = false;
@@ -955,8 +965,7 @@ TEST(Diagnose, SlowRunsNeverNameOneOfTheRollLockedTwins) {
         });
     const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
     const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-    std::set<std::string> added;
-    for (const DiagnosisStep& s : d.steps) added.insert(s.effect);
+    const std::set<std::string> added = EffectIds(d.steps);
     EXPECT_FALSE(added.count("trim_moment")) << seed << "\n" << text;
     EXPECT_TRUE(added.count("nonlinear_damping")) << seed << "\n" << text;
     if (d.verdict == Verdict::kAmbiguous) {
@@ -993,8 +1002,7 @@ TEST(Diagnose, TakesTheOtherBranchOfATieWhenItEndsAmbiguous) {
   const Diagnosis d = Diagnose(c, branches);
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
-  std::set<std::string> tied;
-  for (const CandidateFit& a : d.ambiguous) tied.insert(a.effect);
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
   EXPECT_TRUE(tied.count("roll_interaction")) << text;
   EXPECT_FALSE(tied.count("trim_moment")) << text;
   ASSERT_EQ(d.steps.size(), 1u) << text;
@@ -1226,13 +1234,9 @@ TEST(Diagnose, ErrorBarsCoverAnEffectTheRecordCannotExclude) {
 // (the body asymmetry), the angularity with a roll reading error.
 TEST(Diagnose, TriesAJointSetBehindABetterContenderRefusedOtherwise) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
-  const Diagnosis d =
-      Diagnose(ShortConfig({testing::SourcePath(
-                   "tests/data/short_damping_magnus_angularity.csv")}),
-               DiagnoseOptions());
+  const Diagnosis d = DiagnoseRecord("short_damping_magnus_angularity.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  std::set<std::string> added;
-  for (const DiagnosisStep& s : d.steps) added.insert(s.effect);
+  const std::set<std::string> added = EffectIds(d.steps);
   EXPECT_FALSE(added.count("asymmetric_body")) << text;
   EXPECT_TRUE(added.count("magnus")) << text;
   ExpectTruthAddedOrTied(d, {"tunnel_damping", "magnus", "flow_angularity"});
@@ -1299,10 +1303,9 @@ TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
   const Diagnosis d = Diagnose(c, DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
-  std::set<std::string> added, tied, partial;
-  for (const DiagnosisStep& s : d.steps) added.insert(s.effect);
-  for (const CandidateFit& k : d.ambiguous) tied.insert(k.effect);
-  for (const DiagnosisStep& s : d.partial) partial.insert(s.effect);
+  const std::set<std::string> added = EffectIds(d.steps);
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  const std::set<std::string> partial = EffectIds(d.partial);
   EXPECT_EQ(added,
             std::set<std::string>({"nonlinear_damping", "asymmetric_body"}))
       << text;
@@ -1323,16 +1326,10 @@ TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
 // final error bars cover its values.
 TEST(Diagnose, AContenderBehindTheRivalsIsStillTriedBesideTheFinalModel) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
-  const Diagnosis d =
-      Diagnose(ShortConfig({testing::SourcePath(
-                   "tests/data/coning_damping_magnus_angularity.csv")}),
-               DiagnoseOptions());
+  const Diagnosis d = DiagnoseRecord("coning_damping_magnus_angularity.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  std::set<std::string> added, doubt;
-  for (const DiagnosisStep& s : d.steps) added.insert(s.effect);
-  for (const CandidateFit& k : d.not_excluded) doubt.insert(k.effect);
-  EXPECT_TRUE(added.count("tunnel_damping")) << text;
-  EXPECT_TRUE(doubt.count("magnus")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("tunnel_damping")) << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("magnus")) << text;
   ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
@@ -1348,14 +1345,9 @@ TEST(Diagnose, AContenderBehindTheRivalsIsStillTriedBesideTheFinalModel) {
 // bars cover it.
 TEST(Diagnose, AnEffectOnARidgeIsJudgedWithinItsErrors) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
-  const Diagnosis d =
-      Diagnose(ShortConfig({testing::SourcePath(
-                   "tests/data/coning_stiffness_damping_asymmetry.csv")}),
-               DiagnoseOptions());
+  const Diagnosis d = DiagnoseRecord("coning_stiffness_damping_asymmetry.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  std::set<std::string> doubt;
-  for (const CandidateFit& k : d.not_excluded) doubt.insert(k.effect);
-  EXPECT_TRUE(doubt.count("tunnel_stiffness")) << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("tunnel_stiffness")) << text;
   ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
