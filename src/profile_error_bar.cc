@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "fit3dof/input_error.h"
+#include "fit3dof/parameters.h"
 
 namespace fit3dof {
 namespace {
@@ -34,6 +35,17 @@ Case FrozenCase(const Case& c,
     // One segment (ProfileOf): its estimated noise levels, held.
     at.sigma = fit.segments[0].sigma_deg;
     at.sigma_auto = {{false, false, false}};
+  }
+  // A frozen Cm_bearing starts its refit back on the ridge (header): the
+  // saturated moment Cm_bearing x bearing_angle kept, not the angle. From
+  // the angle at the solution, Cm_bearing 15 errors off started a 3-s run's
+  // refit at a probable error of 300, and it spent its 50 iterations
+  // coming back.
+  const int angle = FindParameter(c.model, "bearing_angle");
+  const double old = at.parameters[position].value;
+  if (ParameterTable(c.model)[position].name == "Cm_bearing" && angle >= 0 &&
+      at.parameters[angle].free && old * value > 0.0) {
+    at.parameters[angle].value *= old / value;
   }
   at.parameters[position].value = value;
   at.parameters[position].free = false;
