@@ -1886,6 +1886,166 @@ ResidualCheck TakeJointSteps(const JointSet& joint,
   return check;
 }
 
+// The complete model `m` with `set` in `step`'s place: *c and *fit; the
+// terms each of `set` added in *added. False when it was not fitted.
+bool SetInPlace(const CompleteModel& m,
+                const DiagnosisStep& step,
+                const std::vector<const Effect*>& set,
+                const std::vector<TimeHistory>& data,
+                Case* c,
+                FitResult* fit,
+                std::vector<std::vector<std::string>>* added) {
+  *c = WithoutStep(CaseAtSolution(m.c, *m.fit), step);
+  added->assign(set.size(), {});
+  for (size_t j = 0; j < set.size(); ++j) {
+    if (!CandidateCase(*c, *set[j], c, &(*added)[j])) return false;
+  }
+  return FitFrom(
+      *c, *m.fit, data, "the effects not excluded for " + step.effect, fit);
+}
+
+// The members of `set` (their terms `added`) that the model `c`, fitted
+// as `fit`, needs: without each, the residuals leave the noise level or
+// BIC rises by min_bic_drop or more. An effect the record cannot exclude
+// may be one it cannot see at all (a roll torque on a coning run): it
+// rides along in a set without doing anything.
+std::vector<const Effect*> Needed(
+    const Case& c,
+    const FitResult& fit,
+    const std::vector<const Effect*>& set,
+    const std::vector<std::vector<std::string>>& added,
+    const std::vector<TimeHistory>& data,
+    const DiagnoseOptions& options) {
+  const int n = static_cast<int>(set.size());
+  std::vector<FitResult> without(n);
+  std::vector<char> fitted(n, false);  // written in parallel
+  ParallelFor(n, [&](int j) {
+    DiagnosisStep member;
+    member.effect = set[j]->id;
+    for (const std::string& name : added[j]) {
+      member.step_parameters.push_back(ParameterEstimate());
+      member.step_parameters.back().name = name;
+    }
+    fitted[j] = FitFrom(WithoutStep(CaseAtSolution(c, fit), member),
+                        fit,
+                        data,
+                        "the set without " + set[j]->id,
+                        &without[j]);
+  });
+  std::vector<const Effect*> needed;
+  for (int j = 0; j < n; ++j) {
+    if (!fitted[j] || !CheckResiduals(without[j], options).at_noise_level ||
+        !(Bic(without[j]) - Bic(fit) < options.min_bic_drop)) {
+      needed.push_back(set[j]);
+    }
+  }
+  return needed;
+}
+
+// A step of the complete model (the final one, or the search's last when
+// steps stayed partial) that two or more effects not excluded replace
+// together (Diagnosis::stood_in): without it and with them the model
+// reaches the noise, its BIC within ambiguity_bic of the complete model's,
+// its effects within their bounds, and each of them needed there (Needed).
+// One effect can stand in for two: on a 3-s run at 30 deg/s (a quarter
+// turn of roll) a body's own yaw damping, first at the first round by 16
+// in BIC, took the place of a tunnel damping and a Magnus moment, each of
+// which alone swapped for it was worse, and both of which were not
+// excluded beside it. Within ambiguity_bic the step is not claimed: it
+// joins a tie with them, and the final error bars cover the replacing
+// model's values. Returned (nothing changed) when they do better by
+// ambiguity_bic or more: the search took a wrong turn (DiagnoseFrom).
+std::string FindSetReplacements(const std::vector<Case>& models,
+                                const Case& current,
+                                const std::vector<TimeHistory>& data,
+                                const DiagnoseOptions& options,
+                                Diagnosis* d) {
+  if (d->not_excluded.size() < 2 || d->steps.empty()) return "";
+  const CompleteModel m = CompleteModels(*d, models, current).back();
+  if (!CheckResiduals(*m.fit, options).at_noise_level) return "";
+  std::vector<const Effect*> set;
+  for (const CandidateFit& k : d->not_excluded) {
+    set.push_back(FindEffect(k.effect));
+  }
+  const int n = static_cast<int>(d->steps.size());
+  std::vector<Case> cases(n);
+  std::vector<FitResult> fits(n);
+  std::vector<std::vector<std::vector<std::string>>> added(n);
+  std::vector<char> fitted(n, false);  // written in parallel
+  ParallelFor(n, [&](int i) {
+    fitted[i] =
+        SetInPlace(m, d->steps[i], set, data, &cases[i], &fits[i], &added[i]);
+  });
+  // Judged with `members` in step i's place.
+  auto rise_of = [&](int i, const std::vector<const Effect*>& members) {
+    if (!CheckResiduals(fits[i], options).at_noise_level) {
+      return std::numeric_limits<double>::infinity();
+    }
+    std::vector<const Effect*> effects = members;
+    for (const Effect* e : m.effects) {
+      if (e->id != d->steps[i].effect) effects.push_back(e);
+    }
+    const double rise = Bic(fits[i]) - Bic(*m.fit);
+    const std::string why = ImplausibleAmong(effects, cases[i], fits[i]);
+    VLOG(1) << "the effects not excluded for " << d->steps[i].effect << ": BIC "
+            << (rise >= 0.0 ? "+" : "") << rise << " " << why;
+    return why.empty() ? rise : std::numeric_limits<double>::infinity();
+  };
+  int best = -1;
+  double least = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    const double rise =
+        fitted[i] ? rise_of(i, set) : std::numeric_limits<double>::infinity();
+    if (rise < least) {
+      least = rise;
+      best = i;
+    }
+  }
+  if (best < 0 || !(least < options.ambiguity_bic)) return "";
+  // Only the members the replacement needs; one alone is a swap's
+  // (Unresolved), not a set's.
+  const std::vector<const Effect*> needed =
+      Needed(cases[best], fits[best], set, added[best], data, options);
+  if (needed.size() < 2) return "";
+  if (needed.size() < set.size()) {
+    set = needed;
+    if (!SetInPlace(m,
+                    d->steps[best],
+                    set,
+                    data,
+                    &cases[best],
+                    &fits[best],
+                    &added[best])) {
+      return "";
+    }
+    least = rise_of(best, set);
+    if (!(least < options.ambiguity_bic)) return "";
+  }
+  // Better by ambiguity_bic or more: the search took the wrong turn, and
+  // DiagnoseFrom searches again without the step's effect.
+  if (!(least > -options.ambiguity_bic)) return d->steps[best].effect;
+  Reported(cases[best], data, &fits[best]);
+  WidenErrorBars(
+      {&fits[best].parameters},
+      {},
+      "the effects not excluded in " + d->steps[best].effect + "'s place",
+      &d->fits[d->final_fit],
+      &d->model_standard_errors);
+  std::vector<CandidateFit> tie = {AsContender(d->steps[best])};
+  std::vector<std::string> ids;
+  for (const CandidateFit& k : d->not_excluded) {
+    if (std::find(set.begin(), set.end(), FindEffect(k.effect)) != set.end()) {
+      tie.push_back(k);
+      ids.push_back(k.effect);
+    }
+  }
+  (d->ambiguous.empty() ? d->ambiguous : d->later_ties.emplace_back()) = tie;
+  d->stood_in.push_back(d->steps[best]);
+  d->stood_in_for.push_back(ids);
+  d->steps.erase(d->steps.begin() + best);
+  return "";
+}
+
 // The forward search (diagnose.h) from `nominal`, the fit of `c`, with
 // `options`' catalog; *tied_first
 // gets the effect it followed at a tie of two catalog effects (empty if
@@ -1893,7 +2053,8 @@ ResidualCheck TakeJointSteps(const JointSet& joint,
 Diagnosis Search(const Case& c,
                  const FitResult& nominal,
                  const DiagnoseOptions& options,
-                 std::string* tied_first) {
+                 std::string* tied_first,
+                 std::string* outdone) {
   tied_first->clear();
   Diagnosis d;
   // The search's fits skip the profiles (fit.h, CheckRidges); the fits it
@@ -1999,6 +2160,7 @@ Diagnosis Search(const Case& c,
   }
   WidenForTie(&d);
   FindNotExcluded(contended, models, current, data, options, &d);
+  *outdone = FindSetReplacements(models, current, data, options, &d);
   WidenForNotExcluded(&d);
   if (!d.ambiguous.empty()) {
     d.separated_by = SeparatedBy(d.ambiguous, quiet, d.FinalFit(), data);
@@ -2074,14 +2236,63 @@ Diagnosis CatalogAlone(const Case& c,
   return other;
 }
 
-// Search, and when a probe outdid the catalog, CatalogAlone.
+// Search, and when a probe outdid the catalog, CatalogAlone (whose
+// answer has no *outdone).
 Diagnosis Searched(const Case& c,
                    const FitResult& nominal,
                    const DiagnoseOptions& options,
-                   std::string* tied_first) {
-  Diagnosis d = Search(c, nominal, options, tied_first);
+                   std::string* tied_first,
+                   std::string* outdone) {
+  Diagnosis d = Search(c, nominal, options, tied_first, outdone);
   if (d.outside_catalog.effect.empty()) return d;
+  outdone->clear();
   return CatalogAlone(c, nominal, options, std::move(d));
+}
+
+// `options` without the catalog effect `id`.
+DiagnoseOptions Without(const DiagnoseOptions& options, const std::string& id) {
+  DiagnoseOptions without = options;
+  without.effects.clear();
+  for (const Effect& e : EffectCatalog()) {
+    if (Wanted(options, e) && e.id != id) without.effects.push_back(e.id);
+  }
+  return without;
+}
+
+// The BIC of a diagnosis's complete model: the final one, or the search's
+// last (what an open tie leaves out of the final model).
+double CompleteBic(const Diagnosis& d) {
+  return std::min(Bic(d.FinalFit()), Bic(d.fits[d.partial_fit]));
+}
+
+// A step that the effects not excluded beat together by ambiguity_bic or
+// more (FindSetReplacements, `outdone`) was the search's wrong turn: the
+// search without its effect is the answer when it explains the record
+// with a lower BIC.
+bool ReplacedStep(const Case& c,
+                  const FitResult& nominal,
+                  const DiagnoseOptions& options,
+                  const std::string& outdone,
+                  Diagnosis* d) {
+  std::string first, unused;
+  Diagnosis other =
+      Searched(c, nominal, Without(options, outdone), &first, &unused);
+  const double margin = CompleteBic(*d) - CompleteBic(other);
+  if (!ExplainsRecord(other) || !(margin > 0.0)) return false;
+  for (const DiagnosisStep& s : d->steps) {
+    if (s.effect != outdone) continue;
+    CandidateFit step = AsContender(s);
+    step.rejected =
+        "stood in for effects that together explain the record "
+        "better (BIC " +
+        FormatNumber("%.1f", margin) + " lower without it)";
+    other.rejected.push_back(step);
+  }
+  other.verdict_text += "; " + Describe(outdone) +
+                        ", taken first, stood in for effects that together "
+                        "explain the record better";
+  *d = std::move(other);
+  return true;
 }
 
 // A tie followed down the better branch that leaves the record unexplained
@@ -2097,16 +2308,15 @@ Diagnosis Searched(const Case& c,
 Diagnosis DiagnoseFrom(const Case& c,
                        const FitResult& nominal,
                        const DiagnoseOptions& options) {
-  std::string first;
-  Diagnosis d = Searched(c, nominal, options, &first);
-  if (d.verdict != Verdict::kNotExplained || first.empty()) return d;
-  DiagnoseOptions without = options;
-  without.effects.clear();
-  for (const Effect& e : EffectCatalog()) {
-    if (Wanted(options, e) && e.id != first) without.effects.push_back(e.id);
+  std::string first, outdone;
+  Diagnosis d = Searched(c, nominal, options, &first, &outdone);
+  if (!outdone.empty() && ReplacedStep(c, nominal, options, outdone, &d)) {
+    return d;
   }
-  std::string unused;
-  Diagnosis other = Searched(c, nominal, without, &unused);
+  if (d.verdict != Verdict::kNotExplained || first.empty()) return d;
+  std::string unused, none;
+  Diagnosis other =
+      Searched(c, nominal, Without(options, first), &unused, &none);
   if (!ExplainsRecord(other)) return d;
   CandidateFit followed = FollowedFirst(d, first);
   followed.rejected =

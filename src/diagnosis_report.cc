@@ -156,6 +156,11 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
                                    {"parameters", Estimates(a.parameters)}});
   }
   out["tie_stand_in"] = d.stand_in.empty() ? json(nullptr) : json(d.stand_in);
+  out["stood_in"] = json::array();
+  for (size_t i = 0; i < d.stood_in.size(); ++i) {
+    out["stood_in"].push_back(
+        {{"effect", d.stood_in[i].effect}, {"for", d.stood_in_for[i]}});
+  }
   out["not_excluded"] = Contenders(d.not_excluded);
   if (!d.residual_description.empty()) {
     out["residual_description"] = d.residual_description;
@@ -225,6 +230,15 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
     out += "  the final model holds " + d.stand_in +
            " in the tie's place (the effects added need one of the tied "
            "effects); its error bars cover each complete model\n";
+  }
+  for (size_t i = 0; i < d.stood_in.size(); ++i) {
+    std::string set;
+    for (const std::string& id : d.stood_in_for[i]) {
+      set += (set.empty() ? "" : " + ") + id;
+    }
+    out += "  the final model holds " + d.stood_in[i].effect +
+           " in the place of " + set +
+           " together (not claimed); its error bars cover that model\n";
   }
   for (const AlternativeModel& a : d.alternatives) {
     out += "  complete model with " + a.effect + ": probable error " +

@@ -46,6 +46,22 @@ std::string ProbableErrors(const std::vector<AlternativeModel>& models) {
   return Joined(values, " and ");
 }
 
+// "; the final model holds A in the place of B and C together" for each
+// step that a set of effects replaces alike (Diagnosis::stood_in).
+std::string StoodIn(const Diagnosis& d) {
+  std::string text;
+  for (size_t i = 0; i < d.stood_in.size(); ++i) {
+    std::vector<std::string> names;
+    for (const std::string& id : d.stood_in_for[i]) {
+      names.push_back(Describe(id));
+    }
+    text += "; the final model holds " + d.stood_in[i].effect +
+            " in the place of " + Joined(names, " and ") +
+            " together, which explain the record alike (not claimed)";
+  }
+  return text;
+}
+
 // The verdict text of an open tie (d->ambiguous): the tied effects, what
 // separates them, the later ties and what was added beside them.
 std::string AmbiguousText(const Diagnosis& d) {
@@ -81,6 +97,7 @@ std::string AmbiguousText(const Diagnosis& d) {
                              : "; the final model holds " + d.stand_in +
                                    " in the tie's place (the effects added "
                                    "need one of them)") +
+         StoodIn(d) +
          (d.partial.size() > 1
               ? "; with the first in the model, " +
                     Described({d.partial.begin() + 1, d.partial.end()}) +

@@ -357,6 +357,16 @@ struct Diagnosis {
   // It is not among the steps (not claimed); its terms are in the final
   // model, whose error bars cover every alternative's values.
   std::string stand_in;
+  // Steps of the final model that effects the record cannot exclude
+  // (not_excluded) replace together: one effect against several, which
+  // `ambiguous` (one of each group) cannot hold. Each step is taken out of
+  // `steps` (not claimed) into `stood_in`, its effect joins a tie
+  // (ambiguous, or later_ties) with those effects, and the final model
+  // keeps its terms, its error bars covering the replacing model's values
+  // (diagnose.cc, FindSetReplacements). A body's own yaw damping added on
+  // a 3-s run stood in for a tunnel damping and a Magnus moment together.
+  std::vector<DiagnosisStep> stood_in;
+  std::vector<std::vector<std::string>> stood_in_for;  // the replacing sets
   // When the residuals stay structured: what they show, and the contenders
   // of the last round, each with why it did not earn its place.
   std::string residual_description;
