@@ -866,7 +866,7 @@ Case FinalCase(const Case& user, const Case& current, const FitResult& fit) {
 void FinalValues(Diagnosis* d) {
   d->final_parameters = d->FinalFit().parameters;
   for (std::vector<DiagnosisStep>* steps :
-       {&d->steps, &d->partial, &d->pruned}) {
+       {&d->steps, &d->partial, &d->pruned, &d->stood_in}) {
     const FitResult& fit =
         steps == &d->partial ? d->fits[d->partial_fit] : d->FinalFit();
     for (DiagnosisStep& step : *steps) {

@@ -4,6 +4,7 @@
 // what the search found (diagnose.cc) told as `ambiguous`, `explained`,
 // `noise_level` or `not_explained`, with the effects' descriptions.
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -23,8 +24,11 @@ std::string Joined(const std::vector<std::string>& items, const char* last) {
   return text;
 }
 
-// "A, B or C" for the tie's effects, and "x, y and z", their BIC drops.
-void TieWords(const std::vector<CandidateFit>& tie,
+// "A, B or C" for the tie's effects, and "x, y and z", their BIC drops; for
+// a step that a set replaces alike (Diagnosis::stood_in), "A, or B and C
+// together".
+void TieWords(const Diagnosis& d,
+              const std::vector<CandidateFit>& tie,
               std::string* effects,
               std::string* drops) {
   std::vector<std::string> names, bic;
@@ -33,8 +37,17 @@ void TieWords(const std::vector<CandidateFit>& tie,
     bic.push_back(k.effect == kDriftInTime ? "not fitted"
                                            : FormatNumber("%.1f", k.bic_drop));
   }
-  *effects = Joined(names, " or ");
   *drops = Joined(bic, " and ");
+  const bool set = std::any_of(
+      d.stood_in.begin(), d.stood_in.end(), [&](const DiagnosisStep& s) {
+        return s.effect == tie[0].effect;
+      });
+  if (!set) {
+    *effects = Joined(names, " or ");
+    return;
+  }
+  *effects = names[0] + ", or " +
+             Joined({names.begin() + 1, names.end()}, " and ") + " together";
 }
 
 // "a, b and c": the alternatives' probable errors.
@@ -56,8 +69,8 @@ std::string StoodIn(const Diagnosis& d) {
       names.push_back(Describe(id));
     }
     text += "; the final model holds " + d.stood_in[i].effect +
-            " in the place of " + Joined(names, " and ") +
-            " together, which explain the record alike (not claimed)";
+            "'s terms in the place of " + Joined(names, " and ") +
+            " (not claimed)";
   }
   return text;
 }
@@ -69,11 +82,11 @@ std::string AmbiguousText(const Diagnosis& d) {
   const CandidateFit& b = d.ambiguous[1];
   const size_t n = d.ambiguous.size();
   std::string effects, drops;
-  TieWords(d.ambiguous, &effects, &drops);
+  TieWords(d, d.ambiguous, &effects, &drops);
   std::string later;
   for (const std::vector<CandidateFit>& tie : d.later_ties) {
     std::string words, bic;
-    TieWords(tie, &words, &bic);
+    TieWords(d, tie, &words, &bic);
     later += "; also ambiguous: " + words + " (BIC lower by " + bic + ")";
   }
   return "ambiguous: " + effects +
