@@ -20,6 +20,7 @@
 #include "fit3dof/model_conversion.h"
 #include "fit3dof/parameters.h"
 #include "fit3dof/thread_budget.h"
+#include "fit_memo.h"
 #include "format.h"
 
 namespace fit3dof {
@@ -75,7 +76,8 @@ bool Polish(const Case& current,
             const std::vector<TimeHistory>& data,
             FitResult* fit) {
   try {
-    const FitResult polished = FitSamples(FromSolution(current, *fit), data);
+    const FitResult polished =
+        MemoizedFitSamples(FromSolution(current, *fit), data);
     if (!(Bic(polished) < Bic(*fit) - 1.0)) return false;
     *fit = polished;
     return true;
@@ -155,7 +157,7 @@ bool FitFrom(const Case& c,
   try {
     Case start = c;
     RefitFromSolution(&start, from.probable_error);
-    *fit = FitSamples(start, data);
+    *fit = MemoizedFitSamples(start, data);
     return true;
   } catch (const std::exception& e) {
     LOG(WARNING) << from.name << ": refit " << what << " failed: " << e.what();
@@ -292,7 +294,7 @@ class OutOfSample {
  private:
   double Rss(const Case& c) const {
     try {
-      const FitResult trained = FitSamples(c, held_out_.train);
+      const FitResult trained = MemoizedFitSamples(c, held_out_.train);
       return PredictionRss(c, trained, data_, held_out_, weights_);
     } catch (const std::exception&) {
       return std::numeric_limits<double>::infinity();
