@@ -1,8 +1,8 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// What the diagnosis loop (diagnose.cc) is built from: the candidate case
-// of a catalog effect (effect_catalog.cc), its score test (score_test.cc)
-// and the verdict's words (diagnosis_verdict.cc).
+// What the diagnosis loop (diagnose.cc, diagnose_search.h) is built from:
+// the candidate case of a catalog effect (effect_catalog.cc), its score
+// test (score_test.cc) and the verdict's words (diagnosis_verdict.cc).
 
 #ifndef FIT3DOF_SRC_DIAGNOSE_INTERNAL_H_
 #define FIT3DOF_SRC_DIAGNOSE_INTERNAL_H_

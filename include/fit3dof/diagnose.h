@@ -363,7 +363,7 @@ struct Diagnosis {
   // `steps` (not claimed) into `stood_in`, its effect joins a tie
   // (ambiguous, or later_ties) with those effects, and the final model
   // keeps its terms, its error bars covering the replacing model's values
-  // (diagnose.cc, FindSetReplacements). A body's own yaw damping added on
+  // (diagnose_error_bars.cc, FindSetReplacements). A body's own yaw damping added on
   // a 3-s run stood in for a tunnel damping and a Magnus moment together.
   std::vector<DiagnosisStep> stood_in;
   std::vector<std::vector<std::string>> stood_in_for;  // the replacing sets
@@ -395,7 +395,7 @@ struct Diagnosis {
   size_t partial_fit = 0;
   // The parameters of each complete model that kept a tie open (a rival
   // swapped in for a tied effect, the other effects in): the final model's
-  // error bars cover their values too (diagnose.cc, WidenForTie).
+  // error bars cover their values too (diagnose_error_bars.cc, WidenForTie).
   std::vector<std::vector<ParameterEstimate>> tie_models;
   // The contenders of the search's rounds that the record cannot exclude
   // beside a complete model (the final one, or the last of the search when
@@ -403,8 +403,8 @@ struct Diagnosis {
   // ambiguity_bic (bic_drop is minus the rise), the model's effects stay
   // within their bounds and its own within two of its standard errors of
   // them. Not added; the final model's error bars
-  // cover their models' values too (not_excluded_models, diagnose.cc
-  // WidenForNotExcluded).
+  // cover their models' values too (not_excluded_models,
+  // diagnose_error_bars.cc WidenForNotExcluded).
   std::vector<CandidateFit> not_excluded;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
   std::vector<double> not_excluded_weights;  // each model's BIC weight

@@ -1,0 +1,404 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// The final model's error bars (diagnose.h): widened to cover each
+// complete model of a tie (WidenForTie), the effects the record can
+// neither use nor exclude beside it (FindNotExcluded, WidenForNotExcluded),
+// and a set of those that could replace a step (FindSetReplacements).
+
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "diagnose_search.h"
+#include "fit3dof/thread_budget.h"
+#include "format.h"
+
+namespace fit3dof {
+
+namespace {
+
+// Each free estimate of `final_fit` widened to cover `models`, each with
+// its weight against the final model (`weights`, or 1 for each when
+// empty), with a line in its pipeline naming them (`by`) when one grew;
+// each widened estimate's error before any widening goes into
+// *model_errors (a second widening keeps the first's).
+// For a model m of weight w the error about the final value is
+//
+//   sqrt((1 - w) error^2 + w (max(error, error_m)^2 + (value_m - value)^2)),
+//
+// Burnham and Anderson's unconditional variance of two models; the
+// largest over the models is taken. A tie's models weigh as much as the
+// final one (w = 1, WidenForTie).
+void WidenErrorBars(
+    const std::vector<const std::vector<ParameterEstimate>*>& models,
+    const std::vector<double>& weights,
+    const std::string& by,
+    FitResult* final_fit,
+    std::map<std::string, double>* model_errors) {
+  std::string widest;
+  double widest_ratio = 1.0;
+  for (ParameterEstimate& e : final_fit->parameters) {
+    if (!e.free || !e.segment.empty() || !(e.standard_error > 0.0)) continue;
+    const double error = e.standard_error;
+    double widened = error;
+    for (size_t i = 0; i < models.size(); ++i) {
+      const ParameterEstimate* other = SharedEstimate(*models[i], e.name);
+      if (other == nullptr || !other->free) continue;
+      const double w = weights.empty() ? 1.0 : weights[i];
+      const double own = std::isnan(other->standard_error)
+                             ? error
+                             : std::max(error, other->standard_error);
+      const double shift = other->value - e.value;
+      widened = std::max(widened,
+                         std::sqrt((1.0 - w) * error * error +
+                                   w * (own * own + shift * shift)));
+    }
+    if (widened / error > widest_ratio) {
+      widest_ratio = widened / error;
+      widest = e.name;
+    }
+    if (widened > error) model_errors->emplace(e.name, error);
+    e.rms_error *= widened / error;
+    e.standard_error = widened;
+  }
+  if (!widest.empty()) {
+    final_fit->pipeline.push_back("error bars widened by " + by +
+                                  " (the largest shift: " + widest + ", x" +
+                                  FormatNumber("%.3g", widest_ratio) + ")");
+  }
+}
+
+// A complete model of the diagnosis, its fit and its effects.
+struct CompleteModel {
+  Case c;
+  const FitResult* fit;
+  std::vector<const Effect*> effects;
+};
+
+// The final model and, when steps stayed partial, the last model of the
+// search (which holds them).
+std::vector<CompleteModel> CompleteModels(const Diagnosis& d,
+                                          const std::vector<Case>& models,
+                                          const Case& current) {
+  std::vector<CompleteModel> complete = {{current, &d.FinalFit(), {}}};
+  for (const DiagnosisStep& s : d.steps) {
+    complete[0].effects.push_back(FindEffect(s.effect));
+  }
+  if (!d.partial.empty() && d.partial_fit != d.final_fit) {
+    complete.push_back({models[d.partial_fit], &d.fits[d.partial_fit], {}});
+    for (const auto* steps : {&d.steps, &d.partial}) {
+      for (const DiagnosisStep& s : *steps) {
+        complete.back().effects.push_back(FindEffect(s.effect));
+      }
+    }
+  }
+  return complete;
+}
+
+// Whether effect `id` is in a tie the diagnosis leaves open.
+bool InTie(const Diagnosis& d, const std::string& id) {
+  auto in = [&](const std::vector<CandidateFit>& tie) {
+    return std::any_of(tie.begin(), tie.end(), [&](const CandidateFit& k) {
+      return k.effect == id;
+    });
+  };
+  return in(d.ambiguous) ||
+         std::any_of(d.later_ties.begin(), d.later_ties.end(), in);
+}
+
+// Why `effect` (its parameters `added`), fitted beside the effects
+// `model` into `fit`, lies outside the bounds (empty if it does not):
+// the model's effects as fitted, `effect` within two of its standard
+// errors. Along a ridge the point fit lands anywhere the record allows: a
+// tunnel stiffness beside a body asymmetry on one coning run lowered BIC
+// by 6.7 with t1 = 0.138 +- 0.051, past its bound (0.115) by half an
+// error, and Cm_alpha at -0.368 +- 0.051 (truth -0.23), where the final
+// model said -0.2299 +- 2e-5.
+std::string ImplausibleBeside(const std::vector<const Effect*>& model,
+                              const Effect& effect,
+                              const std::vector<std::string>& added,
+                              const Case& c,
+                              const FitResult& fit) {
+  const std::string why = ImplausibleAmong(model, c, fit);
+  if (!why.empty()) return why;
+  return Implausible(effect, c, Shrunk(fit, added, 2.0));
+}
+
+// The complete model `m` with `set` in `step`'s place: *c and *fit; the
+// terms each of `set` added in *added. False when it was not fitted.
+bool SetInPlace(const CompleteModel& m,
+                const DiagnosisStep& step,
+                const std::vector<const Effect*>& set,
+                const std::vector<TimeHistory>& data,
+                Case* c,
+                FitResult* fit,
+                std::vector<std::vector<std::string>>* added) {
+  *c = WithoutStep(CaseAtSolution(m.c, *m.fit), step);
+  added->assign(set.size(), {});
+  for (size_t j = 0; j < set.size(); ++j) {
+    if (!CandidateCase(*c, *set[j], c, &(*added)[j])) return false;
+  }
+  return FitFrom(
+      *c, *m.fit, data, "the effects not excluded for " + step.effect, fit);
+}
+
+// The members of `set` (their terms `added`) that the model `c`, fitted
+// as `fit`, needs: without each, the residuals leave the noise level or
+// BIC rises by min_bic_drop or more. An effect the record cannot exclude
+// may be one it cannot see at all (a roll torque on a coning run): it
+// rides along in a set without doing anything.
+std::vector<const Effect*> Needed(
+    const Case& c,
+    const FitResult& fit,
+    const std::vector<const Effect*>& set,
+    const std::vector<std::vector<std::string>>& added,
+    const std::vector<TimeHistory>& data,
+    const DiagnoseOptions& options) {
+  const int n = static_cast<int>(set.size());
+  std::vector<FitResult> without(n);
+  std::vector<char> fitted(n, false);  // written in parallel
+  ParallelFor(n, [&](int j) {
+    DiagnosisStep member;
+    member.effect = set[j]->id;
+    for (const std::string& name : added[j]) {
+      member.step_parameters.push_back(ParameterEstimate());
+      member.step_parameters.back().name = name;
+    }
+    fitted[j] = FitFrom(WithoutStep(CaseAtSolution(c, fit), member),
+                        fit,
+                        data,
+                        "the set without " + set[j]->id,
+                        &without[j]);
+  });
+  std::vector<const Effect*> needed;
+  for (int j = 0; j < n; ++j) {
+    if (!fitted[j] || !CheckResiduals(without[j], options).at_noise_level ||
+        !(Bic(without[j]) - Bic(fit) < options.min_bic_drop)) {
+      needed.push_back(set[j]);
+    }
+  }
+  return needed;
+}
+
+}  // namespace
+
+FitResult Shrunk(FitResult fit,
+                 const std::vector<std::string>& names,
+                 double k) {
+  for (ParameterEstimate& e : fit.parameters) {
+    if (!e.segment.empty() || !(e.standard_error > 0.0) ||
+        std::find(names.begin(), names.end(), e.name) == names.end()) {
+      continue;
+    }
+    const double shrink = std::min(std::abs(e.value), k * e.standard_error);
+    e.value -= std::copysign(shrink, e.value);
+  }
+  return fit;
+}
+
+void WidenForTie(Diagnosis* d) {
+  if (d->ambiguous.empty()) return;
+  std::vector<const std::vector<ParameterEstimate>*> models;
+  auto add_fit = [&](size_t k) {
+    if (k != d->final_fit) models.push_back(&d->fits[k].parameters);
+  };
+  for (const AlternativeModel& a : d->alternatives) {
+    if (a.fit >= 0) add_fit(a.fit);
+  }
+  if (!d->partial.empty()) add_fit(d->partial_fit);
+  for (const auto& m : d->tie_models) models.push_back(&m);
+  WidenErrorBars(models,
+                 {},
+                 "the tie's complete models",
+                 &d->fits[d->final_fit],
+                 &d->model_standard_errors);
+}
+
+void FindNotExcluded(const std::vector<const Effect*>& contended,
+                     const std::vector<Case>& models,
+                     const Case& current,
+                     const std::vector<TimeHistory>& data,
+                     const DiagnoseOptions& options,
+                     Diagnosis* d) {
+  // A record left not explained keeps the nominal fit as its final model,
+  // and what might have absorbed part of its unknown structure says
+  // nothing about that fit's errors (Conclude's rule).
+  if (d->ambiguous.empty() && !d->final.at_noise_level) return;
+  const std::vector<CompleteModel> complete =
+      CompleteModels(*d, models, current);
+  // A tied effect's models are the tie's (WidenForTie).
+  std::vector<const Effect*> effects;
+  for (const Effect* e : contended) {
+    if (!InTie(*d, e->id)) effects.push_back(e);
+  }
+  struct Beside {
+    const CompleteModel* model;
+    const Effect* effect;
+    Case c;
+    std::vector<std::string> added;
+    FitResult fit;
+  };
+  std::vector<Beside> trials;
+  for (const CompleteModel& m : complete) {
+    for (const Effect* e : effects) {
+      if (std::find(m.effects.begin(), m.effects.end(), e) == m.effects.end()) {
+        trials.push_back({&m, e, Case(), {}, FitResult()});
+      }
+    }
+  }
+  std::vector<char> fitted(trials.size(), false);  // written in parallel
+  ParallelFor(static_cast<int>(trials.size()), [&](int i) {
+    Beside& t = trials[i];
+    fitted[i] = CandidateCase(CaseAtSolution(t.model->c, *t.model->fit),
+                              *t.effect,
+                              &t.c,
+                              &t.added) &&
+                FitFrom(t.c,
+                        *t.model->fit,
+                        data,
+                        "with " + t.effect->id + " beside",
+                        &t.fit);
+  });
+  for (size_t i = 0; i < trials.size(); ++i) {
+    const Beside& t = trials[i];
+    if (!fitted[i]) continue;
+    const double rise = Bic(t.fit) - Bic(*t.model->fit);
+    const std::string implausible =
+        ImplausibleBeside(t.model->effects, *t.effect, t.added, t.c, t.fit);
+    VLOG(1) << t.effect->id << " beside the complete model: BIC "
+            << (rise >= 0.0 ? "+" : "") << rise << " " << implausible;
+    if (!(rise < options.ambiguity_bic) || !implausible.empty()) continue;
+    d->not_excluded_models.push_back(t.fit.parameters);
+    // Its BIC weight against the model without it.
+    d->not_excluded_weights.push_back(1.0 / (1.0 + std::exp(0.5 * rise)));
+    // Each effect once: beside the final model when it is not excluded
+    // there.
+    if (std::any_of(
+            d->not_excluded.begin(),
+            d->not_excluded.end(),
+            [&](const CandidateFit& k) { return k.effect == t.effect->id; })) {
+      continue;
+    }
+    CandidateFit k;
+    k.effect = t.effect->id;
+    k.parameters = Own(t.fit, t.added);
+    k.bic_drop = -rise;
+    k.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+    k.rejected = "not needed beside the " +
+                 std::string(t.model == &complete[0] ? "final" : "search's") +
+                 " model, nor excluded (BIC " + FormatNumber("%+.1f", rise) +
+                 ")";
+    d->not_excluded.push_back(std::move(k));
+  }
+}
+
+void WidenForNotExcluded(Diagnosis* d) {
+  std::vector<const std::vector<ParameterEstimate>*> models;
+  for (const auto& m : d->not_excluded_models) models.push_back(&m);
+  std::string which;  // not_excluded holds each effect once
+  for (const CandidateFit& k : d->not_excluded) {
+    which += (which.empty() ? "" : ", ") + k.effect;
+  }
+  WidenErrorBars(models,
+                 d->not_excluded_weights,
+                 "effects the record cannot exclude beside it (" + which + ")",
+                 &d->fits[d->final_fit],
+                 &d->model_standard_errors);
+}
+
+std::string FindSetReplacements(const std::vector<Case>& models,
+                                const Case& current,
+                                const std::vector<TimeHistory>& data,
+                                const DiagnoseOptions& options,
+                                Diagnosis* d) {
+  if (d->not_excluded.size() < 2 || d->steps.empty()) return "";
+  const CompleteModel m = CompleteModels(*d, models, current).back();
+  if (!CheckResiduals(*m.fit, options).at_noise_level) return "";
+  std::vector<const Effect*> set;
+  for (const CandidateFit& k : d->not_excluded) {
+    set.push_back(FindEffect(k.effect));
+  }
+  const int n = static_cast<int>(d->steps.size());
+  std::vector<Case> cases(n);
+  std::vector<FitResult> fits(n);
+  std::vector<std::vector<std::vector<std::string>>> added(n);
+  std::vector<char> fitted(n, false);  // written in parallel
+  ParallelFor(n, [&](int i) {
+    fitted[i] =
+        SetInPlace(m, d->steps[i], set, data, &cases[i], &fits[i], &added[i]);
+  });
+  // Judged with `members` in step i's place.
+  auto rise_of = [&](int i, const std::vector<const Effect*>& members) {
+    if (!CheckResiduals(fits[i], options).at_noise_level) {
+      return std::numeric_limits<double>::infinity();
+    }
+    std::vector<const Effect*> effects = members;
+    for (const Effect* e : m.effects) {
+      if (e->id != d->steps[i].effect) effects.push_back(e);
+    }
+    const double rise = Bic(fits[i]) - Bic(*m.fit);
+    const std::string why = ImplausibleAmong(effects, cases[i], fits[i]);
+    VLOG(1) << "the effects not excluded for " << d->steps[i].effect << ": BIC "
+            << (rise >= 0.0 ? "+" : "") << rise << " " << why;
+    return why.empty() ? rise : std::numeric_limits<double>::infinity();
+  };
+  int best = -1;
+  double least = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    const double rise =
+        fitted[i] ? rise_of(i, set) : std::numeric_limits<double>::infinity();
+    if (rise < least) {
+      least = rise;
+      best = i;
+    }
+  }
+  if (best < 0 || !(least < options.ambiguity_bic)) return "";
+  // Only the members the replacement needs; one alone is a swap's
+  // (Unresolved), not a set's.
+  const std::vector<const Effect*> needed =
+      Needed(cases[best], fits[best], set, added[best], data, options);
+  if (needed.size() < 2) return "";
+  if (needed.size() < set.size()) {
+    set = needed;
+    if (!SetInPlace(m,
+                    d->steps[best],
+                    set,
+                    data,
+                    &cases[best],
+                    &fits[best],
+                    &added[best])) {
+      return "";
+    }
+    least = rise_of(best, set);
+    if (!(least < options.ambiguity_bic)) return "";
+  }
+  // Better by ambiguity_bic or more: the search took the wrong turn, and
+  // DiagnoseFrom searches again without the step's effect.
+  if (!(least > -options.ambiguity_bic)) return d->steps[best].effect;
+  Reported(cases[best], data, &fits[best]);
+  WidenErrorBars(
+      {&fits[best].parameters},
+      {},
+      "the effects not excluded in " + d->steps[best].effect + "'s place",
+      &d->fits[d->final_fit],
+      &d->model_standard_errors);
+  std::vector<CandidateFit> tie = {AsContender(d->steps[best])};
+  std::vector<std::string> ids;
+  for (const CandidateFit& k : d->not_excluded) {
+    if (std::find(set.begin(), set.end(), FindEffect(k.effect)) != set.end()) {
+      tie.push_back(k);
+      ids.push_back(k.effect);
+    }
+  }
+  (d->ambiguous.empty() ? d->ambiguous : d->later_ties.emplace_back()) = tie;
+  d->stood_in.push_back(d->steps[best]);
+  d->stood_in_for.push_back(ids);
+  d->steps.erase(d->steps.begin() + best);
+  return "";
+}
+
+}  // namespace fit3dof

@@ -1,0 +1,496 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// One round of the diagnosis search (diagnose.h): every catalog effect
+// scored at the solution, the best refitted in full (Contenders), each
+// judged on its bounds, its drag on the coefficients and its prediction of
+// held-out samples (Earned), effects that earn their place only together
+// (Jointly), and the probes outside the catalog weighed against them
+// (WeighProbes).
+
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "diagnose_search.h"
+#include "fit3dof/thread_budget.h"
+#include "format.h"
+
+namespace fit3dof {
+
+namespace {
+
+// Each of *candidates scored against `data` (score_test.cc; in parallel,
+// within the process's thread budget, thread_budget.h), largest score
+// first.
+void RankByScore(const std::vector<TimeHistory>& data,
+                 std::vector<Candidate>* candidates) {
+  ParallelFor(static_cast<int>(candidates->size()), [&](int i) {
+    Candidate& k = (*candidates)[i];
+    k.score = Score(k.c, k.added, k.effect->id, data);
+  });
+  std::sort(candidates->begin(),
+            candidates->end(),
+            [](const Candidate& a, const Candidate& b) {
+              return a.score.score > b.score.score;
+            });
+}
+
+// Candidate k refitted in full from the solution `fit` into *c; false
+// when the fit fails.
+bool Refit(const Candidate& k,
+           const FitResult& fit,
+           const std::vector<TimeHistory>& data,
+           Contender* c) {
+  c->candidate = &k;
+  if (!FitFrom(k.c, fit, data, "with " + k.effect->id, &c->fit)) return false;
+  c->bic = Bic(c->fit);
+  c->record.effect = k.effect->id;
+  c->record.parameters = Own(c->fit, k.added);
+  c->record.bic_drop = Bic(fit) - c->bic;
+  c->record.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+  return true;
+}
+
+// The probes (Probes) fitted from the solution `fit` of `current`: the
+// one with the lowest BIC into *probe, its case into *candidates (which
+// *probe points into); false when none could be fitted (the case has their
+// parameters free already, or the fits fail).
+bool FitProbes(const Case& current,
+               const FitResult& fit,
+               const std::vector<TimeHistory>& data,
+               std::vector<Candidate>* candidates,
+               Contender* probe) {
+  const Case at = CaseAtSolution(current, fit);
+  candidates->clear();
+  for (const Effect& e : Probes()) {
+    Candidate k{&e, Case(), {}, {}};
+    if (CandidateCase(at, e, &k.c, &k.added)) {
+      candidates->push_back(std::move(k));
+    }
+  }
+  // Refitted: the two with the largest score statistics (a refit on the
+  // 800-sample record costs as much as the scores of all five; the probes
+  // are near-linear in their parameters, where the score ranks as the
+  // refits do).
+  RankByScore(data, candidates);
+  constexpr size_t kProbesRefitted = 2;
+  if (candidates->size() > kProbesRefitted) {
+    candidates->resize(kProbesRefitted);
+  }
+  const int n = static_cast<int>(candidates->size());
+  std::vector<Contender> fits(n);
+  std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
+  ParallelFor(n, [&](int i) {
+    fitted[i] = Refit((*candidates)[i], fit, data, &fits[i]);
+  });
+  int best = -1;
+  for (int i = 0; i < n; ++i) {
+    if (fitted[i]) {
+      VLOG(1) << fit.name << ": probe " << fits[i].record.effect
+              << ", BIC drop " << fits[i].record.bic_drop;
+    }
+    if (fitted[i] && (best < 0 || fits[i].bic < fits[best].bic)) best = i;
+  }
+  if (best < 0) return false;
+  *probe = std::move(fits[best]);
+  return true;
+}
+
+// Every contender not rejected otherwise is rejected for the probe, which
+// explains the residual better.
+void OutdoneByProbe(const Contender& probe,
+                    std::vector<Contender>* contenders) {
+  for (Contender& k : *contenders) {
+    if (!k.record.rejected.empty()) continue;
+    k.record.rejected = probe.candidate->effect->description +
+                        " explains the residual better (BIC lower by " +
+                        FormatNumber("%.1f", k.bic - probe.bic) + ")";
+  }
+}
+
+// Whether the contender earns its place (diagnose.h): fills
+// record.rejected with why not. `added`: the effects already added.
+void Judge(const FitResult& current,
+           const std::vector<const Effect*>& added,
+           const DiagnoseOptions& options,
+           OutOfSample* out_of_sample,
+           Contender* c) {
+  const Candidate& k = *c->candidate;
+  std::string why = Implausible(*k.effect, k.c, c->fit);
+  // The newcomer may push an earlier effect out of its bounds (a
+  // roll-synchronous reading error of 0.15 deg to 0.23 once a trim moment
+  // came in beside it): the pair is then no more plausible than that one.
+  if (why.empty()) why = ImplausibleAmong(added, k.c, c->fit);
+  // A coefficient may move far only when the new model explains the record
+  // down to the noise: a missing effect's bias hides in the fit (the part
+  // it absorbs leaves no residual), so no error bar of the fit without it
+  // covers the move (diagnose.h).
+  if (why.empty() && !CheckResiduals(c->fit, options).at_noise_level) {
+    why = Drags(current, c->fit, k.added, options.max_drag);
+    c->dragged = !why.empty();
+  }
+  if (why.empty()) {
+    const double gain = out_of_sample->Gain(FromSolution(k.c, c->fit));
+    c->record.prediction_gain = gain;
+    const double needed = options.gain_per_parameter * k.added.size();
+    if (!(gain > needed)) {
+      why =
+          "it does not predict the held-out part of the record better "
+          "(log-likelihood gain " +
+          FormatNumber("%.3g", gain) + ", needs " +
+          FormatNumber("%.3g", needed) + ")";
+    }
+  }
+  c->record.rejected = why;
+}
+
+// The contenders a joint set is drawn from: the one refused for its drag
+// and up to three after it.
+constexpr int kJointPool = 4;
+
+// `at` with the effects of `members` (indices into `contenders`) added in
+// turn into *model (its `added`: the last member's terms); *terms gets the
+// number of terms they add. False when one cannot be added.
+bool WithEffects(const Case& at,
+                 const std::vector<Contender>& contenders,
+                 const std::vector<int>& members,
+                 Candidate* model,
+                 int* terms) {
+  Case c = at;
+  std::vector<std::string> added;
+  *terms = 0;
+  for (int m : members) {
+    Case next;
+    if (!CandidateCase(c, *contenders[m].candidate->effect, &next, &added)) {
+      return false;
+    }
+    c = std::move(next);
+    *terms += static_cast<int>(added.size());
+  }
+  *model = Candidate{contenders[members.back()].candidate->effect,
+                     std::move(c),
+                     std::move(added),
+                     contenders[members.back()].candidate->score};
+  return true;
+}
+
+// Whether the set `members` fitted as `fit` (model `c`) earns its place
+// together: residuals at the noise level, every effect in the model within
+// its bounds, and the held-out part predicted better (gain per parameter
+// as for one effect) into *gain.
+bool EarnedTogether(const Case& c,
+                    const FitResult& fit,
+                    const std::vector<int>& members,
+                    const std::vector<Contender>& contenders,
+                    std::vector<const Effect*> effects,
+                    int terms,
+                    const DiagnoseOptions& options,
+                    OutOfSample* out_of_sample,
+                    double* gain) {
+  if (!CheckResiduals(fit, options).at_noise_level) return false;
+  for (int m : members) effects.push_back(contenders[m].candidate->effect);
+  if (!ImplausibleAmong(effects, c, fit).empty()) return false;
+  *gain = out_of_sample->Gain(FromSolution(c, fit));
+  return *gain > options.gain_per_parameter * terms;
+}
+
+// The lowest BIC of `contenders`, refused or not (+inf when none).
+double BestBic(const std::vector<Contender>& contenders) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Contender& k : contenders) best = std::min(best, k.bic);
+  return best;
+}
+
+// How much lower the probe's BIC must be than that of `best`, the best
+// catalog effect that earned its place, for the record to be not
+// explained: ambiguity_bic; but a roll-locked effect on records that
+// sweep less than a revolution of roll is already a drift in time there
+// (DriftInTime), and when a fitted drift (of the readings or of the
+// dynamic pressure) does better it has nothing left to show for itself.
+// A flow stiffer in one plane is no drift: it needs the margin.
+double ProbeMargin(const Contender& best,
+                   const Contender& probe,
+                   const std::vector<TimeHistory>& data,
+                   const DiagnoseOptions& options) {
+  return probe.candidate->effect->drifts_in_time &&
+                 best.candidate->effect->roll_locked && !RollSeparates(data)
+             ? 0.0
+             : options.ambiguity_bic;
+}
+
+}  // namespace
+
+double Bic(const FitResult& r) {
+  const double n = 3.0 * r.points;
+  const double rss = std::max(r.sum_of_residuals * r.sum_of_residuals, 1e-300);
+  return n * std::log(rss / n) + r.free_parameters * std::log(n);
+}
+
+bool Wanted(const DiagnoseOptions& options, const Effect& e) {
+  return options.effects.empty() ||
+         std::find(options.effects.begin(), options.effects.end(), e.id) !=
+             options.effects.end();
+}
+
+std::vector<TimeHistory> FittedData(const FitResult& fit) {
+  std::vector<TimeHistory> data;
+  for (const SegmentFit& segment : fit.segments) data.push_back(segment.data);
+  return data;
+}
+
+Case FromSolution(const Case& c, const FitResult& fit) {
+  Case at = CaseAtSolution(c, fit);
+  RefitFromSolution(&at, fit.probable_error);
+  return at;
+}
+
+bool Polish(const Case& current,
+            const std::vector<TimeHistory>& data,
+            FitResult* fit) {
+  try {
+    const FitResult polished =
+        MemoizedFitSamples(FromSolution(current, *fit), data);
+    if (!(Bic(polished) < Bic(*fit) - 1.0)) return false;
+    *fit = polished;
+    return true;
+  } catch (const std::exception& e) {
+    LOG(WARNING) << fit->name
+                 << ": refit of the model as it stands failed: " << e.what();
+    return false;
+  }
+}
+
+std::vector<Candidate> ScoredCandidates(const Case& current,
+                                        const FitResult& fit,
+                                        const DiagnoseOptions& options) {
+  const Case at = CaseAtSolution(current, fit);
+  const std::vector<TimeHistory> data = FittedData(fit);
+  std::vector<Candidate> all;
+  for (const Effect& e : EffectCatalog()) {
+    if (!Wanted(options, e)) continue;
+    Candidate k{&e, Case(), {}, {}};
+    if (CandidateCase(at, e, &k.c, &k.added)) all.push_back(std::move(k));
+  }
+  RankByScore(data, &all);
+  std::vector<Candidate> candidates;
+  for (Candidate& k : all) {
+    if (k.score.dof > 0) candidates.push_back(std::move(k));
+  }
+  return candidates;
+}
+
+std::vector<ParameterEstimate> Own(const FitResult& fit,
+                                   const std::vector<std::string>& names) {
+  std::vector<ParameterEstimate> own;
+  for (const ParameterEstimate& e : fit.parameters) {
+    if (e.segment.empty() &&
+        std::find(names.begin(), names.end(), e.name) != names.end()) {
+      own.push_back(e);
+    }
+  }
+  return own;
+}
+
+void Reported(const Case& model,
+              const std::vector<TimeHistory>& data,
+              FitResult* fit) {
+  Case c = model;
+  c.solver.profile_ridges = true;
+  CheckRidges(c, data, fit);
+}
+
+bool FitFrom(const Case& c,
+             const FitResult& from,
+             const std::vector<TimeHistory>& data,
+             const std::string& what,
+             FitResult* fit) {
+  try {
+    Case start = c;
+    RefitFromSolution(&start, from.probable_error);
+    *fit = MemoizedFitSamples(start, data);
+    return true;
+  } catch (const std::exception& e) {
+    LOG(WARNING) << from.name << ": refit " << what << " failed: " << e.what();
+    return false;
+  }
+}
+
+std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
+                                  const FitResult& fit,
+                                  const std::vector<TimeHistory>& data,
+                                  const DiagnoseOptions& options) {
+  const int n = std::min<int>(options.refit, candidates.size());
+  std::vector<Contender> refits(n);
+  std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
+  ParallelFor(n, [&](int i) {
+    fitted[i] = Refit(candidates[i], fit, data, &refits[i]);
+  });
+  std::vector<Contender> contenders;
+  for (int i = 0; i < n; ++i) {
+    if (!fitted[i]) continue;
+    Contender& c = refits[i];
+    VLOG(1) << fit.name << ": " << c.record.effect << " score "
+            << c.candidate->score.score << ", BIC drop " << c.record.bic_drop;
+    if (c.record.bic_drop >= options.min_bic_drop) {
+      contenders.push_back(std::move(c));
+    }
+  }
+  std::sort(
+      contenders.begin(),
+      contenders.end(),
+      [](const Contender& a, const Contender& b) { return a.bic < b.bic; });
+  return contenders;
+}
+
+std::vector<int> Earned(const FitResult& current,
+                        const std::vector<const Effect*>& added,
+                        const DiagnoseOptions& options,
+                        OutOfSample* out_of_sample,
+                        std::vector<Contender>* contenders) {
+  std::vector<int> earned;
+  for (size_t i = 0; i < contenders->size(); ++i) {
+    Contender& c = (*contenders)[i];
+    if (!earned.empty() &&
+        c.bic - (*contenders)[earned[0]].bic >= options.ambiguity_bic) {
+      break;
+    }
+    Judge(current, added, options, out_of_sample, &c);
+    VLOG(1) << current.name << ": " << c.record.effect << " (BIC drop "
+            << c.record.bic_drop << ") "
+            << (c.record.rejected.empty() ? "earns its place"
+                                          : "refused: " + c.record.rejected);
+    if (c.record.rejected.empty()) earned.push_back(static_cast<int>(i));
+  }
+  return earned;
+}
+
+bool Jointly(const Case& current,
+             const FitResult& fit,
+             const std::vector<TimeHistory>& data,
+             const DiagnoseOptions& options,
+             const std::vector<const Effect*>& added,
+             OutOfSample* out_of_sample,
+             const std::vector<Contender>& contenders,
+             const std::vector<int>& earned,
+             JointSet* joint) {
+  if (!options.joint_sets) return false;
+  const int judged =
+      earned.empty() ? static_cast<int>(contenders.size()) : earned[0];
+  int lead = 0;
+  while (lead < judged && !contenders[lead].dragged) ++lead;
+  if (lead >= judged) return false;
+  const int pool = std::min<int>(lead + kJointPool, contenders.size());
+  std::vector<std::vector<int>> sets;
+  for (int a = lead + 1; a < pool; ++a) {
+    sets.push_back({lead, a});
+    for (int b = a + 1; b < pool; ++b) sets.push_back({lead, a, b});
+  }
+  const Case at = CaseAtSolution(current, fit);
+  const int n = static_cast<int>(sets.size());
+  std::vector<Candidate> models(n);
+  std::vector<int> terms(n, 0);
+  std::vector<FitResult> fits(n);
+  std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
+  ParallelFor(n, [&](int i) {
+    fitted[i] = WithEffects(at, contenders, sets[i], &models[i], &terms[i]) &&
+                FitFrom(models[i].c, fit, data, "with a joint set", &fits[i]);
+  });
+  std::vector<int> order;
+  for (int i = 0; i < n; ++i) {
+    if (fitted[i]) order.push_back(i);
+  }
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return Bic(fits[a]) < Bic(fits[b]);
+  });
+  for (int i : order) {
+    double gain = 0.0;
+    if (!EarnedTogether(models[i].c,
+                        fits[i],
+                        sets[i],
+                        contenders,
+                        added,
+                        terms[i],
+                        options,
+                        out_of_sample,
+                        &gain)) {
+      continue;
+    }
+    VLOG(1) << fit.name << ": joint set of " << sets[i].size()
+            << " earns its place, BIC " << Bic(fits[i]) << ", gain " << gain;
+    // The prefixes: the first member's contender, the pair before a triple.
+    int pair = -1;
+    if (sets[i].size() == 3) {
+      const std::vector<int> prefix = {lead, sets[i][1]};
+      pair = static_cast<int>(std::find(sets.begin(), sets.end(), prefix) -
+                              sets.begin());
+      if (!fitted[pair]) continue;
+    }
+    joint->members = sets[i];
+    joint->prediction_gain = gain;
+    joint->models = {*contenders[lead].candidate};
+    joint->fits = {contenders[lead].fit};
+    if (pair >= 0) {
+      joint->models.push_back(models[pair]);
+      joint->fits.push_back(fits[pair]);
+    }
+    joint->models.push_back(models[i]);
+    joint->fits.push_back(fits[i]);
+    return true;
+  }
+  return false;
+}
+
+double RollSpan(const std::vector<TimeHistory>& data) {
+  double span = 0.0;
+  for (const TimeHistory& h : data) {
+    if (h.size() == 0) continue;
+    const auto [lo, hi] = std::minmax_element(h.phi.begin(), h.phi.end());
+    span = std::max(span, *hi - *lo);
+  }
+  return span;
+}
+
+bool RollSeparates(const std::vector<TimeHistory>& data) {
+  if (RollSpan(data) >= 360.0) return true;
+  std::vector<double> rates;
+  for (const TimeHistory& h : data) {
+    if (h.size() < 2 || h.t.back() <= h.t.front()) continue;
+    rates.push_back(std::abs(h.phi.back() - h.phi.front()) /
+                    (h.t.back() - h.t.front()));
+  }
+  if (rates.size() < 2) return false;
+  const auto [lo, hi] = std::minmax_element(rates.begin(), rates.end());
+  return *hi > 1.2 * *lo;
+}
+
+bool WeighProbes(const Case& current,
+                 const FitResult& fit,
+                 const std::vector<TimeHistory>& data,
+                 const DiagnoseOptions& options,
+                 const std::vector<int>& earned,
+                 std::vector<Candidate>* probes,
+                 Contender* probe,
+                 std::vector<Contender>* contenders,
+                 Diagnosis* d) {
+  const bool probed = options.probes &&
+                      FitProbes(current, fit, data, probes, probe) &&
+                      probe->record.bic_drop >= options.min_bic_drop &&
+                      probe->bic < BestBic(*contenders);
+  if (!probed) return false;
+  if (earned.empty() ||
+      probe->bic <
+          (*contenders)[earned[0]].bic -
+              ProbeMargin((*contenders)[earned[0]], *probe, data, options)) {
+    d->outside_catalog = probe->record;
+    d->outside_at_noise_level =
+        CheckResiduals(probe->fit, options).at_noise_level;
+    OutdoneByProbe(*probe, contenders);
+  }
+  return true;
+}
+
+}  // namespace fit3dof

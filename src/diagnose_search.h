@@ -1,0 +1,362 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// What the files of the diagnosis search share (diagnose.h says what the
+// search does): a catalog effect's candidate case and its refit in full
+// (Candidate, Contender), one round of the search (diagnose_round.cc),
+// its ties and the final model they leave (diagnose_ties.cc), and the
+// final model's error bars (diagnose_error_bars.cc). diagnose.cc runs the
+// search over them.
+
+#ifndef FIT3DOF_SRC_DIAGNOSE_SEARCH_H_
+#define FIT3DOF_SRC_DIAGNOSE_SEARCH_H_
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "diagnose_internal.h"
+#include "fit3dof/case.h"
+#include "fit3dof/diagnose.h"
+#include "fit3dof/fit.h"
+#include "fit3dof/time_history.h"
+#include "fit_memo.h"
+
+namespace fit3dof {
+
+// One round of the search (diagnose_round.cc).
+
+// The Bayesian information criterion of a fit: n ln(RSS / n) + k ln(n),
+// n the residuals (three per sample), k the free parameters.
+double Bic(const FitResult& r);
+
+// A catalog effect (or a probe) as a candidate: the current model with the
+// effect's terms free at zero (their names in `added`), and its score at
+// the current solution.
+struct Candidate {
+  const Effect* effect;
+  Case c;
+  std::vector<std::string> added;
+  CandidateScore score;
+};
+
+// A candidate refitted in full.
+struct Contender {
+  const Candidate* candidate = nullptr;
+  FitResult fit;
+  double bic = 0.0;
+  CandidateFit record;
+  bool dragged = false;  // refused for dragging the coefficients (Judge)
+};
+
+// Whether the options' catalog (DiagnoseOptions::effects) holds `e`.
+bool Wanted(const DiagnoseOptions& options, const Effect& e);
+
+// The samples `fit` used, one record per segment.
+std::vector<TimeHistory> FittedData(const FitResult& fit);
+
+// The case `c` at the solution `fit`, set to be refitted from there
+// (RefitFromSolution).
+Case FromSolution(const Case& c, const FitResult& fit);
+
+// The current model refitted from its solution as every contender is
+// (RefitFromSolution: continuation when far from the noise). A contender's
+// BIC drop must come from its effect, not from the refit settling the
+// model it extends further down (a roll torque of 5e-9 +- 1e-9 lowering
+// BIC by 420 once did). Replaces *fit and returns true when the refit
+// lowers BIC by more than 1 (less changes no decision).
+bool Polish(const Case& current,
+            const std::vector<TimeHistory>& data,
+            FitResult* fit);
+
+// Every applicable effect scored at the fit's solution, best first.
+std::vector<Candidate> ScoredCandidates(const Case& current,
+                                        const FitResult& fit,
+                                        const DiagnoseOptions& options);
+
+// The estimates of `names` in `fit`.
+std::vector<ParameterEstimate> Own(const FitResult& fit,
+                                   const std::vector<std::string>& names);
+
+// A fit diagnose reports (the final model's, an alternative's), of the
+// search's case `model`, with the profiles the search skipped.
+void Reported(const Case& model,
+              const std::vector<TimeHistory>& data,
+              FitResult* fit);
+
+// The case `c` fitted from `from`, its solution, into *fit; false (and a
+// warning naming the refit, `what`) when the fit fails.
+bool FitFrom(const Case& c,
+             const FitResult& from,
+             const std::vector<TimeHistory>& data,
+             const std::string& what,
+             FitResult* fit);
+
+// The best `options.refit` candidates refitted on the first fit's samples:
+// those that lower BIC by more than min_bic_drop, lowest BIC first.
+std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
+                                  const FitResult& fit,
+                                  const std::vector<TimeHistory>& data,
+                                  const DiagnoseOptions& options);
+
+// The out-of-sample check of one round: the current model fitted to the
+// first part of each segment once, each contender against it.
+class OutOfSample {
+ public:
+  OutOfSample(const Case& current,
+              const FitResult& fit,
+              const DiagnoseOptions& options)
+      : current_(FromSolution(current, fit)),
+        data_(FittedData(fit)),
+        held_out_(HoldOut(data_, options.held_out_blocks)) {
+    for (const SegmentFit& s : fit.segments) weights_.push_back(s.sigma_deg);
+    for (const std::vector<bool>& held : held_out_.held) {
+      held_samples_ += 3 * std::count(held.begin(), held.end(), true);
+    }
+  }
+
+  // n_test ln(RSS_without / RSS_with) over the held-out samples; -infinity
+  // when the contender cannot be fitted or integrated there.
+  double Gain(const Case& with) {
+    if (held_samples_ == 0) return 0.0;
+    if (rss_without_ < 0.0) rss_without_ = Rss(current_);
+    return held_samples_ * std::log(rss_without_ / Rss(with));
+  }
+
+ private:
+  double Rss(const Case& c) const {
+    try {
+      const FitResult trained = MemoizedFitSamples(c, held_out_.train);
+      return PredictionRss(c, trained, data_, held_out_, weights_);
+    } catch (const std::exception&) {
+      return std::numeric_limits<double>::infinity();
+    }
+  }
+
+  const Case current_;
+  const std::vector<TimeHistory> data_;
+  const HeldOut held_out_;
+  std::vector<ChannelValues> weights_;
+  int held_samples_ = 0;
+  double rss_without_ = -1.0;
+};
+
+// The contenders judged in BIC order until the best that earns its place
+// and every other within ambiguity_bic of it are known; returns the
+// indices of those that earned it.
+std::vector<int> Earned(const FitResult& current,
+                        const std::vector<const Effect*>& added,
+                        const DiagnoseOptions& options,
+                        OutOfSample* out_of_sample,
+                        std::vector<Contender>* contenders);
+
+// Effects that earn their place only together (diagnose.h): the members
+// (indices into the round's contenders, in their order), the model with
+// the first 1, 2, ... of them and its fit, each member's terms as its
+// model added them, and the set's out-of-sample gain.
+struct JointSet {
+  std::vector<int> members;
+  std::vector<Candidate> models;
+  std::vector<FitResult> fits;
+  double prediction_gain = 0.0;
+};
+
+// When a contender was refused only for dragging the coefficients, and
+// none better (lower BIC) earned its place, the effects missing beside it
+// may be what makes the drag: each alone explains part of the record and moves
+// the coefficients that the others biased (on the 48-s Table 6 record with a
+// tunnel stiffness, a nonlinear damping and a body yaw asymmetry, the
+// stiffness alone moved Cm_alpha by 3700 of its errors while lowering
+// the probable error 1.4-fold, and asymmetric_body, whose Cn_r then took
+// up the missing damping, was out of its bounds). The drag rule lets a
+// model that explains the record to the noise move them; so does it a
+// set: the refused contender with one or two of the next three, fitted
+// together, earns its place together (EarnedTogether). The best contender
+// may be refused otherwise and the dragged one come second: on a 3-s run
+// with a tunnel damping, a Magnus moment and a flow angularity, a body yaw
+// asymmetry (predicting nothing held out) came before the dragged
+// damping, the Magnus moment was taken alone, and nothing after it
+// earned its place. `earned` (Earned) tells which contenders were judged
+// better than every one that earned its place. The lowest-BIC set that
+// earns its place goes into *joint; false when none.
+bool Jointly(const Case& current,
+             const FitResult& fit,
+             const std::vector<TimeHistory>& data,
+             const DiagnoseOptions& options,
+             const std::vector<const Effect*>& added,
+             OutOfSample* out_of_sample,
+             const std::vector<Contender>& contenders,
+             const std::vector<int>& earned,
+             JointSet* joint);
+
+// The largest roll angle any segment sweeps (deg).
+double RollSpan(const std::vector<TimeHistory>& data);
+
+// Whether a roll-locked signature can be told from a drift in time: a
+// segment sweeps a revolution of roll, or two segments roll at rates that
+// differ by more than a fifth (the same roll angle at different times).
+bool RollSeparates(const std::vector<TimeHistory>& data);
+
+// The probes outside the catalog at one round of the search, against the
+// best catalog contender that earned its place (earned[0], if any): better
+// by a margin (ProbeMargin), and the probe's fit goes into
+// d->outside_catalog, every contender rejected for it (nothing is adopted);
+// within the margin the caller ties them. A catalog effect refused here
+// that explains more than the probe (a calibration error just past its
+// bound while two effects beside it are missing) keeps the search in the
+// catalog. Returns whether a probe was fitted that lowers BIC enough to
+// count (*probe, pointing into *probes).
+bool WeighProbes(const Case& current,
+                 const FitResult& fit,
+                 const std::vector<TimeHistory>& data,
+                 const DiagnoseOptions& options,
+                 const std::vector<int>& earned,
+                 std::vector<Candidate>* probes,
+                 Contender* probe,
+                 std::vector<Contender>* contenders,
+                 Diagnosis* d);
+
+// Ties and the final model (diagnose_ties.cc).
+
+// Whatever explains a round's residual as well as contenders[best]
+// (diagnose.h): the other contenders within ambiguity_bic of its BIC, the
+// probe (when fitted) within it, and for a roll-locked effect on less than
+// a revolution of roll a drift in time. Contenders refused at this round
+// count too: with the effects still missing in, a roll reading error
+// refused beside an unexplained nonlinear damping may explain the record
+// as well as the trim moment adopted (the final swap decides, Unresolved).
+std::vector<CandidateFit> Rivals(const std::vector<Contender>& contenders,
+                                 int best,
+                                 const Contender* probe,
+                                 const std::vector<TimeHistory>& data,
+                                 const DiagnoseOptions& options);
+
+// The rivals the final swap (Unresolved) tries for contenders[best]:
+// `rivals` (Rivals) and the other catalog contenders within rival_bic.
+// While effects are still missing, the round's BIC gaps hold their
+// signatures too: on one 3-s run with a tunnel stiffness, a nonlinear
+// damping and a body yaw asymmetry, a roll torque was adopted 21 below
+// the tunnel stiffness, and once the other two were in, the tunnel
+// stiffness swapped in for it lowered BIC by 3 more.
+std::vector<CandidateFit> WiderRivals(std::vector<CandidateFit> rivals,
+                                      const std::vector<Contender>& contenders,
+                                      int best,
+                                      const DiagnoseOptions& options);
+
+// The case `at` without the effect that `step` added: the terms it added
+// fixed at zero (a companion keeps its value, inert without them); an
+// image it had untied (an asymmetric body) tied again.
+Case WithoutStep(const Case& at, const DiagnosisStep& step);
+
+// The step's effect as the contender it was.
+CandidateFit AsContender(const DiagnosisStep& step);
+
+// What a second run would change to separate the tied `ambiguous` (the
+// first and its rivals), for the model fitted as `fit`.
+std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
+                        const Case& c,
+                        const FitResult& fit,
+                        const std::vector<TimeHistory>& data);
+
+// Which model the search ends with (diagnose.h), given `check`, the
+// residual check of its last fit, `models`, the case of each of d->fits,
+// `tie`, the step of the first tie or -1, and `rivals`, each step's
+// (Rivals): sets d->final_fit and
+// *current (from `user` when nothing explains the record) and returns the
+// final model's residual check.
+ResidualCheck SettleFinalModel(
+    const Case& user,
+    const std::vector<TimeHistory>& data,
+    const DiagnoseOptions& options,
+    const std::vector<Case>& models,
+    int tie,
+    const std::vector<std::vector<CandidateFit>>& rivals,
+    const ResidualCheck& check,
+    Diagnosis* d,
+    Case* current);
+
+// The final model's error bars (diagnose_error_bars.cc).
+
+// `fit` with the parameters `names` moved toward zero by `k` of their
+// standard errors (not past zero).
+FitResult Shrunk(FitResult fit,
+                 const std::vector<std::string>& names,
+                 double k);
+
+// The final model of a record that an open tie leaves ambiguous holds
+// none of the tied effects, and what one of them would change in it the
+// record cannot say: a calibration error fitted without the bearing moment
+// it tied over came out 0.047 +- 0.007 deg (truth 0.02). So each of its
+// free estimates' error bars also covers the largest shift of its value
+// in the complete models (each alternative's, or the search's last, which
+// holds the first of the tied effects, or a rival swapped in for it with
+// the other effects in, Diagnosis::tie_models), and the error that model
+// gives it:
+//
+//   error' = max over the models m of sqrt(max(error, error_m)^2 +
+//                                          (value_m - value)^2),
+//
+// Burnham and Anderson's unconditional variance with the worst model in
+// place of the weighted sum (the tied models' weights are alike): where a
+// tied tunnel stiffness leaves only Cm_alpha + t1 determined (Eq. 43),
+// the final Cm_alpha is as uncertain as in that model.
+void WidenForTie(Diagnosis* d);
+
+// The contenders of the search's rounds (`contended`: each lowered BIC by
+// more than min_bic_drop where it was tried) that the record cannot
+// exclude beside a complete model (tied effects aside: WidenForTie covers
+// them): added to it (not swapped in, as the final swap tries them), its
+// BIC rises by less than ambiguity_bic and the effects stay within their
+// bounds (ImplausibleBeside: its own within two of its errors). Their fits
+// go into d->not_excluded (bic_drop against the model without) and their
+// parameters into d->not_excluded_models.
+//
+// On a 3-s coning run with a tunnel damping, a Magnus moment and a flow
+// angularity, the tunnel damping and Cm_q absorbed the Magnus moment (one
+// mode of motion hardly tells Cm_q from Cm_p_alpha), and the model with
+// the damping and the angularity reached the noise with Cm_q at -3.84 +-
+// 0.01 (truth -5.5). The Magnus moment, 24 below the damping at the first
+// step, raised BIC by only 1.0 beside them, with Cm_q at -6.4 +- 1.4. On
+// another noise draw it was 35 below (outside rival_bic) and, when only
+// the steps' rivals were tried here, never tried: Cm_q ended 129 of its
+// errors off.
+void FindNotExcluded(const std::vector<const Effect*>& contended,
+                     const std::vector<Case>& models,
+                     const Case& current,
+                     const std::vector<TimeHistory>& data,
+                     const DiagnoseOptions& options,
+                     Diagnosis* d);
+
+// The final error bars cover the models of the effects the record cannot
+// exclude (FindNotExcluded), each with its BIC weight against the model
+// it was added to, exp(-rise / 2) / (1 + exp(-rise / 2)): neither the
+// search nor the final swap added or swapped them in, but the values the
+// record allows with them are part of its answer. Weighted, not the
+// tie's worst case: along Eq. 43 a tunnel damping leaves only Cm_q + t2
+// determined, and one that raised BIC by 9.3 beside a roll damping (two
+// runs) widened Cm_q 138-fold in the worst case, 13-fold weighted.
+void WidenForNotExcluded(Diagnosis* d);
+
+// A step of the complete model (the final one, or the search's last when
+// steps stayed partial) that two or more effects not excluded replace
+// together (Diagnosis::stood_in): without it and with them the model
+// reaches the noise, its BIC within ambiguity_bic of the complete model's,
+// its effects within their bounds, and each of them needed there (Needed).
+// One effect can stand in for two: on a 3-s run at 30 deg/s (a quarter
+// turn of roll) a body's own yaw damping, first at the first round by 16
+// in BIC, took the place of a tunnel damping and a Magnus moment, each of
+// which alone swapped for it was worse, and both of which were not
+// excluded beside it. Within ambiguity_bic the step is not claimed: it
+// joins a tie with them, and the final error bars cover the replacing
+// model's values. Returned (nothing changed) when they do better by
+// ambiguity_bic or more: the search took a wrong turn (DiagnoseFrom).
+std::string FindSetReplacements(const std::vector<Case>& models,
+                                const Case& current,
+                                const std::vector<TimeHistory>& data,
+                                const DiagnoseOptions& options,
+                                Diagnosis* d);
+
+}  // namespace fit3dof
+
+#endif  // FIT3DOF_SRC_DIAGNOSE_SEARCH_H_

@@ -1,0 +1,819 @@
+// fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
+//
+// Ties and the final model of the diagnosis search (diagnose.h): a step's
+// rivals (Rivals), a tie kept open or dissolved by swapping each rival in
+// once the record is explained (Unresolved, TieDissolves), effects adopted
+// after a tie (AdoptAfterTie), backward elimination (Prune), and the final
+// model they leave (SettleFinalModel).
+
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "diagnose_search.h"
+#include "fit3dof/model_conversion.h"
+#include "fit3dof/parameters.h"
+#include "fit3dof/thread_budget.h"
+#include "format.h"
+
+namespace fit3dof {
+
+namespace {
+
+// The pitch frequency of the fit (deg/s): sqrt(-Cm_alpha q S d / I_y);
+// 0 when the fit is not statically stable.
+double PitchFrequency(const Case& c, const FitResult& fit) {
+  const ParameterEstimate* cm_alpha = SharedEstimate(fit, "Cm_alpha");
+  if (cm_alpha == nullptr) return 0.0;
+  const double w2 = -cm_alpha->value * c.flow.dynamic_pressure * c.body.area *
+                    c.body.diameter / c.body.Iy;
+  return w2 > 0.0 ? std::sqrt(w2) / kDegree : 0.0;
+}
+
+// What a second run would change to tell effects a and b apart, for a
+// model fitted as `fit`.
+std::string Separation(const Effect& a,
+                       const Effect& b,
+                       const Case& c,
+                       const FitResult& fit) {
+  if (a.roll_locked && b.roll_locked) {
+    // Both are offsets fixed in the body (a trim angle, a reading error
+    // locked to roll): well below the pitch frequency a trim moment's
+    // response follows the roll without lag or growth at any spin rate,
+    // so only a spin near that frequency tells them apart.
+    const double pitch = PitchFrequency(c, fit);
+    return "a run spinning near the pitch frequency (" +
+           (pitch > 0.0 ? FormatNumber("%.0f", pitch) + " deg/s: " : "") +
+           "there a trim moment's response grows and lags, a reading "
+           "error's does not)";
+  }
+  if (a.separated_by == b.separated_by)
+    return "a run at another " + a.separated_by;
+  return "a run at another " + a.separated_by + " or " + b.separated_by;
+}
+
+// The rival of a roll-locked effect on a record shorter than a revolution
+// of roll: outside the catalog, not fitted.
+CandidateFit DriftInTime() {
+  CandidateFit drift;
+  drift.effect = kDriftInTime;
+  drift.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+  return drift;
+}
+
+// The contenders other than contenders[best] with BIC below `within`.
+std::vector<CandidateFit> Near(const std::vector<Contender>& contenders,
+                               int best,
+                               double within) {
+  std::vector<CandidateFit> near;
+  for (int i = 0; i < static_cast<int>(contenders.size()); ++i) {
+    if (i != best && contenders[i].bic < within) {
+      near.push_back(contenders[i].record);
+    }
+  }
+  return near;
+}
+
+// The effect ids of `steps` but the one at `skip`, comma separated.
+std::string Others(const std::vector<DiagnosisStep>& steps, int skip) {
+  std::string text;
+  for (int i = 0; i < static_cast<int>(steps.size()); ++i) {
+    if (i != skip) text += (text.empty() ? "" : ", ") + steps[i].effect;
+  }
+  return text;
+}
+
+// The position in `model` of a term a step added: a symmetric name in the
+// asymmetric program (the step came before the switch) is its first image,
+// the one ToAsymmetric gave its value and free flag.
+int AddedTermPosition(ModelKind model, const std::string& name) {
+  const int position = FindParameter(model, name);
+  if (position >= 0 || model == ModelKind::kSymmetric) return position;
+  const CoefficientImage* first = FirstImage(name);
+  return first == nullptr ? -1 : FindParameter(model, first->asymmetric);
+}
+
+// Each model (`cases`, fitted as `fits`) refitted from its solution
+// without each of `steps` in turn, all in parallel: (*without)[k], for
+// k = m * steps.size() + i, is model m without steps[i], and (*fitted)[k]
+// whether that fit ran.
+void FitWithoutEach(const std::vector<TimeHistory>& data,
+                    const std::vector<const Case*>& cases,
+                    const std::vector<const FitResult*>& fits,
+                    const std::vector<DiagnosisStep>& steps,
+                    std::vector<FitResult>* without,
+                    std::vector<char>* fitted) {
+  const int n = static_cast<int>(cases.size() * steps.size());
+  without->assign(n, FitResult());
+  fitted->assign(n, false);  // not vector<bool>: written in parallel
+  ParallelFor(n, [&](int k) {
+    const size_t m = k / steps.size();
+    const DiagnosisStep& s = steps[k % steps.size()];
+    (*fitted)[k] = FitFrom(WithoutStep(CaseAtSolution(*cases[m], *fits[m]), s),
+                           *fits[m],
+                           data,
+                           "without " + s.effect,
+                           &(*without)[k]);
+  });
+}
+
+// Backward elimination (diagnose.h): while the record is explained by two
+// or more effects, the one whose removal costs least is dropped if the
+// residuals stay at the noise level and BIC rises by less than
+// min_bic_drop. `current` is the final model (d->FinalFit()'s case).
+void Prune(const std::vector<TimeHistory>& data,
+           const DiagnoseOptions& options,
+           Diagnosis* d,
+           Case* current) {
+  while (d->steps.size() >= 2) {
+    const FitResult& fit = d->FinalFit();
+    const Case at = CaseAtSolution(*current, fit);
+    const int n = static_cast<int>(d->steps.size());
+    std::vector<FitResult> without;
+    std::vector<char> fitted;
+    FitWithoutEach(data, {current}, {&fit}, d->steps, &without, &fitted);
+    int drop = -1;
+    double least = options.min_bic_drop;
+    for (int i = 0; i < n; ++i) {
+      if (!fitted[i] || !CheckResiduals(without[i], options).at_noise_level) {
+        continue;
+      }
+      const double rise = Bic(without[i]) - Bic(fit);
+      if (rise < least) {
+        least = rise;
+        drop = i;
+      }
+    }
+    if (drop < 0) return;
+    DiagnosisStep step = d->steps[drop];
+    step.note = "redundant with " + Others(d->steps, drop) +
+                " in the model: without it BIC changes by " +
+                FormatNumber("%.1f", least) +
+                " and the residuals stay at the noise level";
+    step.after = CheckResiduals(without[drop], options);
+    d->fits.push_back(without[drop]);
+    step.fit_before = static_cast<int>(d->final_fit);
+    step.fit_after = static_cast<int>(d->fits.size()) - 1;
+    d->final_fit = d->fits.size() - 1;
+    d->pruned.push_back(step);
+    d->steps.erase(d->steps.begin() + drop);
+    *current = WithoutStep(at, step);
+  }
+}
+
+// The case `at` with the tied rival `id` free (CandidateCase): a catalog
+// effect, a probe, or for drift_in_time the drift of the readings (what a
+// roll-locked reading error is over part of a revolution); false when it
+// does not apply.
+bool RivalCase(const Case& at, const std::string& id, Case* out) {
+  const Effect* e = FindEffect(id);
+  if (e == nullptr) e = FindProbe(id == kDriftInTime ? "reading_drift" : id);
+  std::vector<std::string> added;
+  return e != nullptr && CandidateCase(at, *e, out, &added);
+}
+
+// Whether two roll-locked effects can be told apart (Separation): a
+// segment spins faster than half the pitch frequency of the model fitted
+// as `fit`, where a trim moment's response grows and lags.
+bool SpinSeparatesRollLocked(const Case& c,
+                             const FitResult& fit,
+                             const std::vector<TimeHistory>& data) {
+  const double pitch = PitchFrequency(c, fit);
+  for (const TimeHistory& h : data) {
+    if (h.size() < 2 || !(h.t.back() > h.t.front())) continue;
+    const double spin =
+        std::abs(h.phi.back() - h.phi.front()) / (h.t.back() - h.t.front());
+    if (pitch > 0.0 && spin > 0.5 * pitch) return true;
+  }
+  return false;
+}
+
+// The rivals of `step` (recorded when the search added it) that still
+// explain the record as well in the explained model `fit` (of case `at`,
+// whose effects are `steps`): swapped in for it, BIC within ambiguity_bic
+// of the model's and their values within their bounds. A drift in time
+// (not fitted) always does, and so does a roll-locked rival of a
+// roll-locked effect unless a segment spins fast enough to separate them
+// (on two runs at 30 and 60 deg/s a trim moment had won the swap from the
+// roll reading error that was there); a rival in the model is none. The
+// fits of the rivals that were fitted and kept the tie open go into
+// *as_good_fits.
+std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
+                                     const DiagnosisStep& step,
+                                     const std::vector<DiagnosisStep>& steps,
+                                     const Case& at,
+                                     const FitResult& fit,
+                                     const std::vector<TimeHistory>& data,
+                                     const DiagnoseOptions& options,
+                                     std::vector<FitResult>* as_good_fits) {
+  const Case without = WithoutStep(at, step);
+  const Effect* own = FindEffect(step.effect);
+  const bool twins_separate = SpinSeparatesRollLocked(at, fit, data);
+  std::vector<CandidateFit> open;
+  for (const CandidateFit& rival : rivals) {
+    if (std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
+          return s.effect == rival.effect;
+        })) {
+      continue;
+    }
+    Case swapped;
+    FitResult swapped_fit;
+    bool fitted = false;
+    const Effect* effect = FindEffect(rival.effect);
+    // Twins are rivals unfitted only when they tied at the step; one
+    // that lost there by more (WiderRivals) must win the swap.
+    const bool tied_at_step =
+        step.bic_drop - rival.bic_drop < options.ambiguity_bic;
+    const bool twins = own != nullptr && own->roll_locked &&
+                       effect != nullptr && effect->roll_locked &&
+                       !twins_separate && tied_at_step;
+    const bool as_good =
+        rival.effect == kDriftInTime || twins ||
+        !RivalCase(without, rival.effect, &swapped) ||
+        !(fitted = FitFrom(swapped,
+                           fit,
+                           data,
+                           "with " + rival.effect + " for " + step.effect,
+                           &swapped_fit)) ||
+        (Bic(swapped_fit) < Bic(fit) + options.ambiguity_bic &&
+         (effect == nullptr ||
+          Implausible(*effect, swapped, swapped_fit).empty()));
+    VLOG(1) << step.effect << " swapped for " << rival.effect << ": "
+            << (as_good ? "as good" : "worse");
+    if (as_good) open.push_back(rival);
+    if (as_good && fitted) as_good_fits->push_back(std::move(swapped_fit));
+  }
+  return open;
+}
+
+// Ties (the first at step *tie; `rivals` holds each step's) on the way to
+// a record explained: the pruning (Prune) of every step, then the rivals
+// of each step still in the model swapped in for it (Unresolved). A roll torque
+// tied with a roll damping may only have taken up the roll that a missing pitch
+// damping left: once that is in, neither is needed. A tunnel stiffness tied
+// with a roll-synchronous reading error, both hidden in the record, is followed
+// by the other: both needed, nothing ambiguous. And a calibration error tied
+// with a flow angularity while a trim moment was still missing is alone in
+// explaining the record once the trim moment is in: swapped for it, the flow
+// angularity raises BIC by more than ambiguity_bic. When no rival of any
+// step is left, *d and *current take the pruned result and the ties are
+// gone; otherwise *tie becomes the first step with rivals left,
+// d->ambiguous its effect and those rivals, (*tied)[i] whether step i
+// (pruned or with rivals left) stays in doubt, and *current is left as it
+// was.
+bool TieDissolves(const std::vector<TimeHistory>& data,
+                  const DiagnoseOptions& options,
+                  const std::vector<std::vector<CandidateFit>>& rivals,
+                  int* tie,
+                  std::vector<bool>* tied,
+                  Diagnosis* d,
+                  Case* current) {
+  Diagnosis pruned = *d;
+  Case model = *current;
+  pruned.final_fit = pruned.steps.size();
+  Prune(data, options, &pruned, &model);
+  const FitResult& fit = pruned.FinalFit();
+  const Case at = CaseAtSolution(model, fit);
+  std::vector<std::vector<CandidateFit>> open_ties;
+  int first = -1;
+  for (size_t i = 0; i < d->steps.size(); ++i) {
+    if (rivals[i].empty()) continue;
+    const auto kept = std::find_if(
+        pruned.steps.begin(), pruned.steps.end(), [&](const DiagnosisStep& s) {
+          return s.effect == d->steps[i].effect;
+        });
+    // A step pruned away is not in doubt; but it is not adopted either.
+    (*tied)[i] = true;
+    if (kept == pruned.steps.end()) continue;
+    std::vector<FitResult> swapped;
+    const std::vector<CandidateFit> open = Unresolved(
+        rivals[i], *kept, pruned.steps, at, fit, data, options, &swapped);
+    for (const FitResult& f : swapped) d->tie_models.push_back(f.parameters);
+    (*tied)[i] = !open.empty();
+    if (open.empty()) continue;
+    if (first < 0) first = static_cast<int>(i);
+    open_ties.push_back({AsContender(d->steps[i])});
+    open_ties.back().insert(open_ties.back().end(), open.begin(), open.end());
+  }
+  if (first >= 0) {
+    *tie = first;
+    d->ambiguous = open_ties[0];
+    d->later_ties.assign(open_ties.begin() + 1, open_ties.end());
+    return false;
+  }
+  *d = std::move(pruned);
+  d->ambiguous.clear();
+  *current = std::move(model);
+  return true;
+}
+
+// Whether the effects adopted after a tie are needed with `rival` in
+// place of the tied effect too: `without` (their model without any of the
+// tied effects, fitted as `without_fit`) with the rival (*with_rival),
+// fitted into *rival_fit, lowers BIC by min_bic_drop below the rival alone on
+// the model before the tie (`before_tie`, fitted as `before`), and every effect
+// in it (`effects` and the rival) stays within its bounds.
+bool AdoptedWithRival(const std::vector<TimeHistory>& data,
+                      const DiagnoseOptions& options,
+                      const std::vector<const Effect*>& effects,
+                      const Case& without,
+                      const FitResult& without_fit,
+                      const Case& before_tie,
+                      const FitResult& before,
+                      const std::string& rival,
+                      Case* with_rival,
+                      FitResult* rival_fit) {
+  Case rival_alone;
+  FitResult rival_alone_fit;
+  return RivalCase(CaseAtSolution(without, without_fit), rival, with_rival) &&
+         FitFrom(*with_rival, without_fit, data, "with " + rival, rival_fit) &&
+         RivalCase(CaseAtSolution(before_tie, before), rival, &rival_alone) &&
+         FitFrom(rival_alone,
+                 before,
+                 data,
+                 "with " + rival + " alone",
+                 &rival_alone_fit) &&
+         Bic(*rival_fit) < Bic(rival_alone_fit) - options.min_bic_drop &&
+         ImplausibleAmong(effects, *with_rival, *rival_fit).empty();
+}
+
+// Whether the effects adopted after a tie (`effects`, with those before
+// it) are needed without any of the tied effects: `without` (the complete
+// model without the tied step, fitted as `without_fit`) lowers BIC by
+// min_bic_drop below `before` (the model before the tie) and keeps every
+// effect within its bounds.
+bool NeededWithoutTied(const DiagnoseOptions& options,
+                       const std::vector<const Effect*>& effects,
+                       const Case& without,
+                       const FitResult& without_fit,
+                       const FitResult& before) {
+  const std::string implausible =
+      ImplausibleAmong(effects, without, without_fit);
+  if (Bic(without_fit) < Bic(before) - options.min_bic_drop &&
+      implausible.empty()) {
+    return true;
+  }
+  VLOG(1) << "without any of the tied effects: BIC "
+          << Bic(before) - Bic(without_fit) << " below the model before "
+          << "the tie; " << implausible;
+  return false;
+}
+
+// The complete model with `rival` in place of the tied step `tied`: the
+// search's last model (`full`, fitted as `full_fit`, which holds a later
+// tie's followed effect too) with the rival swapped in, fitted into *fit.
+// A complete model without the later tie's effect stays structured (on a
+// short run a tunnel damping tied with a body asymmetry, a flow angularity
+// with a roll reading error, and neither first alternative reached the
+// noise without the angularity).
+bool CompleteWithRival(const std::vector<TimeHistory>& data,
+                       const Case& full,
+                       const FitResult& full_fit,
+                       const DiagnosisStep& tied,
+                       const std::string& rival,
+                       Case* with_rival,
+                       FitResult* fit) {
+  const Case without = WithoutStep(CaseAtSolution(full, full_fit), tied);
+  return RivalCase(without, rival, with_rival) &&
+         FitFrom(*with_rival, full_fit, data, "complete with " + rival, fit);
+}
+
+// Whether each of `steps` is needed in each complete model (`cases`,
+// fitted as `fits`): without it BIC rises by more than min_bic_drop. A
+// tied effect stands in for the tie only then: on a pair of runs a roll
+// damping adopted after a roll torque (tied with a tunnel stiffness) went
+// implausible without the torque, because it was there to cancel it.
+bool NeededInEach(const std::vector<TimeHistory>& data,
+                  const DiagnoseOptions& options,
+                  const std::vector<const Case*>& cases,
+                  const std::vector<const FitResult*>& fits,
+                  const std::vector<DiagnosisStep>& steps) {
+  std::vector<FitResult> without;
+  std::vector<char> fitted;
+  FitWithoutEach(data, cases, fits, steps, &without, &fitted);
+  for (size_t k = 0; k < without.size(); ++k) {
+    const FitResult& with = *fits[k / steps.size()];
+    if (!fitted[k] || !(Bic(without[k]) > Bic(with) + options.min_bic_drop)) {
+      VLOG(1) << steps[k % steps.size()].effect
+              << " not needed in a complete model: BIC +"
+              << Bic(without[k]) - Bic(with) << " without it";
+      return false;
+    }
+  }
+  return true;
+}
+
+// The effects of the model AdoptAfterTie adopts (the steps before the tie
+// and `adopt`, indices into d.steps) into *effects, and the terms `adopt`
+// added into *names.
+void AdoptedEffects(const Diagnosis& d,
+                    int tie,
+                    const std::vector<int>& adopt,
+                    std::vector<const Effect*>* effects,
+                    std::vector<std::string>* names) {
+  effects->clear();
+  names->clear();
+  for (int i = 0; i < tie; ++i) {
+    effects->push_back(FindEffect(d.steps[i].effect));
+  }
+  for (int i : adopt) {
+    effects->push_back(FindEffect(d.steps[i].effect));
+    for (const ParameterEstimate& e : d.steps[i].step_parameters) {
+      names->push_back(e.name);
+    }
+  }
+}
+
+// The steps of `adopt` (indices into d.steps, after the tie) that go with
+// the tied effect rather than after it: out of their bounds in `without`
+// (the complete model without the tied effect, fitted as `without_fit`),
+// and not needed with a rival of the tie in its place (without them, that
+// model's BIC rises by less than min_bic_drop). On a pair of runs a roll
+// damping adopted after a roll torque (tied with a tunnel stiffness) drove
+// the roll without the torque, and with the stiffness instead BIC was 4.8
+// lower without it: it was the torque's companion.
+std::vector<int> TieCompanions(const std::vector<TimeHistory>& data,
+                               const DiagnoseOptions& options,
+                               const Diagnosis& d,
+                               const std::vector<int>& adopt,
+                               const Case& without,
+                               const FitResult& without_fit) {
+  std::vector<int> companions;
+  const Case at = CaseAtSolution(without, without_fit);
+  for (int i : adopt) {
+    const DiagnosisStep& step = d.steps[i];
+    if (Implausible(*FindEffect(step.effect), without, without_fit).empty()) {
+      continue;
+    }
+    for (size_t r = 1; r < d.ambiguous.size(); ++r) {
+      Case with_rival;
+      FitResult rival_fit, alone;
+      if (!RivalCase(at, d.ambiguous[r].effect, &with_rival) ||
+          !FitFrom(with_rival, without_fit, data, "companions", &rival_fit) ||
+          !FitFrom(WithoutStep(CaseAtSolution(with_rival, rival_fit), step),
+                   rival_fit,
+                   data,
+                   "without " + step.effect,
+                   &alone)) {
+        continue;
+      }
+      if (Bic(alone) < Bic(rival_fit) + options.min_bic_drop) {
+        VLOG(1) << step.effect << " goes with the tied effect: with "
+                << d.ambiguous[r].effect << " BIC +"
+                << Bic(alone) - Bic(rival_fit) << " without it";
+        companions.push_back(i);
+        break;
+      }
+    }
+  }
+  return companions;
+}
+
+// `companions` (TieCompanions) taken out of *adopt and of *without, which
+// is refitted into *without_fit; false when nothing is left to adopt or
+// the fit fails.
+bool WithoutCompanions(const std::vector<TimeHistory>& data,
+                       const Diagnosis& d,
+                       const std::vector<int>& companions,
+                       std::vector<int>* adopt,
+                       Case* without,
+                       FitResult* without_fit) {
+  Case c = CaseAtSolution(*without, *without_fit);
+  for (int i : companions) {
+    c = WithoutStep(c, d.steps[i]);
+    adopt->erase(std::find(adopt->begin(), adopt->end(), i));
+  }
+  FitResult fit;
+  if (adopt->empty() ||
+      !FitFrom(c, *without_fit, data, "without the tie's companions", &fit)) {
+    return false;
+  }
+  *without = std::move(c);
+  *without_fit = std::move(fit);
+  return true;
+}
+
+// The steps of `d` split at an adopted tie: the tied step and the steps
+// after it not in `adopt` (its companions, those after the next tie) go to
+// d->partial; the steps before it and `adopt` stay.
+void SplitAtTie(int tie, const std::vector<int>& adopt, Diagnosis* d) {
+  std::vector<DiagnosisStep> steps(d->steps.begin(), d->steps.begin() + tie);
+  d->partial.assign(1, d->steps[tie]);
+  for (int i = tie + 1; i < static_cast<int>(d->steps.size()); ++i) {
+    const bool adopted =
+        std::find(adopt.begin(), adopt.end(), i) != adopt.end();
+    (adopted ? steps : d->partial).push_back(d->steps[i]);
+  }
+  d->steps = std::move(steps);
+}
+
+// After a tie (at step `tie`; `tied` marks every step that stays in
+// doubt) followed to an explained record: the steps after it up to the
+// next tie are adopted when the record needs them whichever of the tied
+// effects (d->ambiguous) is in it (diagnose.h). The tied step (and any
+// after the next tie) is then partial, the final model *current is the one
+// before the tie with them added, d->alternatives holds the complete model
+// with each of the tied effects,
+// *final gets the final model's residual check, and true is returned;
+// otherwise nothing changes. When the adopted effects need one of the tied
+// effects (without any, they leave their bounds or explain nothing) and
+// every complete model reaches the noise, the final model is the complete
+// one with the first tied effect standing in for the tie
+// (Diagnosis::stand_in): on a Table 6 record a roll damping and a roll
+// torque are twins at constant spin, and without either the calibration
+// error the bearing moment needs went out of its bounds.
+bool AdoptAfterTie(const std::vector<TimeHistory>& data,
+                   const DiagnoseOptions& options,
+                   const std::vector<Case>& models,
+                   int tie,
+                   const std::vector<bool>& tied,
+                   Diagnosis* d,
+                   Case* current,
+                   ResidualCheck* final) {
+  int last = tie;  // the last step to adopt
+  while (last + 1 < static_cast<int>(d->steps.size()) && !tied[last + 1]) {
+    ++last;
+  }
+  VLOG(1) << "after the tie at step " << tie << ": " << last - tie
+          << " step(s) before the next tie";
+  if (last == tie) return false;
+  // The complete model through `last` (its fit and case).
+  const int through = last + 1;
+  const FitResult& complete = d->fits[through];
+  const FitResult& before = d->fits[tie];
+  std::vector<int> adopt;  // the steps after the tie to adopt
+  for (int i = tie + 1; i <= last; ++i) adopt.push_back(i);
+  Case without =
+      WithoutStep(CaseAtSolution(models[through], complete), d->steps[tie]);
+  FitResult without_fit;
+  if (!FitFrom(without,
+               complete,
+               data,
+               "without " + d->steps[tie].effect,
+               &without_fit)) {
+    return false;
+  }
+  std::vector<const Effect*> effects;  // the adopted model's
+  std::vector<std::string> names;      // the terms added after the tie
+  AdoptedEffects(*d, tie, adopt, &effects, &names);
+  // A step out of its bounds without the tied effect may be its companion
+  // (TieCompanions): it goes with it.
+  std::vector<int> companions;
+  bool needed =
+      NeededWithoutTied(options, effects, without, without_fit, before);
+  if (!needed) {
+    companions = TieCompanions(data, options, *d, adopt, without, without_fit);
+  }
+  if (!companions.empty()) {
+    if (!WithoutCompanions(
+            data, *d, companions, &adopt, &without, &without_fit)) {
+      return false;
+    }
+    AdoptedEffects(*d, tie, adopt, &effects, &names);
+    needed = NeededWithoutTied(options, effects, without, without_fit, before);
+  }
+  const bool stand_in = !needed;
+  // The complete models: with every step the search took (a later tie's
+  // followed effects in).
+  const bool later = last + 1 < static_cast<int>(d->steps.size());
+  if (stand_in && (later || !companions.empty())) {
+    VLOG(1) << "no stand-in for the tie with a later tie or companions";
+    return false;
+  }
+  const int full = later ? static_cast<int>(d->partial_fit) : through;
+  // With each rival instead of the first, against that rival alone on the
+  // model before the tie.
+  std::vector<AlternativeModel> alternatives = {
+      {d->steps[tie].effect,
+       CheckResiduals(d->fits[full], options),
+       d->fits[full].parameters,
+       full}};
+  bool known = alternatives[0].check.at_noise_level;
+  std::vector<FitResult> rival_fits;
+  std::vector<Case> rival_cases;
+  for (size_t r = 1; r < d->ambiguous.size(); ++r) {
+    const std::string& rival = d->ambiguous[r].effect;
+    // A drift in time is no model (a straight drift of the readings stands
+    // in for it) and is tested only when it is the one rival.
+    if (rival == kDriftInTime && d->ambiguous.size() > 2) continue;
+    FitResult rival_fit;
+    Case with_rival;
+    if (!AdoptedWithRival(data,
+                          options,
+                          effects,
+                          without,
+                          without_fit,
+                          models[tie],
+                          before,
+                          rival,
+                          &with_rival,
+                          &rival_fit)) {
+      VLOG(1) << "not needed, or not plausible, with " << rival;
+      return false;
+    }
+    if (later && !CompleteWithRival(data,
+                                    models[full],
+                                    d->fits[full],
+                                    d->steps[tie],
+                                    rival,
+                                    &with_rival,
+                                    &rival_fit)) {
+      return false;
+    }
+    alternatives.push_back(
+        {rival, CheckResiduals(rival_fit, options), rival_fit.parameters, -1});
+    known = known && alternatives.back().check.at_noise_level;
+    rival_fits.push_back(std::move(rival_fit));
+    rival_cases.push_back(std::move(with_rival));
+  }
+  if (stand_in && (!known || rival_fits.empty())) {
+    VLOG(1) << "a stand-in for the tie needs every complete model at the "
+            << "noise";
+    return false;
+  }
+  if (stand_in) {
+    std::vector<const Case*> cases = {&models[through]};
+    std::vector<const FitResult*> fits = {&complete};
+    for (size_t r = 0; r < rival_fits.size(); ++r) {
+      cases.push_back(&rival_cases[r]);
+      fits.push_back(&rival_fits[r]);
+    }
+    std::vector<DiagnosisStep> steps;
+    for (int i : adopt) steps.push_back(d->steps[i]);
+    if (!NeededInEach(data, options, cases, fits, steps)) return false;
+  }
+  // The drag rule guards against an effect absorbing an unknown structure;
+  // when every complete model reaches the noise, what the final model
+  // leaves is known (the tie's signature), and the coefficients may move.
+  if (!known) {
+    const std::string drags =
+        Drags(before, without_fit, names, options.max_drag);
+    if (!drags.empty()) {
+      VLOG(1) << "the adopted effects drag the coefficients: " << drags;
+      return false;
+    }
+  }
+  Reported(models[full], data, &d->fits[full]);
+  alternatives[0].parameters = d->fits[full].parameters;
+  for (size_t r = 0; r < rival_fits.size(); ++r) {
+    Reported(rival_cases[r], data, &rival_fits[r]);
+    alternatives[r + 1].parameters = rival_fits[r].parameters;
+    d->fits.push_back(std::move(rival_fits[r]));
+    alternatives[r + 1].fit = static_cast<int>(d->fits.size()) - 1;
+  }
+  d->alternatives = std::move(alternatives);
+  if (stand_in) {
+    d->stand_in = d->steps[tie].effect;
+    d->final_fit = through;
+    *current = models[through];
+  } else {
+    d->fits.push_back(without_fit);
+    d->final_fit = d->fits.size() - 1;
+    *current = without;
+  }
+  SplitAtTie(tie, adopt, d);
+  *final = CheckResiduals(d->FinalFit(), options);
+  d->steps.back().after = *final;
+  return true;
+}
+
+}  // namespace
+
+std::vector<CandidateFit> Rivals(const std::vector<Contender>& contenders,
+                                 int best,
+                                 const Contender* probe,
+                                 const std::vector<TimeHistory>& data,
+                                 const DiagnoseOptions& options) {
+  const double within = contenders[best].bic + options.ambiguity_bic;
+  std::vector<CandidateFit> rivals = Near(contenders, best, within);
+  if (probe != nullptr && probe->bic < within) rivals.push_back(probe->record);
+  if (contenders[best].candidate->effect->roll_locked && !RollSeparates(data)) {
+    rivals.push_back(DriftInTime());
+  }
+  return rivals;
+}
+
+std::vector<CandidateFit> WiderRivals(std::vector<CandidateFit> rivals,
+                                      const std::vector<Contender>& contenders,
+                                      int best,
+                                      const DiagnoseOptions& options) {
+  for (CandidateFit& k :
+       Near(contenders, best, contenders[best].bic + options.rival_bic)) {
+    if (std::none_of(rivals.begin(), rivals.end(), [&](const CandidateFit& r) {
+          return r.effect == k.effect;
+        })) {
+      rivals.push_back(std::move(k));
+    }
+  }
+  return rivals;
+}
+
+Case WithoutStep(const Case& at, const DiagnosisStep& step) {
+  Case without = at;
+  const Effect* effect = FindEffect(step.effect);
+  CHECK(effect != nullptr) << step.effect;
+  for (const ParameterEstimate& e : step.step_parameters) {
+    const int position = AddedTermPosition(without.model, e.name);
+    if (position < 0) continue;
+    const std::string& name = ParameterTable(without.model)[position].name;
+    ParameterSetting& p = without.parameters[position];
+    ParameterTie tie;
+    if (without.model == ModelKind::kAsymmetric && SymmetricTie(name, &tie) &&
+        !without.parameters[tie.source].tied()) {
+      p = ParameterSetting::Tied(tie);
+      continue;
+    }
+    p.free = false;
+    if (!IsCompanion(*effect, e.name)) p.value = 0.0;
+  }
+  without.SettleTies();
+  return without;
+}
+
+CandidateFit AsContender(const DiagnosisStep& step) {
+  CandidateFit c;
+  c.effect = step.effect;
+  c.parameters = step.step_parameters;
+  c.bic_drop = step.bic_drop;
+  c.prediction_gain = step.prediction_gain;
+  return c;
+}
+
+std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
+                        const Case& c,
+                        const FitResult& fit,
+                        const std::vector<TimeHistory>& data) {
+  const Effect* a = FindEffect(ambiguous[0].effect);
+  const Effect* b = FindEffect(ambiguous[1].effect);
+  if (a != nullptr && b != nullptr) return Separation(*a, *b, c, fit);
+  if (ambiguous[1].effect == kDriftInTime) {
+    return "a record spanning a revolution of roll (this one: " +
+           FormatNumber("%.0f", RollSpan(data)) +
+           " deg) or a run at another spin rate";
+  }
+  for (const CandidateFit& k : ambiguous) {
+    const Effect* probe = FindProbe(k.effect);
+    if (probe != nullptr && !probe->separated_by.empty()) {
+      return probe->separated_by;
+    }
+  }
+  return "a second run at another spin rate or amplitude (a drift grows "
+         "with the time of each run, a catalog effect follows what the runs "
+         "differ in)";
+}
+
+ResidualCheck SettleFinalModel(
+    const Case& user,
+    const std::vector<TimeHistory>& data,
+    const DiagnoseOptions& options,
+    const std::vector<Case>& models,
+    int tie,
+    const std::vector<std::vector<CandidateFit>>& rivals,
+    const ResidualCheck& check,
+    Diagnosis* d,
+    Case* current) {
+  if (!check.at_noise_level) {
+    // Nothing explains the record: the steps taken are partial and not
+    // adopted (Diagnosis::partial says why), a tie on the way included.
+    d->partial = std::move(d->steps);
+    d->steps.clear();
+    d->ambiguous.clear();
+    d->separated_by.clear();
+    *current = user;
+    d->final_fit = 0;
+    return d->initial;
+  }
+  std::vector<bool> tied(d->steps.size(), false);
+  // Rivals within rival_bic of a step are swapped in even when none tied.
+  const bool rivalled = std::any_of(
+      rivals.begin(), rivals.end(), [](const auto& r) { return !r.empty(); });
+  if (rivalled &&
+      TieDissolves(data, options, rivals, &tie, &tied, d, current)) {
+    // The tied effect turned out redundant with the later ones in, or
+    // no rival explains the record as well with them.
+    return CheckResiduals(d->FinalFit(), options);
+  }
+  ResidualCheck adopted;
+  if (tie >= 0 &&
+      AdoptAfterTie(data, options, models, tie, tied, d, current, &adopted)) {
+    return adopted;
+  }
+  if (tie >= 0) {
+    // Explained, but with one of a tied pair: the final model is the one
+    // before the tie, the steps from it on are reported as partial.
+    d->partial.assign(d->steps.begin() + tie, d->steps.end());
+    d->steps.resize(tie);
+    d->final_fit = tie;
+    *current = models[tie];
+    return tie == 0 ? d->initial : d->steps.back().after;
+  }
+  d->final_fit = d->steps.size();
+  Prune(data, options, d, current);
+  return CheckResiduals(d->FinalFit(), options);
+}
+
+}  // namespace fit3dof
