@@ -125,7 +125,7 @@ std::string ImplausibleBeside(const std::vector<const Effect*>& model,
                               const FitResult& fit) {
   const std::string why = ImplausibleAmong(model, c, fit);
   if (!why.empty()) return why;
-  return Implausible(effect, c, Shrunk(fit, added, 2.0));
+  return ImplausibleWithin(effect, c, fit, added, 2.0);
 }
 
 // The complete model `m` with `set` in `step`'s place: *c and *fit; the
@@ -198,6 +198,18 @@ FitResult Shrunk(FitResult fit,
     e.value -= std::copysign(shrink, e.value);
   }
   return fit;
+}
+
+std::string ImplausibleWithin(const Effect& effect,
+                              const Case& c,
+                              const FitResult& fit,
+                              const std::vector<std::string>& added,
+                              double k) {
+  const std::string why = Implausible(effect, c, fit);
+  if (why.empty() || Implausible(effect, c, Shrunk(fit, added, k)).empty()) {
+    return "";
+  }
+  return why;
 }
 
 void WidenForTie(Diagnosis* d) {

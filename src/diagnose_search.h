@@ -284,6 +284,18 @@ FitResult Shrunk(FitResult fit,
                  const std::vector<std::string>& names,
                  double k);
 
+// Why the effect's terms `added`, as `fit` (of case `c`) has them, lie
+// outside its bounds (Implausible) both at the point fit and moved `k` of
+// their standard errors toward zero (Shrunk); empty when either is within
+// them. Shrinking a tunnel term alone moves the sum that Eq. 43 leaves
+// determined (Cm_q + t2): one within its bounds as fitted can leave them
+// shrunk (a record's damping turned positive).
+std::string ImplausibleWithin(const Effect& effect,
+                              const Case& c,
+                              const FitResult& fit,
+                              const std::vector<std::string>& added,
+                              double k);
+
 // The final model of a record that an open tie leaves ambiguous holds
 // none of the tied effects, and what one of them would change in it the
 // record cannot say: a calibration error fitted without the bearing moment
