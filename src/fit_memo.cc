@@ -34,7 +34,7 @@ class Memo {
     std::lock_guard<std::mutex> lock(mutex_);
     ++counts_.calls;
     for (const Entry& e : entries_) {
-      if (e.c == c && SameData(e.data, data)) {
+      if (e.c == c && e.c.source == c.source && SameData(e.data, data)) {
         ++counts_.hits;
         return e.fit;
       }

@@ -7,7 +7,8 @@
 // fitted. On the suite's slowest record (Table 6 with a bearing moment, a
 // calibration error and a roll torque) 7 of 43 fits were such repeats.
 // FitSamples is a pure function of the case and the data, so a fit of an
-// equal case (operator==, case.h) to equal data is returned from the memo,
+// equal case (operator==, case.h, and the same `source`, which the fit's
+// warnings name) to equal data is returned from the memo,
 // and the diagnosis stays the same bit for bit (the suite's diagnosis.json
 // files are identical with and without it).
 

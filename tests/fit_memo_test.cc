@@ -73,9 +73,7 @@ TEST(FitMemo, AnEqualCaseToEqualDataIsTheEarlierFit) {
   const std::vector<TimeHistory> data = Data(Fit(c));
   const FitMemoCounts before = GetFitMemoCounts();
   const FitResult first = MemoizedFitSamples(c, data);
-  Case again = c;
-  again.source = "elsewhere.yaml";  // not part of what the case is
-  const FitResult second = MemoizedFitSamples(again, data);
+  const FitResult second = MemoizedFitSamples(Case(c), data);
   const FitMemoCounts after = GetFitMemoCounts();
   EXPECT_EQ(after.calls - before.calls, 2);
   EXPECT_EQ(after.hits - before.hits, 1);
@@ -93,12 +91,15 @@ TEST(FitMemo, AnyDifferenceIsANewFit) {
   frozen.parameters[FindParameter(c.model, "Cm_alpha_delta2")].value = -1.0;
   std::vector<TimeHistory> moved = data;  // one reading
   moved[0].theta[10] += 0.01;
+  Case elsewhere = c;  // the file its warnings name
+  elsewhere.source = "elsewhere.yaml";
 
   const FitMemoCounts before = GetFitMemoCounts();
   const FitResult other_case = MemoizedFitSamples(frozen, data);
   const FitResult other_data = MemoizedFitSamples(c, moved);
+  MemoizedFitSamples(elsewhere, data);
   const FitMemoCounts after = GetFitMemoCounts();
-  EXPECT_EQ(after.calls - before.calls, 2);
+  EXPECT_EQ(after.calls - before.calls, 3);
   EXPECT_EQ(after.hits - before.hits, 0);
   EXPECT_NE(other_case.sum_of_residuals, base.sum_of_residuals);
   EXPECT_NE(other_data.sum_of_residuals, base.sum_of_residuals);
