@@ -184,8 +184,8 @@ std::vector<const Effect*> Needed(
   return needed;
 }
 
-}  // namespace
-
+// `fit` with the parameters `names` moved toward zero by `k` of their
+// standard errors (not past zero).
 FitResult Shrunk(FitResult fit,
                  const std::vector<std::string>& names,
                  double k) {
@@ -199,6 +199,8 @@ FitResult Shrunk(FitResult fit,
   }
   return fit;
 }
+
+}  // namespace
 
 std::string ImplausibleWithin(const Effect& effect,
                               const Case& c,

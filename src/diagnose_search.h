@@ -278,12 +278,6 @@ ResidualCheck SettleFinalModel(
 
 // The final model's error bars (diagnose_error_bars.cc).
 
-// `fit` with the parameters `names` moved toward zero by `k` of their
-// standard errors (not past zero).
-FitResult Shrunk(FitResult fit,
-                 const std::vector<std::string>& names,
-                 double k);
-
 // Why the effect's terms `added`, as `fit` (of case `c`) has them, lie
 // outside its bounds (Implausible) both at the point fit and moved `k` of
 // their standard errors toward zero (Shrunk); empty when either is within

@@ -8,9 +8,9 @@
 // calibration error and a roll torque) 7 of 43 fits were such repeats.
 // FitSamples is a pure function of the case and the data, so a fit of an
 // equal case (operator==, case.h, and the same `source`, which the fit's
-// warnings name) to equal data is returned from the memo,
-// and the diagnosis stays the same bit for bit (the suite's diagnosis.json
-// files are identical with and without it).
+// warnings name) to equal data is returned from the memo, and the
+// diagnosis stays the same bit for bit (the suite's diagnosis.json files
+// are identical with and without it).
 
 #ifndef FIT3DOF_SRC_FIT_MEMO_H_
 #define FIT3DOF_SRC_FIT_MEMO_H_
@@ -24,8 +24,8 @@
 namespace fit3dof {
 
 // FitSamples(c, data), or the result of an earlier call with an equal case
-// and equal data among the most recent kFitMemoCapacity fits of the
-// process. Thread-safe; a fit that throws is not remembered (the next call
+// (and source) and equal data among the most recent kFitMemoCapacity fits of
+// the process. Thread-safe; a fit that throws is not remembered (the next call
 // throws again).
 FitResult MemoizedFitSamples(const Case& c,
                              const std::vector<TimeHistory>& data);

@@ -363,8 +363,9 @@ struct Diagnosis {
   // `steps` (not claimed) into `stood_in`, its effect joins a tie
   // (ambiguous, or later_ties) with those effects, and the final model
   // keeps its terms, its error bars covering the replacing model's values
-  // (diagnose_error_bars.cc, FindSetReplacements). A body's own yaw damping added on
-  // a 3-s run stood in for a tunnel damping and a Magnus moment together.
+  // (diagnose_error_bars.cc, FindSetReplacements). A body's own yaw damping
+  // added on a 3-s run stood in for a tunnel damping and a Magnus moment
+  // together.
   std::vector<DiagnosisStep> stood_in;
   std::vector<std::vector<std::string>> stood_in_for;  // the replacing sets
   // When the residuals stay structured: what they show, and the contenders
