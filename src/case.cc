@@ -151,15 +151,17 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
                   a.max_probable_error,
                   a.multi_start,
                   a.starts,
-                  a.profile_ridges) == std::tie(b.max_iterations,
-                                                b.tolerance,
-                                                b.step,
-                                                b.continuation,
-                                                b.method,
-                                                b.max_probable_error,
-                                                b.multi_start,
-                                                b.starts,
-                                                b.profile_ridges);
+                  a.profile_ridges,
+                  a.from_solution) == std::tie(b.max_iterations,
+                                               b.tolerance,
+                                               b.step,
+                                               b.continuation,
+                                               b.method,
+                                               b.max_probable_error,
+                                               b.multi_start,
+                                               b.starts,
+                                               b.profile_ridges,
+                                               b.from_solution);
 }
 
 bool operator==(const ProcessNoiseModel& a, const ProcessNoiseModel& b) {

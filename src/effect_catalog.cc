@@ -245,10 +245,12 @@ bool OutsideCatalog(const std::string& id) {
 
 void RefitFromSolution(Case* c, double probable_error) {
   // Far above the noise (the fit without the effect lost the motion: a
-  // missing roll damping over 48 s) the refit needs the growing windows.
+  // missing roll damping over 48 s) the refit needs the growing windows;
+  // near it, the start is close enough to trust Gauss-Newton steps.
   c->solver.continuation = probable_error > kNearSolution;
   c->solver.multi_start = false;
   c->solver.max_probable_error = 0.0;
+  c->solver.from_solution = !c->solver.continuation;
 }
 
 bool IsCompanion(const Effect& effect, const std::string& name) {

@@ -144,6 +144,7 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
   options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = settings.max_iterations;
+  options.initial_trust_region_radius = settings.initial_radius;
   // The report's rule (the callback) decides convergence; Ceres' own
   // tolerances only stop a fit that cannot move at all.
   options.function_tolerance = 1e-14;

@@ -27,11 +27,29 @@ struct StageOutcome {
   std::string failure;  // why the start values could not be integrated
 };
 
+// The first trust regions (StageSettings::initial_radius). From a guess,
+// Ceres' default: a damping of 1e-4 leaves the directions the data see
+// (unit diagonal) undamped and holds back only those they hardly see,
+// where a Gauss-Newton step from afar wanders (a bearing moment's angle
+// had gone to 10 deg and crawled back over 200 iterations). From the
+// solution of a nearby model those directions are the straight ridges of
+// parameters sharing one effect (Eq. 43: Cm_alpha, t1 and t3), along which
+// each accepted step could only triple the radius: refits crawled 11-16
+// iterations in steps growing 3-fold, a third of a diagnosis' time. There
+// the Gauss-Newton step is taken at once, and a step that fails still
+// shrinks the radius.
+inline constexpr double kStartRadius = 1e4;
+inline constexpr double kFromSolutionRadius = 1e8;
+
 // What a stage solve needs besides the segments and the values.
 struct StageSettings {
   double tolerance = 0.0;           // absolute, on the probable error
   double relative_tolerance = 0.0;  // times the probable error
   int max_iterations = 50;
+  // Levenberg-Marquardt's first trust region, in the scaling that gives
+  // every free coordinate's Jacobian column unit norm (Ceres' radius is
+  // the inverse of the damping added to that unit diagonal).
+  double initial_radius = kStartRadius;
 };
 
 // One Levenberg-Marquardt run from `values` (global free order, updated in

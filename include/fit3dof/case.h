@@ -155,6 +155,10 @@ struct SolverOptions {
   // diagnose turns it off for the fits of its search, whose decisions do
   // not read those error bars, and profiles the fits it reports.
   bool profile_ridges = true;
+  // The start is the solution of a nearby model (diagnose's refits with an
+  // effect more or less): Levenberg-Marquardt trusts the Gauss-Newton step
+  // from the first iteration (stage_solver.h). Not a config key.
+  bool from_solution = false;
 };
 
 struct SimulateOptions {
