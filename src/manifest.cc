@@ -19,6 +19,7 @@
 #include "deck_config.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/namelist.h"
+#include "run_group.h"
 
 namespace fit3dof {
 namespace {
@@ -35,6 +36,32 @@ std::string Where(const std::string& path, const YAML::Node& node) {
   return node.Mark().line >= 0
              ? path + ":" + std::to_string(node.Mark().line + 1)
              : path;
+}
+
+// The run names of a manifest entry's together: (run_group.h).
+std::vector<std::string> Together(const std::string& where,
+                                  const YAML::Node& entry) {
+  const YAML::Node list = entry["together"];
+  if (!list.IsSequence()) {
+    throw InputError(where + ": together: expected a list of run names");
+  }
+  std::vector<std::string> names;
+  for (const YAML::Node& name : list) {
+    if (!name.IsScalar()) {
+      throw InputError(where + ": together: expected a list of run names");
+    }
+    names.push_back(name.Scalar());
+  }
+  // Its records and starting values are its runs'.
+  for (const char* key : {"config", "data", "segments", "start_from"}) {
+    if (entry[key]) {
+      throw InputError(where + ": " + key +
+                       ": a together run takes its records and starting "
+                       "values from the runs it names; give " +
+                       key + " to them");
+    }
+  }
+  return names;
 }
 
 // Runs from a YAML manifest with runs: (and defaults:).
@@ -65,12 +92,14 @@ std::vector<RunSpec> FromManifest(const std::string& path,
     throw InputError(Where(path, root) + ": runs: expected a non-empty list");
   }
   std::vector<RunSpec> specs;
+  std::map<std::string, YAML::Node> own;  // the together runs' own keys
   for (size_t i = 0; i < runs.size(); ++i) {
     const YAML::Node entry = runs[i];
     const std::string where =
         Where(path, entry) + ": runs[" + std::to_string(i) + "]";
     if (!entry.IsMap()) throw InputError(where + ": expected a mapping");
     RunSpec spec;
+    if (entry["together"]) spec.together = Together(where, entry);
     spec.base_dir = base;
     // Note: assigning one YAML::Node to another writes through to the node
     // the left side refers to; reset() rebinds the handle instead.
@@ -106,6 +135,7 @@ std::vector<RunSpec> FromManifest(const std::string& path,
       }
       overrides.remove("diagnose");
     }
+    overrides.remove("together");
     ResolveDataPaths(base, &overrides);
     merged.reset(MergeYaml(merged, overrides));
     if (merged["name"]) spec.name = merged["name"].Scalar();
@@ -117,8 +147,10 @@ std::vector<RunSpec> FromManifest(const std::string& path,
     spec.node_lines = false;
     spec.label = "run '" + spec.name + "'";
     spec.source = Where(path, entry) + ": " + spec.label;
+    if (!spec.together.empty()) own[spec.name] = overrides;
     specs.push_back(spec);
   }
+  JoinRuns(path, own, &specs);
   return specs;
 }
 

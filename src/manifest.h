@@ -3,7 +3,9 @@
 // A batch manifest turned into runs. Accepted forms:
 //   - a YAML file with `defaults:` (config keys deep-merged into every run)
 //     and `runs:` (each a config fragment with `name`, and/or `config:`
-//     naming a config file, plus overrides, `start_from:` and `diagnose:`);
+//     naming a config file, plus overrides, `start_from:` and `diagnose:`;
+//     or `together:`, naming runs whose records it fits with one model:
+//     run_group.h);
 //   - a directory: every *.yaml / *.yml config in it is a run;
 //   - a single config file: one run;
 //   - a legacy NAMELIST deck (namelist.h): one run per group.
@@ -31,6 +33,8 @@ struct RunSpec {
   std::string base_dir;    // for any path still relative
   std::string start_from;  // predecessor run (IUPDAT), or empty
   bool diagnose = false;   // run the discrepancy workflow (issue 6)
+  // The runs whose records this run fits with one model (run_group.h).
+  std::vector<std::string> together;
   std::string chain_root;  // first run of its start_from chain
   std::string hash;        // of the merged config and its predecessors
   bool node_lines = true;  // false: config's nodes lost their lines (merged)
