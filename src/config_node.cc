@@ -238,7 +238,10 @@ void ResolveDataPaths(const std::string& base_dir, YAML::Node* node) {
   resolve((*node)["data"]);
   YAML::Node segments = (*node)["segments"];
   if (segments.IsSequence()) {
-    for (size_t i = 0; i < segments.size(); ++i) resolve(segments[i]["data"]);
+    for (size_t i = 0; i < segments.size(); ++i) {
+      // A segment that is not a mapping is the config reader's to report.
+      if (segments[i].IsMap()) resolve(segments[i]["data"]);
+    }
   }
 }
 

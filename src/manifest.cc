@@ -52,6 +52,9 @@ std::vector<std::string> Together(const std::string& where,
     }
     names.push_back(name.Scalar());
   }
+  if (names.size() < 2) {
+    throw InputError(where + ": together: expected two or more runs");
+  }
   // Its records and starting values are its runs'.
   for (const char* key : {"config", "data", "segments", "start_from"}) {
     if (entry[key]) {

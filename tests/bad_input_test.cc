@@ -298,6 +298,15 @@ std::vector<BadInput> Catalog() {
   manifest("manifest bad diagnose",
            "runs:\n  - {name: a, config: config.yaml, diagnose: maybe}\n",
            "diagnose: expected true or false");
+  manifest("manifest together not a list",
+           "runs:\n  - {name: a, config: config.yaml}\n  - {name: g, "
+           "together: a}\n",
+           "extra:3: runs[1]: together: expected a list of run names");
+  manifest("manifest together with its own data",
+           "runs:\n  - {name: a, config: config.yaml}\n  - {name: b, config: "
+           "config.yaml}\n  - {name: g, together: [a, b], data: {file: "
+           "x.csv}}\n",
+           "data: a together run takes its records");
   manifest("manifest unsafe name",
            "runs:\n  - {name: ../x, config: config.yaml}\n",
            "run name '../x' must use only");

@@ -487,6 +487,24 @@ TEST(Batch, RunsTogetherShareOneModel) {
       << d["verdict_text"];
 }
 
+// A run's segment that is not a mapping fails that run with the config
+// reader's message (yaml-cpp had thrown out of the whole batch, exit 1).
+TEST(Batch, ASegmentThatIsNotAMappingFailsItsRun) {
+  const std::string dir = testing::ScratchDirectory("batch_bad_segment");
+  testing::WriteText(
+      dir + "/m.yaml",
+      "runs:\n  - {name: a, model: symmetric, body: {area: 0.39, "
+      "diameter: 0.7, Ix: 0.04, Iy: 0.24}, flow: {velocity: "
+      "4774, dynamic_pressure: 150}, segments: [1]}\n");
+  const auto r =
+      testing::RunFit3dof("batch " + dir + "/m.yaml --out_dir=" + dir + "/out");
+  EXPECT_EQ(r.exit_status, 1) << r.output;
+  EXPECT_NE(testing::ReadText(dir + "/out/a/error.txt")
+                .find("segments[0]: expected a mapping"),
+            std::string::npos)
+      << r.output;
+}
+
 TEST(Batch, BadManifestsExitTwo) {
   const std::string dir = testing::ScratchDirectory("batch_bad");
   testing::WriteText(dir + "/dup.yaml",
