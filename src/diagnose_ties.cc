@@ -222,41 +222,59 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
   const Case without = WithoutStep(at, step);
   const Effect* own = FindEffect(step.effect);
   const bool twins_separate = SpinSeparatesRollLocked(at, fit, data);
-  std::vector<CandidateFit> open;
+  // Each rival's swap: none for a rival in the model; as good unfitted
+  // for a drift in time and an inseparable twin (a roll-locked rival of a
+  // roll-locked step that tied with it at the step: one that lost there by
+  // more, WiderRivals, must win the swap), or where it does not apply.
+  struct Swap {
+    const CandidateFit* rival = nullptr;
+    const Effect* effect = nullptr;
+    bool unfitted_as_good = false;
+    Case c;
+    std::vector<std::string> terms;
+    bool fitted = false;
+    FitResult fit;
+  };
+  std::vector<Swap> swaps;
   for (const CandidateFit& rival : rivals) {
     if (std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
           return s.effect == rival.effect;
         })) {
       continue;
     }
-    Case swapped;
-    FitResult swapped_fit;
-    std::vector<std::string> terms;
-    bool fitted = false;
-    const Effect* effect = FindEffect(rival.effect);
-    // Twins are rivals unfitted only when they tied at the step; one
-    // that lost there by more (WiderRivals) must win the swap.
+    Swap w;
+    w.rival = &rival;
+    w.effect = FindEffect(rival.effect);
     const bool tied_at_step =
         step.bic_drop - rival.bic_drop < options.ambiguity_bic;
     const bool twins = own != nullptr && own->roll_locked &&
-                       effect != nullptr && effect->roll_locked &&
+                       w.effect != nullptr && w.effect->roll_locked &&
                        !twins_separate && tied_at_step;
+    w.unfitted_as_good = rival.effect == kDriftInTime || twins ||
+                         !RivalCase(without, rival.effect, &w.c, &w.terms);
+    swaps.push_back(std::move(w));
+  }
+  // The swaps' fits are independent: side by side.
+  ParallelFor(static_cast<int>(swaps.size()), [&](int i) {
+    Swap& w = swaps[i];
+    if (w.unfitted_as_good) return;
+    w.fitted = FitFrom(w.c,
+                       fit,
+                       data,
+                       "with " + w.rival->effect + " for " + step.effect,
+                       &w.fit);
+  });
+  std::vector<CandidateFit> open;
+  for (Swap& w : swaps) {
     const bool as_good =
-        rival.effect == kDriftInTime || twins ||
-        !RivalCase(without, rival.effect, &swapped, &terms) ||
-        !(fitted = FitFrom(swapped,
-                           fit,
-                           data,
-                           "with " + rival.effect + " for " + step.effect,
-                           &swapped_fit)) ||
-        (Bic(swapped_fit) < Bic(fit) + options.ambiguity_bic &&
-         (effect == nullptr ||
-          ImplausibleWithin(*effect, swapped, swapped_fit, terms, 2.0)
-              .empty()));
-    VLOG(1) << step.effect << " swapped for " << rival.effect << ": "
+        w.unfitted_as_good || !w.fitted ||
+        (Bic(w.fit) < Bic(fit) + options.ambiguity_bic &&
+         (w.effect == nullptr ||
+          ImplausibleWithin(*w.effect, w.c, w.fit, w.terms, 2.0).empty()));
+    VLOG(1) << step.effect << " swapped for " << w.rival->effect << ": "
             << (as_good ? "as good" : "worse");
-    if (as_good) open.push_back(rival);
-    if (as_good && fitted) as_good_fits->push_back(std::move(swapped_fit));
+    if (as_good) open.push_back(*w.rival);
+    if (as_good && w.fitted) as_good_fits->push_back(std::move(w.fit));
   }
   return open;
 }

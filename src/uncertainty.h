@@ -38,8 +38,8 @@ struct Uncertainty {
   // E, Eq. 26. A parameter the data do not determine spends no degree of
   // freedom, so the others get the error bars of a fit with it frozen.
   double probable_error = 0.0;
-  std::vector<double> rms;      // Eq. 27, global free order; NaN where not
-                                // determined
+  std::vector<double> rms;  // Eq. 27, global free order; NaN where not
+                            // determined
   // The standard errors to quote: the covariance with each channel's own
   // residual variance and autocorrelation (colored_covariance.h), global
   // free order; NaN where not determined.

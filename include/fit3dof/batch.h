@@ -63,7 +63,7 @@ bool StringToRunStatus(const std::string& text, RunStatus* status);
 struct RunResult {
   std::string name;
   RunStatus status = RunStatus::kFailed;
-  std::string reason;  // why it failed or did not converge
+  std::string reason;    // why it failed or did not converge
   std::string adequacy;  // of the fit's residuals (fit.h); empty if failed
   int iterations = 0;
   double probable_error = 0.0;       // NaN for a failed run

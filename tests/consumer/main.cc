@@ -15,11 +15,14 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const fit3dof::FitResult result = fit3dof::Fit(fit3dof::LoadConfig(argv[1]));
+    const fit3dof::FitResult result =
+        fit3dof::Fit(fit3dof::LoadConfig(argv[1]));
     for (const fit3dof::ParameterEstimate& e : result.parameters) {
       if (e.name == "Cm_alpha") {
         std::printf("fit3dof %s: %s Cm_alpha = %.17g +- %.3g (%s)\n",
-                    FIT3DOF_VERSION, result.name.c_str(), e.value,
+                    FIT3DOF_VERSION,
+                    result.name.c_str(),
+                    e.value,
                     e.standard_error,
                     result.converged ? "converged" : "not converged");
       }
