@@ -235,6 +235,33 @@ def test_batch_writes_the_summary_and_returns_it(tmp_path):
         fit3dof.batch(str(tmp_path / "missing.yaml"), str(tmp_path / "x"))
 
 
+def test_batch_fits_runs_together(tmp_path):
+    # Two runs of the example campaign at one dynamic pressure, and a run
+    # fitting one model to both records (together:): each record keeps its
+    # initial conditions, and the two determine Cm_alpha better than either.
+    campaign = os.path.join(SOURCE, "configs", "examples", "campaign")
+    with open(os.path.join(campaign, "manifest.yaml")) as f:
+        manifest = yaml.safe_load(f)
+    runs = [r for r in manifest["runs"] if r["name"] in ("q150-a", "q150-c")]
+    for r in runs:
+        r["data"]["file"] = os.path.join(campaign, r["data"]["file"])
+    runs.append({"name": "q150-ac", "together": ["q150-a", "q150-c"]})
+    manifest["runs"] = runs
+    path = tmp_path / "manifest.yaml"
+    path.write_text(yaml.safe_dump(manifest))
+    summary = fit3dof.batch(str(path), str(tmp_path / "out"), jobs=2)
+    rows = {r["name"]: r for r in summary["runs"]}
+    assert [r["status"] for r in rows.values()] == ["converged"] * 3
+    joint = rows["q150-ac"]["parameters"]
+    assert "q150-c.phidot0" in joint
+    for alone in ("q150-a", "q150-c"):
+        assert (joint["Cm_alpha"]["standard_error"] <
+                rows[alone]["parameters"]["Cm_alpha"]["standard_error"])
+    with open(tmp_path / "out" / "q150-ac" / "report.json") as f:
+        report = json.load(f)
+    assert [s["name"] for s in report["segments"]] == ["q150-a", "q150-c"]
+
+
 def test_the_example_script_fits_the_campaign(tmp_path):
     script = os.path.join(SOURCE, "examples", "campaign.py")
     out = subprocess.run(["/usr/bin/python3", script, str(tmp_path)],
