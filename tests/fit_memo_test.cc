@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "fit3dof/config.h"
 #include "fit3dof/parameters.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
@@ -18,34 +17,10 @@
 namespace fit3dof {
 namespace {
 
-// The short condition of tools/diagnose_suite: 3 s, 8 deg of pitching at
-// 30 deg/s of spin.
-constexpr char kShortRun[] = R"(name: short
-model: symmetric
-body: {area: 0.3491, diameter: 0.6667, Ix: 0.0301, Iy: 0.2583}
-flow: {velocity: 2900.0, dynamic_pressure: 460.0}
-parameters:
-  Cm_alpha: -0.23
-  Cm_q: -5.5
-  phidot0: 30.0
-  theta0: 8.0
-sigma: {phi: 0.01, theta: 0.01, psi: 0.01}
-solver: {step: 0.002}
-)";
-
-// A config fitting Cm_alpha and Cm_q to the short run (noise seed 7).
+// A config fitting Cm_alpha and Cm_q to the short run of
+// tools/diagnose_suite (testing::ShortRun, noise seed 7).
 Case ShortRunFit(const std::string& dir) {
-  const std::string config = dir + "/short.yaml";
-  testing::WriteText(config, kShortRun);
-  Case c = LoadConfig(config);
-  std::vector<double> times;
-  for (double t = 0.0; t <= 3.0; t += 0.06435) times.push_back(t);
-  Segment s;
-  s.name = "short";
-  s.data_file = testing::WriteNoisyRecord(c, times, 7, dir + "/data.csv");
-  for (int j = 0; j < 6; ++j) s.initial[j].free = true;
-  c.segments = {s};
-  c.source = config;
+  Case c = testing::ShortRun(dir, "", 7);
   c.parameters[FindParameter(c.model, "Cm_alpha")] = {-0.2, true, false};
   c.parameters[FindParameter(c.model, "Cm_q")] = {-2.0, true, false};
   return c;

@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "fit3dof/config.h"
 #include "fit3dof/parameters.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
@@ -22,21 +21,10 @@ namespace {
 // of spin (the short condition of tools/diagnose_suite), with a bearing
 // moment of Cm_bearing = -0.02 saturating at 1 deg (Section 5.2's
 // pendulum study: an extra stiffness near zero angle).
-constexpr char kShortRun[] = R"(name: short
-model: symmetric
-body: {area: 0.3491, diameter: 0.6667, Ix: 0.0301, Iy: 0.2583}
-flow: {velocity: 2900.0, dynamic_pressure: 460.0}
-parameters:
-  Cm_alpha: -0.23
-  Cm_q: -5.5
-  Cm_alpha_delta2: -1.13
-  Cm_bearing: -0.02
-  bearing_angle: 1.0
-  phidot0: 30.0
-  theta0: 8.0
-sigma: {phi: 0.01, theta: 0.01, psi: 0.01}
-solver: {step: 0.002}
-)";
+constexpr char kBearingTerms[] =
+    "  Cm_alpha_delta2: -1.13\n"
+    "  Cm_bearing: -0.02\n"
+    "  bearing_angle: 1.0\n";
 
 constexpr double kTruthBearing = -0.02;
 
@@ -44,13 +32,7 @@ constexpr double kTruthBearing = -0.02;
 // Cm_alpha, Cm_q and the bearing moment to it from guesses (the bearing
 // angle from 1 deg, as diagnose starts it).
 Case ShortRunFit(const std::string& dir, std::uint64_t seed) {
-  const std::string config = dir + "/short.yaml";
-  testing::WriteText(config, kShortRun);
-  Case c = LoadConfig(config);
-  std::vector<double> times;
-  for (double t = 0.0; t <= 3.0; t += 0.06435) times.push_back(t);
-  const std::string path =
-      testing::WriteNoisyRecord(c, times, seed, dir + "/data.csv");
+  Case c = testing::ShortRun(dir, kBearingTerms, seed);
   auto free = [&](const char* name, double guess) {
     c.parameters[FindParameter(c.model, name)] = {guess, true, false};
   };
@@ -58,12 +40,6 @@ Case ShortRunFit(const std::string& dir, std::uint64_t seed) {
   free("Cm_q", -2.0);
   free("Cm_bearing", -0.01);
   free("bearing_angle", 1.0);
-  Segment s;
-  s.name = "short";
-  s.data_file = path;
-  for (int j = 0; j < 6; ++j) s.initial[j].free = true;
-  c.segments = {s};
-  c.source = config;
   c.solver.max_iterations = 200;
   return c;
 }

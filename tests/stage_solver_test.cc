@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "fit3dof/config.h"
 #include "fit3dof/fit.h"
 #include "fit3dof/parameters.h"
 #include "gtest/gtest.h"
@@ -19,24 +18,13 @@
 namespace fit3dof {
 namespace {
 
-// The short condition of tools/diagnose_suite (3 s, 8 deg of pitching at
-// 30 deg/s of spin) with a tunnel stiffness (Eqs. 39 and 43) a few times
-// the noise: Cm_alpha, t1 and t3 share two effects, a ridge.
-constexpr char kShortRun[] = R"(name: short
-model: symmetric
-body: {area: 0.3491, diameter: 0.6667, Ix: 0.0301, Iy: 0.2583}
-flow: {velocity: 2900.0, dynamic_pressure: 460.0}
-parameters:
-  Cm_alpha: -0.23
-  Cm_q: -5.5
-  Cm_alpha_delta2: -1.13
-  tunnel_Cm_theta: 0.0015
-  tunnel_Cn_psi: -0.0005
-  phidot0: 30.0
-  theta0: 8.0
-sigma: {phi: 0.01, theta: 0.01, psi: 0.01}
-solver: {step: 0.002}
-)";
+// The short condition of tools/diagnose_suite (testing::ShortRun) with a
+// tunnel stiffness (Eqs. 39 and 43) a few times the noise: Cm_alpha, t1
+// and t3 share two effects, a ridge.
+constexpr char kTunnelTerms[] =
+    "  Cm_alpha_delta2: -1.13\n"
+    "  tunnel_Cm_theta: 0.0015\n"
+    "  tunnel_Cn_psi: -0.0005\n";
 
 // The nominal fit (Cm_alpha and Cm_q free, no tunnel terms) of the short
 // run, and the case that refits it with the tunnel stiffness free, from
@@ -47,17 +35,7 @@ struct Refit {
 };
 
 Refit RidgeRefit(const std::string& dir, std::uint64_t seed) {
-  const std::string config = dir + "/short.yaml";
-  testing::WriteText(config, kShortRun);
-  Case c = LoadConfig(config);
-  std::vector<double> times;
-  for (double t = 0.0; t <= 3.0; t += 0.06435) times.push_back(t);
-  Segment s;
-  s.name = "short";
-  s.data_file = testing::WriteNoisyRecord(c, times, seed, dir + "/data.csv");
-  for (int j = 0; j < 6; ++j) s.initial[j].free = true;
-  c.segments = {s};
-  c.source = config;
+  Case c = testing::ShortRun(dir, kTunnelTerms, seed);
   const int t1 = FindParameter(c.model, "tunnel_Cm_theta");
   const int t3 = FindParameter(c.model, "tunnel_Cn_psi");
   c.parameters[t1].value = c.parameters[t3].value = 0.0;

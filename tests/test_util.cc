@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fit3dof/config.h"
 #include "fit3dof/noise.h"
 #include "fit3dof/simulator.h"
 
@@ -80,6 +81,35 @@ std::string WriteNoisyRecord(const Case& truth,
   AddNoise(noise, &data);
   WriteTimeHistory(path, data);
   return path;
+}
+
+Case ShortRun(const std::string& dir,
+              const std::string& terms,
+              std::uint64_t seed) {
+  const std::string config = dir + "/short.yaml";
+  WriteText(config,
+            "name: short\n"
+            "model: symmetric\n"
+            "body: {area: 0.3491, diameter: 0.6667, Ix: 0.0301, Iy: 0.2583}\n"
+            "flow: {velocity: 2900.0, dynamic_pressure: 460.0}\n"
+            "parameters:\n"
+            "  Cm_alpha: -0.23\n"
+            "  Cm_q: -5.5\n" +
+                terms +
+                "  phidot0: 30.0\n"
+                "  theta0: 8.0\n"
+                "sigma: {phi: 0.01, theta: 0.01, psi: 0.01}\n"
+                "solver: {step: 0.002}\n");
+  Case c = LoadConfig(config);
+  std::vector<double> times;
+  for (double t = 0.0; t <= 3.0; t += 0.06435) times.push_back(t);
+  Segment s;
+  s.name = "short";
+  s.data_file = WriteNoisyRecord(c, times, seed, dir + "/data.csv");
+  for (int j = 0; j < 6; ++j) s.initial[j].free = true;
+  c.segments = {s};
+  c.source = config;
+  return c;
 }
 
 }  // namespace fit3dof::testing

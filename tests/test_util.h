@@ -57,6 +57,16 @@ std::string WriteNoisyRecord(const Case& truth,
                              std::uint64_t seed,
                              const std::string& path);
 
+// The short condition of tools/diagnose_suite (the Section 5.3 sharp cone:
+// 3 s at 10 points per pitch cycle, 8 deg of pitching at 30 deg/s of spin)
+// as a config written to dir/short.yaml, its truth Cm_alpha = -0.23,
+// Cm_q = -5.5 and the parameter lines `terms` ("  name: value\n" each), with
+// one segment "short": that truth's record with 0.01 deg of noise (seed
+// `seed`, dir/data.csv), its six initial conditions free.
+Case ShortRun(const std::string& dir,
+              const std::string& terms,
+              std::uint64_t seed);
+
 // Runs the built fit3dof binary with the given arguments (shell-quoted by
 // the caller where needed).
 CommandResult RunFit3dof(const std::string& arguments);
