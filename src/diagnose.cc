@@ -307,6 +307,7 @@ Diagnosis Search(const Case& c,
   FindNotExcluded(contended, models, current, data, options, &d);
   *outdone = FindSetReplacements(models, current, data, options, &d);
   WidenForNotExcluded(&d);
+  WidenAlternatives(data, options, &d);
   if (!d.ambiguous.empty()) {
     d.separated_by = SeparatedBy(d.ambiguous, quiet, d.FinalFit(), data);
   }

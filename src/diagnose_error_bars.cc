@@ -2,8 +2,9 @@
 //
 // The final model's error bars (diagnose.h): widened to cover each
 // complete model of a tie (WidenForTie), the effects the record can
-// neither use nor exclude beside it (FindNotExcluded, WidenForNotExcluded),
-// and a set of those that could replace a step (FindSetReplacements).
+// neither use nor exclude beside it (FindNotExcluded, WidenForNotExcluded,
+// and for a tie's other complete models WidenAlternatives), and a set of
+// those that could replace a step (FindSetReplacements).
 
 #include <glog/logging.h>
 
@@ -128,6 +129,54 @@ std::string ImplausibleBeside(const std::vector<const Effect*>& model,
   return ImplausibleWithin(effect, c, fit, added, 2.0);
 }
 
+// An effect fitted beside a complete model: its terms `added`, its case
+// and fit, and against the model the rise in BIC and why it is
+// implausible there (ImplausibleBeside; empty if it is not).
+struct Beside {
+  const CompleteModel* model = nullptr;
+  const Effect* effect = nullptr;
+  Case c;
+  std::vector<std::string> added;
+  FitResult fit;
+  bool fitted = false;
+  double rise = 0.0;
+  std::string implausible;
+};
+
+// Each of `effects` fitted beside each of `models` that does not hold it,
+// in parallel (those that could not be added or fitted: fitted false).
+std::vector<Beside> FitBeside(const std::vector<CompleteModel>& models,
+                              const std::vector<const Effect*>& effects,
+                              const std::vector<TimeHistory>& data) {
+  std::vector<Beside> trials;
+  for (const CompleteModel& m : models) {
+    for (const Effect* e : effects) {
+      if (std::find(m.effects.begin(), m.effects.end(), e) == m.effects.end()) {
+        trials.emplace_back();
+        trials.back().model = &m;
+        trials.back().effect = e;
+      }
+    }
+  }
+  ParallelFor(static_cast<int>(trials.size()), [&](int i) {
+    Beside& t = trials[i];
+    t.fitted = CandidateCase(CaseAtSolution(t.model->c, *t.model->fit),
+                             *t.effect,
+                             &t.c,
+                             &t.added) &&
+               FitFrom(t.c,
+                       *t.model->fit,
+                       data,
+                       "with " + t.effect->id + " beside",
+                       &t.fit);
+    if (!t.fitted) return;
+    t.rise = Bic(t.fit) - Bic(*t.model->fit);
+    t.implausible =
+        ImplausibleBeside(t.model->effects, *t.effect, t.added, t.c, t.fit);
+  });
+  return trials;
+}
+
 // The complete model `m` with `set` in `step`'s place: *c and *fit; the
 // terms each of `set` added in *added. False when it was not fitted.
 bool SetInPlace(const CompleteModel& m,
@@ -249,43 +298,12 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   for (const Effect* e : contended) {
     if (!InTie(*d, e->id)) effects.push_back(e);
   }
-  struct Beside {
-    const CompleteModel* model;
-    const Effect* effect;
-    Case c;
-    std::vector<std::string> added;
-    FitResult fit;
-  };
-  std::vector<Beside> trials;
-  for (const CompleteModel& m : complete) {
-    for (const Effect* e : effects) {
-      if (std::find(m.effects.begin(), m.effects.end(), e) == m.effects.end()) {
-        trials.push_back({&m, e, Case(), {}, FitResult()});
-      }
-    }
-  }
-  std::vector<char> fitted(trials.size(), false);  // written in parallel
-  ParallelFor(static_cast<int>(trials.size()), [&](int i) {
-    Beside& t = trials[i];
-    fitted[i] = CandidateCase(CaseAtSolution(t.model->c, *t.model->fit),
-                              *t.effect,
-                              &t.c,
-                              &t.added) &&
-                FitFrom(t.c,
-                        *t.model->fit,
-                        data,
-                        "with " + t.effect->id + " beside",
-                        &t.fit);
-  });
-  for (size_t i = 0; i < trials.size(); ++i) {
-    const Beside& t = trials[i];
-    if (!fitted[i]) continue;
-    const double rise = Bic(t.fit) - Bic(*t.model->fit);
-    const std::string implausible =
-        ImplausibleBeside(t.model->effects, *t.effect, t.added, t.c, t.fit);
+  for (const Beside& t : FitBeside(complete, effects, data)) {
+    if (!t.fitted) continue;
+    const double rise = t.rise;
     VLOG(1) << t.effect->id << " beside the complete model: BIC "
-            << (rise >= 0.0 ? "+" : "") << rise << " " << implausible;
-    if (!(rise < options.ambiguity_bic) || !implausible.empty()) continue;
+            << (rise >= 0.0 ? "+" : "") << rise << " " << t.implausible;
+    if (!(rise < options.ambiguity_bic) || !t.implausible.empty()) continue;
     d->not_excluded_models.push_back(t.fit.parameters);
     // Its BIC weight against the model without it.
     d->not_excluded_weights.push_back(1.0 / (1.0 + std::exp(0.5 * rise)));
@@ -322,6 +340,56 @@ void WidenForNotExcluded(Diagnosis* d) {
                  "effects the record cannot exclude beside it (" + which + ")",
                  &d->fits[d->final_fit],
                  &d->model_standard_errors);
+}
+
+void WidenAlternatives(const std::vector<TimeHistory>& data,
+                       const DiagnoseOptions& options,
+                       Diagnosis* d) {
+  std::vector<CompleteModel> models;
+  std::vector<AlternativeModel*> of;  // the alternative of each model
+  for (AlternativeModel& a : d->alternatives) {
+    // The final model's own error bars are widened already.
+    if (a.fit < 0 || a.fit == static_cast<int>(d->final_fit)) continue;
+    models.push_back({a.model, &d->fits[a.fit], {}});
+    // The tied effect may be a probe outside the catalog (a flow stiffer
+    // in one plane), whose bounds are its own.
+    for (const Effect* e : {FindEffect(a.effect), FindProbe(a.effect)}) {
+      if (e != nullptr) models.back().effects.push_back(e);
+    }
+    for (const DiagnosisStep& s : d->steps) {
+      models.back().effects.push_back(FindEffect(s.effect));
+    }
+    of.push_back(&a);
+  }
+  std::vector<const Effect*> effects;
+  for (const CandidateFit& k : d->not_excluded) {
+    effects.push_back(FindEffect(k.effect));
+  }
+  const std::vector<Beside> trials = FitBeside(models, effects, data);
+  for (size_t m = 0; m < models.size(); ++m) {
+    std::vector<const std::vector<ParameterEstimate>*> beside;
+    std::vector<double> weights;
+    std::string which;
+    for (const Beside& t : trials) {
+      if (t.model != &models[m] || !t.fitted ||
+          !(t.rise < options.ambiguity_bic) || !t.implausible.empty()) {
+        continue;
+      }
+      beside.push_back(&t.fit.parameters);
+      weights.push_back(1.0 / (1.0 + std::exp(0.5 * t.rise)));
+      which += (which.empty() ? "" : ", ") + t.effect->id;
+    }
+    if (beside.empty()) continue;
+    FitResult& own = d->fits[of[m]->fit];
+    std::map<std::string, double> unused;
+    WidenErrorBars(
+        beside,
+        weights,
+        "effects the record cannot exclude beside it (" + which + ")",
+        &own,
+        &unused);
+    of[m]->parameters = own.parameters;
+  }
 }
 
 std::string FindSetReplacements(const std::vector<Case>& models,

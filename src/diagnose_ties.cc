@@ -620,7 +620,8 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
       {d->steps[tie].effect,
        CheckResiduals(d->fits[full], options),
        d->fits[full].parameters,
-       full}};
+       full,
+       models[full]}};
   bool known = alternatives[0].check.at_noise_level;
   std::vector<FitResult> rival_fits;
   std::vector<Case> rival_cases;
@@ -653,8 +654,11 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
                                     &rival_fit)) {
       return false;
     }
-    alternatives.push_back(
-        {rival, CheckResiduals(rival_fit, options), rival_fit.parameters, -1});
+    alternatives.push_back({rival,
+                            CheckResiduals(rival_fit, options),
+                            rival_fit.parameters,
+                            -1,
+                            with_rival});
     known = known && alternatives.back().check.at_noise_level;
     rival_fits.push_back(std::move(rival_fit));
     rival_cases.push_back(std::move(with_rival));

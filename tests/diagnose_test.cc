@@ -1222,6 +1222,65 @@ TEST(Diagnose, ErrorBarsCoverAnEffectTheRecordCannotExclude) {
   ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
+// tools/diagnose_suite's `coning` Magnus moment + nonlinear damping +
+// calibration error (draw 3), kept as tests/data/coning_magnus_damping_
+// calibration_seed3.csv. On one mode of motion at one amplitude the Magnus
+// moment ties with a tunnel damping, the calibration error is added beside
+// either, and the nonlinear damping is neither needed nor excluded. The
+// complete model with the Magnus moment, refitted without the damping,
+// gave Cm_p_alpha = 81 +- 6 (truth 53.5): its error bars must cover the
+// damping the record cannot exclude, as the final model's do.
+TEST(Diagnose, AlternativesErrorBarsCoverAnEffectTheRecordCannotExclude) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_magnus_damping_calibration_seed3.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("magnus")) << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("nonlinear_damping")) << text;
+  bool checked = false;
+  for (const AlternativeModel& a : d.alternatives) {
+    if (a.effect != "magnus") continue;
+    const ParameterEstimate* magnus =
+        SharedEstimate(a.parameters, "Cm_p_alpha");
+    ASSERT_NE(magnus, nullptr) << text;
+    EXPECT_NEAR(magnus->value, 53.5, 3.0 * magnus->standard_error) << text;
+    checked = true;
+  }
+  EXPECT_TRUE(checked) << text;
+}
+
+// tools/diagnose_suite's `pair` roll reading error + Magnus moment (draw
+// 0), kept as tests/data/pair_roll_error_magnus.yaml: the Magnus moment
+// ties with a probe outside the catalog (a flow stiffer in one plane), the
+// reading error is added beside either, and effects are not excluded. The
+// probe's complete model is widened too, with the probe's bounds (a first
+// build of that dereferenced the catalog entry a probe does not have).
+TEST(Diagnose, AProbesAlternativeIsWidenedWithTheProbesBounds) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Case c =
+      LoadConfig(testing::SourcePath("tests/data/pair_roll_error_magnus.yaml"));
+  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"roll_interaction"}))
+      << text;
+  EXPECT_FALSE(d.not_excluded.empty()) << text;
+  std::set<std::string> alternatives;
+  for (const AlternativeModel& a : d.alternatives) {
+    alternatives.insert(a.effect);
+    EXPECT_TRUE(a.check.at_noise_level) << a.effect << "\n" << text;
+    if (a.effect != "magnus") continue;
+    const ParameterEstimate* magnus =
+        SharedEstimate(a.parameters, "Cm_p_alpha");
+    ASSERT_NE(magnus, nullptr) << text;
+    EXPECT_NEAR(magnus->value, 2.61, 3.0 * magnus->standard_error) << text;
+  }
+  EXPECT_EQ(alternatives,
+            std::set<std::string>({"magnus", "flow_yaw_stiffness"}))
+      << text;
+}
+
 // tools/diagnose_suite's `short` tunnel damping + Magnus moment + flow
 // angularity (draw 0), kept as tests/data/short_damping_magnus_angularity.
 // csv. At the first round a body yaw asymmetry lowers BIC most but

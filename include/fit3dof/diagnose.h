@@ -304,12 +304,14 @@ struct DiagnosisStep {
 };
 
 // A complete model of an ambiguous diagnosis: the effects adopted and one
-// of the tied pair.
+// of the tied pair. Its error bars cover the effects the record cannot
+// exclude (Diagnosis::not_excluded), as the final model's do.
 struct AlternativeModel {
   std::string effect;  // the tied effect in it
   ResidualCheck check;
   std::vector<ParameterEstimate> parameters;  // every parameter
   int fit = -1;                               // its Diagnosis::fits
+  Case model;                                 // its config, as fitted
 };
 
 enum class Verdict {
