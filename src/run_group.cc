@@ -175,9 +175,6 @@ void JoinRuns(const std::string& path,
       }
       members.push_back(it->second);
     }
-    if (members.size() < 2) {
-      throw InputError(where + "expected two or more runs");
-    }
     const auto mine = own.find(g.name);
     Join(members,
          mine == own.end() ? YAML::Node(YAML::NodeType::Map) : mine->second,

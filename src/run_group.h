@@ -30,10 +30,11 @@ namespace fit3dof {
 // Gives each run of `specs` that names runs in `together` its joint config:
 // the first named run's shared keys, `own` (the together run's own keys by
 // run name) on top, and one segment per record of the named runs. Throws
-// InputError (naming `path`) for a together list that is not a list of two
-// or more distinct other runs, or that names a together run; runs that do
-// not share their model fail the together run alone (load_error, naming
-// the first key they differ in).
+// InputError (naming `path`) for a together list that names a run not in
+// `specs`, the run itself, a run twice or a together run (the manifest
+// reader has checked that it lists two or more); runs that do not share
+// their model fail the together run alone (load_error, naming the first
+// key they differ in).
 void JoinRuns(const std::string& path,
               const std::map<std::string, YAML::Node>& own,
               std::vector<RunSpec>* specs);

@@ -507,42 +507,32 @@ TEST(Batch, ASegmentThatIsNotAMappingFailsItsRun) {
 
 TEST(Batch, BadManifestsExitTwo) {
   const std::string dir = testing::ScratchDirectory("batch_bad");
-  testing::WriteText(dir + "/dup.yaml",
-                     "runs:\n  - {name: a}\n  - {name: a}\n");
-  auto r = testing::RunFit3dof("batch " + dir + "/dup.yaml --out_dir=" + dir +
-                               "/out");
-  EXPECT_EQ(r.exit_status, 2);
-  EXPECT_NE(r.output.find("'a' is used twice"), std::string::npos) << r.output;
-  testing::WriteText(dir + "/from.yaml",
-                     "runs:\n  - {name: a, start_from: b}\n");
-  r = testing::RunFit3dof("batch " + dir + "/from.yaml --out_dir=" + dir +
-                          "/out");
-  EXPECT_EQ(r.exit_status, 2);
-  EXPECT_NE(r.output.find("no run named 'b'"), std::string::npos) << r.output;
-  testing::WriteText(
-      dir + "/cycle.yaml",
-      "runs:\n  - {name: a, start_from: b}\n  - {name: b, start_from: a}\n");
-  r = testing::RunFit3dof("batch " + dir + "/cycle.yaml --out_dir=" + dir +
-                          "/out");
-  EXPECT_EQ(r.exit_status, 2);
-  EXPECT_NE(r.output.find("cycle"), std::string::npos) << r.output;
-  r = testing::RunFit3dof("batch " + dir + "/nothing.yaml --out_dir=" + dir +
-                          "/out");
-  EXPECT_EQ(r.exit_status, 2);
-  testing::WriteText(dir + "/together.yaml",
-                     "runs:\n  - {name: a}\n  - {name: b, together: [a, c]}\n");
-  r = testing::RunFit3dof("batch " + dir + "/together.yaml --out_dir=" + dir +
-                          "/out");
-  EXPECT_EQ(r.exit_status, 2);
-  EXPECT_NE(r.output.find("together: no other run named 'c'"),
-            std::string::npos)
-      << r.output;
-  testing::WriteText(dir + "/alone.yaml",
-                     "runs:\n  - {name: a}\n  - {name: b, together: [a]}\n");
-  r = testing::RunFit3dof("batch " + dir + "/alone.yaml --out_dir=" + dir +
-                          "/out");
-  EXPECT_EQ(r.exit_status, 2);
-  EXPECT_NE(r.output.find("two or more runs"), std::string::npos) << r.output;
+  // The manifest `file` holding `text` (none: not written) exits 2 with
+  // `message` in its output.
+  auto expect_bad = [&](const std::string& file,
+                        const std::string& text,
+                        const std::string& message) {
+    if (!text.empty()) testing::WriteText(dir + "/" + file, text);
+    const auto r = testing::RunFit3dof("batch " + dir + "/" + file +
+                                       " --out_dir=" + dir + "/out");
+    EXPECT_EQ(r.exit_status, 2) << file;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+  };
+  expect_bad(
+      "dup.yaml", "runs:\n  - {name: a}\n  - {name: a}\n", "'a' is used twice");
+  expect_bad(
+      "from.yaml", "runs:\n  - {name: a, start_from: b}\n", "no run named 'b'");
+  expect_bad(
+      "cycle.yaml",
+      "runs:\n  - {name: a, start_from: b}\n  - {name: b, start_from: a}\n",
+      "cycle");
+  expect_bad("nothing.yaml", "", "");
+  expect_bad("together.yaml",
+             "runs:\n  - {name: a}\n  - {name: b, together: [a, c]}\n",
+             "together: no other run named 'c'");
+  expect_bad("alone.yaml",
+             "runs:\n  - {name: a}\n  - {name: b, together: [a]}\n",
+             "two or more runs");
 }
 
 }  // namespace
