@@ -129,6 +129,11 @@ std::string ImplausibleBeside(const std::vector<const Effect*>& model,
   return ImplausibleWithin(effect, c, fit, added, 2.0);
 }
 
+// The BIC weight of a model with an effect added against the model
+// without it, its BIC `rise` above it: exp(-rise / 2) / (1 + exp(-rise /
+// 2)).
+double BicWeight(double rise) { return 1.0 / (1.0 + std::exp(0.5 * rise)); }
+
 // An effect fitted beside a complete model: its terms `added`, its case
 // and fit, and against the model the rise in BIC and why it is
 // implausible there (ImplausibleBeside; empty if it is not).
@@ -142,6 +147,13 @@ struct Beside {
   double rise = 0.0;
   std::string implausible;
 };
+
+// Whether the record cannot exclude the effect of `t` beside its model:
+// fitted there, BIC rises by less than ambiguity_bic, and it stays
+// within its bounds.
+bool NotExcludedBeside(const Beside& t, const DiagnoseOptions& options) {
+  return t.fitted && t.rise < options.ambiguity_bic && t.implausible.empty();
+}
 
 // Each of `effects` fitted beside each of `models` that does not hold it,
 // in parallel (those that could not be added or fitted: fitted false).
@@ -303,10 +315,9 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
     const double rise = t.rise;
     VLOG(1) << t.effect->id << " beside the complete model: BIC "
             << (rise >= 0.0 ? "+" : "") << rise << " " << t.implausible;
-    if (!(rise < options.ambiguity_bic) || !t.implausible.empty()) continue;
+    if (!NotExcludedBeside(t, options)) continue;
     d->not_excluded_models.push_back(t.fit.parameters);
-    // Its BIC weight against the model without it.
-    d->not_excluded_weights.push_back(1.0 / (1.0 + std::exp(0.5 * rise)));
+    d->not_excluded_weights.push_back(BicWeight(rise));
     // Each effect once: beside the final model when it is not excluded
     // there.
     if (std::any_of(
@@ -371,12 +382,9 @@ void WidenAlternatives(const std::vector<TimeHistory>& data,
     std::vector<double> weights;
     std::string which;
     for (const Beside& t : trials) {
-      if (t.model != &models[m] || !t.fitted ||
-          !(t.rise < options.ambiguity_bic) || !t.implausible.empty()) {
-        continue;
-      }
+      if (t.model != &models[m] || !NotExcludedBeside(t, options)) continue;
       beside.push_back(&t.fit.parameters);
-      weights.push_back(1.0 / (1.0 + std::exp(0.5 * t.rise)));
+      weights.push_back(BicWeight(t.rise));
       which += (which.empty() ? "" : ", ") + t.effect->id;
     }
     if (beside.empty()) continue;
