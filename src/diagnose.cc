@@ -13,6 +13,7 @@
 #include "fit3dof/diagnose.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -122,12 +123,66 @@ void AddTwins(const Contender& member,
   }
 }
 
+// The members of `joint` (Jointly) reordered for a first tie among them:
+// when the first member ties with no effect outside the set, the member
+// that ties closest (its rival's BIC nearest its own) goes first, then the
+// members that tie with none, then the other tied ones (InOrder), so
+// that the untied members follow the tie and precede any later one, as
+// AdoptAfterTie expects. Unchanged when no member ties, the first does, or
+// a refit fails.
+void TieFirst(const Case& current,
+              const FitResult& fit,
+              const std::vector<TimeHistory>& data,
+              const DiagnoseOptions& options,
+              const std::vector<Contender>& contenders,
+              JointSet* joint) {
+  const auto outside = [&](const CandidateFit& r) {
+    return std::none_of(
+        joint->members.begin(), joint->members.end(), [&](int m) {
+          return contenders[m].record.effect == r.effect;
+        });
+  };
+  const size_t n = joint->members.size();
+  std::vector<double> gap(n, std::numeric_limits<double>::infinity());
+  for (size_t j = 0; j < n; ++j) {
+    const int m = joint->members[j];
+    for (const CandidateFit& r :
+         Rivals(contenders, m, nullptr, data, options)) {
+      if (!outside(r)) continue;
+      gap[j] =
+          std::min(gap[j],
+                   r.effect == kDriftInTime
+                       ? options.ambiguity_bic
+                       : std::abs(r.bic_drop - contenders[m].record.bic_drop));
+    }
+  }
+  const size_t first = std::min_element(gap.begin(), gap.end()) - gap.begin();
+  if (std::isinf(gap[first]) || !std::isinf(gap[0])) return;
+  std::vector<int> order = {joint->members[first]};
+  for (bool untied : {true, false}) {
+    for (size_t j = 0; j < n; ++j) {
+      if (j != first && std::isinf(gap[j]) == untied) {
+        order.push_back(joint->members[j]);
+      }
+    }
+  }
+  InOrder(current, fit, data, contenders, order, joint);
+}
+
 // Adds the members of `joint` (Jointly) to the search's record *d as
 // steps in turn (TakeStep), each with the round's rivals outside the set,
 // as a step taken alone would have them (*tie, *rivals), and with its
 // model and fit (*models, *current, *fit); returns the residual check of
-// the last.
-ResidualCheck TakeJointSteps(const JointSet& joint,
+// the last. At the search's first tie a member that ties goes first
+// (TieFirst): the steps after a tie are judged against its rivals
+// (AdoptAfterTie), a step before it is not. On a 3-s run with a roll
+// reading error and a nonlinear damping, the set {nonlinear damping, flow
+// angularity, trim moment} was adopted and the trim moment tied with the
+// reading error; the flow angularity, needed only beside the trim moment,
+// had come before the tie and stayed in the final model (it tied with the
+// reading error too, but less closely, and was redundant beside the trim
+// moment).
+ResidualCheck TakeJointSteps(JointSet joint,
                              const std::vector<Contender>& contenders,
                              const std::vector<Candidate>& candidates,
                              const std::vector<TimeHistory>& data,
@@ -151,6 +206,7 @@ ResidualCheck TakeJointSteps(const JointSet& joint,
         r.end());
     return r;
   };
+  if (*tie < 0) TieFirst(*current, *fit, data, options, contenders, &joint);
   ResidualCheck check;
   for (size_t j = 0; j < joint.members.size(); ++j) {
     const int m = joint.members[j];
@@ -184,7 +240,7 @@ ResidualCheck TakeJointSteps(const JointSet& joint,
     }
     d->steps.back().note =
         "adopted together with " + others + ": " +
-        (j == 0 ? "alone it dragged the coefficients; " : "") +
+        (contenders[m].dragged ? "alone it dragged the coefficients; " : "") +
         "together they explain the record to the noise level, within their "
         "bounds, and predict its held-out part better";
   }

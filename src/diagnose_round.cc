@@ -444,6 +444,39 @@ bool Jointly(const Case& current,
   return false;
 }
 
+bool InOrder(const Case& current,
+             const FitResult& fit,
+             const std::vector<TimeHistory>& data,
+             const std::vector<Contender>& contenders,
+             const std::vector<int>& order,
+             JointSet* joint) {
+  CHECK(std::is_permutation(order.begin(),
+                            order.end(),
+                            joint->members.begin(),
+                            joint->members.end()));
+  const Case at = CaseAtSolution(current, fit);
+  const int n = static_cast<int>(order.size());
+  std::vector<Candidate> models(n);
+  std::vector<FitResult> fits(n);
+  models[0] = *contenders[order[0]].candidate;
+  fits[0] = contenders[order[0]].fit;
+  std::vector<char> fitted(n, true);  // not vector<bool>: written in parallel
+  ParallelFor(n - 1, [&](int i) {
+    const std::vector<int> prefix(order.begin(), order.begin() + i + 2);
+    int terms = 0;
+    fitted[i + 1] =
+        WithEffects(at, contenders, prefix, &models[i + 1], &terms) &&
+        FitFrom(models[i + 1].c, fit, data, "with a joint set", &fits[i + 1]);
+  });
+  if (std::find(fitted.begin(), fitted.end(), false) != fitted.end()) {
+    return false;
+  }
+  joint->members = order;
+  joint->models = std::move(models);
+  joint->fits = std::move(fits);
+  return true;
+}
+
 double RollSpan(const std::vector<TimeHistory>& data) {
   double span = 0.0;
   for (const TimeHistory& h : data) {

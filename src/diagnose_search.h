@@ -190,6 +190,17 @@ bool Jointly(const Case& current,
              const std::vector<int>& earned,
              JointSet* joint);
 
+// The joint set *joint (Jointly, from `current` fitted as `fit`) with its
+// members in `order` (the same indices into `contenders`), the models of
+// its first 1, 2, ... members rebuilt and refitted in that order; false
+// (the set unchanged) when one cannot be added or fitted.
+bool InOrder(const Case& current,
+             const FitResult& fit,
+             const std::vector<TimeHistory>& data,
+             const std::vector<Contender>& contenders,
+             const std::vector<int>& order,
+             JointSet* joint);
+
 // The largest roll angle any segment sweeps (deg).
 double RollSpan(const std::vector<TimeHistory>& data);
 
