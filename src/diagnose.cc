@@ -123,6 +123,29 @@ void AddTwins(const Contender& member,
   }
 }
 
+// The rivals (Rivals, with WiderRivals' when `wider`) of the joint set's
+// member contenders[m] outside the set.
+std::vector<CandidateFit> MemberRivals(const JointSet& joint,
+                                       const std::vector<Contender>& contenders,
+                                       int m,
+                                       const std::vector<TimeHistory>& data,
+                                       const DiagnoseOptions& options,
+                                       bool wider) {
+  std::vector<CandidateFit> r = Rivals(contenders, m, nullptr, data, options);
+  if (wider) r = WiderRivals(std::move(r), contenders, m, options);
+  r.erase(std::remove_if(
+              r.begin(),
+              r.end(),
+              [&](const CandidateFit& k) {
+                return std::any_of(
+                    joint.members.begin(), joint.members.end(), [&](int i) {
+                      return contenders[i].record.effect == k.effect;
+                    });
+              }),
+          r.end());
+  return r;
+}
+
 // The members of `joint` (Jointly) reordered for a first tie among them:
 // when the first member ties with no effect outside the set, the member
 // that ties closest (its rival's BIC nearest its own) goes first, then the
@@ -136,19 +159,12 @@ void TieFirst(const Case& current,
               const DiagnoseOptions& options,
               const std::vector<Contender>& contenders,
               JointSet* joint) {
-  const auto outside = [&](const CandidateFit& r) {
-    return std::none_of(
-        joint->members.begin(), joint->members.end(), [&](int m) {
-          return contenders[m].record.effect == r.effect;
-        });
-  };
   const size_t n = joint->members.size();
   std::vector<double> gap(n, std::numeric_limits<double>::infinity());
   for (size_t j = 0; j < n; ++j) {
     const int m = joint->members[j];
     for (const CandidateFit& r :
-         Rivals(contenders, m, nullptr, data, options)) {
-      if (!outside(r)) continue;
+         MemberRivals(*joint, contenders, m, data, options, false)) {
       gap[j] =
           std::min(gap[j],
                    r.effect == kDriftInTime
@@ -193,30 +209,15 @@ ResidualCheck TakeJointSteps(JointSet joint,
                              Case* current,
                              FitResult* fit,
                              Diagnosis* d) {
-  const auto member = [&](const std::string& id) {
-    return std::any_of(joint.members.begin(), joint.members.end(), [&](int m) {
-      return contenders[m].record.effect == id;
-    });
-  };
-  const auto outside = [&](std::vector<CandidateFit> r) {
-    r.erase(
-        std::remove_if(r.begin(),
-                       r.end(),
-                       [&](const CandidateFit& k) { return member(k.effect); }),
-        r.end());
-    return r;
-  };
   if (*tie < 0) TieFirst(*current, *fit, data, options, contenders, &joint);
   ResidualCheck check;
   for (size_t j = 0; j < joint.members.size(); ++j) {
     const int m = joint.members[j];
-    std::vector<CandidateFit> step_rivals =
-        outside(Rivals(contenders, m, nullptr, data, options));
-    if (*tie < 0 && !step_rivals.empty()) {
+    if (*tie < 0 &&
+        !MemberRivals(joint, contenders, m, data, options, false).empty()) {
       *tie = static_cast<int>(d->steps.size());
     }
-    rivals->push_back(
-        outside(WiderRivals(std::move(step_rivals), contenders, m, options)));
+    rivals->push_back(MemberRivals(joint, contenders, m, data, options, true));
     AddTwins(contenders[m], options, &rivals->back());
     Contender step;
     step.candidate = &joint.models[j];

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <numeric>
 #include <vector>
 
 #include "fit3dof/diagnose.h"
@@ -39,7 +40,16 @@ double LocalLine(const std::vector<double>& power, int peak_k, double* ratio) {
       ++bins;
     }
   }
-  *ratio = sum > 0.0 ? power[peak_k] / (sum / bins) : 0.0;
+  // The fit takes the noise out of the bins its parameters reach (the
+  // modes' frequencies, the lowest ones), and a neighbourhood of such
+  // bins is no measure of the noise: on a 47-sample coning run the true
+  // model's own residual had a peak 5.3 times the mean of all bins, 28
+  // times that of neighbours the fit had emptied. The neighbourhood's mean
+  // is taken as at least half the mean of all bins.
+  const double all =
+      std::accumulate(power.begin() + 1, power.end(), 0.0) / std::max(1, n - 1);
+  const double local = std::max(bins > 0 ? sum / bins : 0.0, 0.5 * all);
+  *ratio = local > 0.0 ? power[peak_k] / local : 0.0;
   // An exponential ordinate over the mean of `bins` others exceeds x with
   // chance (1 + x / bins)^-bins; over n bins, 1e-3 in all.
   return bins * (std::pow(n / 1e-3, 1.0 / bins) - 1.0);

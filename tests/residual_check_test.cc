@@ -2,9 +2,11 @@
 //
 // CheckResiduals (diagnose.h) on residual records made here: white noise is
 // noise; a line standing out of its neighbourhood is not, even below the
-// global limit of 4 ln N; smooth colored noise raises no line.
+// global limit of 4 ln N; smooth colored noise raises no line, nor does a
+// neighbourhood the fit emptied.
 
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <random>
 
@@ -101,6 +103,60 @@ TEST(CheckResiduals, SmoothColoredNoiseRaisesNoLine) {
     const ResidualCheck check =
         CheckResiduals(Record(0.0, 0.6, kNoise, seed), DiagnoseOptions());
     EXPECT_LT(check.line_ratio, LineLimit()) << seed;
+  }
+}
+
+// The residual of a 47-sample record whose theta + i psi spectrum is
+// noise's (random ordinates and phases, ordinate mean 1) with the bins the
+// fit took out (`emptied`) zero, and bin `peak` at `height` times the
+// mean: what a fit leaves of white noise near the modes it fitted.
+FitResult EmptiedSpectrum(const std::vector<int>& emptied,
+                          int peak,
+                          double height,
+                          int seed) {
+  const int n = 47;
+  std::mt19937 rng(seed);
+  std::exponential_distribution<double> ordinate(1.0);
+  std::uniform_real_distribution<double> phase(0.0, 2.0 * M_PI);
+  std::vector<std::complex<double>> spectrum(n);
+  for (int k = 1; k < n; ++k) {
+    spectrum[k] = std::polar(std::sqrt(ordinate(rng)), phase(rng));
+  }
+  for (int k : emptied) spectrum[k] = 0.0;
+  spectrum[peak] = std::polar(std::sqrt(height), phase(rng));
+  SegmentFit s;
+  for (int i = 0; i < n; ++i) {
+    std::complex<double> z = 0.0;
+    for (int k = 1; k < n; ++k) {
+      z += spectrum[k] * std::polar(1.0, 2.0 * M_PI * k * i / n);
+    }
+    z *= kNoise / std::sqrt(1.0 * n);
+    s.data.Append(0.064 * i, 0.0, 0.0, 0.0);
+    s.computed.insert(s.computed.end(), {0.0, z.real(), z.imag()});
+  }
+  return FitOf(s);
+}
+
+TEST(CheckResiduals, ANeighbourhoodTheFitEmptiedRaisesNoLine) {
+  // A peak of 4 times the mean, as large as noise's largest of 46 bins
+  // often is, beside bins the fit emptied (a 47-sample coning run's true
+  // model left 28 times its neighbours' mean at 5.3 times the mean of
+  // all): no line. The same peak among noise's own bins is none either,
+  // and a line of 25 times the mean beside emptied bins still is one.
+  const std::vector<int> emptied = {5, 6, 7, 8, 12, 13, 14, 15};
+  for (int seed = 1; seed <= 10; ++seed) {
+    EXPECT_TRUE(CheckResiduals(EmptiedSpectrum(emptied, 10, 4.0, seed),
+                               DiagnoseOptions())
+                    .white)
+        << seed;
+    EXPECT_TRUE(
+        CheckResiduals(EmptiedSpectrum({}, 10, 4.0, seed), DiagnoseOptions())
+            .white)
+        << seed;
+    EXPECT_FALSE(CheckResiduals(EmptiedSpectrum(emptied, 10, 25.0, seed),
+                                DiagnoseOptions())
+                     .white)
+        << seed;
   }
 }
 

@@ -11,7 +11,9 @@
 // above `whiteness_limit` (0.3), and the periodogram of theta + i psi has
 // no line above `spectral_limit` (4 ln N) times its mean, nor above what
 // noise reaches with chance 1e-3 against the mean of the line's own
-// neighbourhood (a line out of a colored spectrum): measurement noise
+// neighbourhood (a line out of a colored spectrum; that mean taken as at
+// least half the periodogram's, as the fit empties the bins near the
+// modes it fits): measurement noise
 // is white with a flat spectrum, a missing effect leaves slow, structured
 // residuals with lines near the motion's frequencies. On short records the
 // first two limits rise to what noise reaches with chance 1e-3:
