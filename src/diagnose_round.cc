@@ -121,6 +121,7 @@ void Judge(const FitResult& current,
            Contender* c) {
   const Candidate& k = *c->candidate;
   std::string why = Implausible(*k.effect, k.c, c->fit);
+  c->out_of_bounds = !why.empty();
   // The newcomer may push an earlier effect out of its bounds (a
   // roll-synchronous reading error of 0.15 deg to 0.23 once a trim moment
   // came in beside it): the pair is then no more plausible than that one.
@@ -380,8 +381,11 @@ bool Jointly(const Case& current,
   if (!options.joint_sets) return false;
   const int judged =
       earned.empty() ? static_cast<int>(contenders.size()) : earned[0];
+  const auto leads = [&](const Contender& k) {
+    return k.dragged || (options.joint_sets_from_bounds && k.out_of_bounds);
+  };
   int lead = 0;
-  while (lead < judged && !contenders[lead].dragged) ++lead;
+  while (lead < judged && !leads(contenders[lead])) ++lead;
   if (lead >= judged) return false;
   const int pool = std::min<int>(lead + kJointPool, contenders.size());
   std::vector<std::vector<int>> sets;

@@ -47,7 +47,8 @@ struct Contender {
   FitResult fit;
   double bic = 0.0;
   CandidateFit record;
-  bool dragged = false;  // refused for dragging the coefficients (Judge)
+  bool dragged = false;        // refused for dragging the coefficients (Judge)
+  bool out_of_bounds = false;  // refused for leaving its bounds (Judge)
 };
 
 // Whether the options' catalog (DiagnoseOptions::effects) holds `e`.

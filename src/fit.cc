@@ -466,8 +466,11 @@ void CheckRidges(const Case& c,
                  FitResult* result) {
   const ParameterEstimate* moment = SharedEstimate(*result, "Cm_bearing");
   const ParameterEstimate* angle = SharedEstimate(*result, "bearing_angle");
+  // An angle within two of its errors of zero is not determined: on a
+  // pair of runs the bearing moment's angle fitted 2.2 +- 1.6 deg (truth 1)
+  // and Cm_bearing -0.0020 +- 0.00025 (truth -0.0033) along the ridge.
   if (moment == nullptr || angle == nullptr || !moment->free || !angle->free ||
-      angle->standard_error < std::abs(angle->value)) {
+      2.0 * angle->standard_error < std::abs(angle->value)) {
     return;
   }
   const auto& pipeline = result->pipeline;

@@ -239,6 +239,11 @@ struct DiagnoseOptions {
   bool probes = true;                // fit the probes outside the catalog
   // Fit a contender refused for its drag with the next ones (a joint set).
   bool joint_sets = true;
+  // Let a contender refused for leaving its bounds lead a joint set too.
+  // Diagnose sets it itself for a second search when the first ends
+  // `not_explained` with such a contender ahead of every one that earned
+  // its place.
+  bool joint_sets_from_bounds = false;
 };
 
 struct ResidualCheck {

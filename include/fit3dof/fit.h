@@ -169,8 +169,8 @@ FitResult Fit(const Case& c);
 FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data);
 
 // Error bars along the known curved ridges of the sum of squares: a
-// bearing moment whose angle the record does not determine (standard error
-// beyond its value, or none), where Cm_bearing is determined only along
+// bearing moment whose angle the record does not determine (zero within
+// two standard errors, or no error), where Cm_bearing is determined only along
 // the ridge Cm_bearing x bearing_angle = const and its linear error bar
 // (Eq. 27) sees only the ridge's width. With c.solver.profile_ridges,
 // Cm_bearing's error bars (RMS and standard) become its profile's
