@@ -149,8 +149,9 @@ void Judge(const FitResult& current,
   c->record.rejected = why;
 }
 
-// The contenders a joint set is drawn from: the one refused for its drag
-// and up to three after it.
+// The contenders a joint set is drawn from: the one that leads it (refused
+// for its drag, or for its bounds under joint_sets_from_bounds) and up to
+// three after it.
 constexpr int kJointPool = 4;
 
 // `at` with the effects of `members` (indices into `contenders`) added in

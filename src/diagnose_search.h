@@ -178,7 +178,9 @@ struct JointSet {
 // with a tunnel damping, a Magnus moment and a flow angularity, a body yaw
 // asymmetry (predicting nothing held out) came before the dragged
 // damping, the Magnus moment was taken alone, and nothing after it
-// earned its place. `earned` (Earned) tells which contenders were judged
+// earned its place. Under joint_sets_from_bounds a contender refused for
+// leaving its bounds leads a set too (each may leave them taking up
+// another's part). `earned` (Earned) tells which contenders were judged
 // better than every one that earned its place. The lowest-BIC set that
 // earns its place goes into *joint; false when none.
 bool Jointly(const Case& current,
