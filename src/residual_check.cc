@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <numeric>
 #include <vector>
 
 #include "fit3dof/diagnose.h"
@@ -17,17 +16,20 @@ namespace fit3dof {
 namespace {
 
 // The largest ordinate of a periodogram `power` (k = 1 .. n - 1; k = 0,
-// the mean, unused) at `peak_k` against the mean of its neighbours (up to
-// n / 16 on each side, at least 4, the two next to it left out: a line
-// between two bins spreads into them), in *ratio; returns the ratio that
-// noise with a smooth spectrum exceeds with chance 1e-3 over the n bins.
-// The global test (peak over the mean of all bins) must let colored noise
+// the mean, unused; `mean` the mean of those) at `peak_k` against the mean of
+// its neighbours (up to n / 16 on each side, at least 4, the two next to it
+// left out: a line between two bins spreads into them), in *ratio; returns the
+// ratio that noise with a smooth spectrum exceeds with chance 1e-3 over the n
+// bins. The global test (peak over the mean of all bins) must let colored noise
 // pass, whose spectrum rises threefold toward low frequencies at a lag-1
 // autocorrelation of 0.5; a line standing out of its own neighbourhood is
 // structure whatever the color around it (Coulomb friction left a line 20
 // times its surroundings that a Magnus moment and a nonlinear damping did
 // not remove, below the global limit of 4 ln N = 27 on 800 samples).
-double LocalLine(const std::vector<double>& power, int peak_k, double* ratio) {
+double LocalLine(const std::vector<double>& power,
+                 int peak_k,
+                 double mean,
+                 double* ratio) {
   const int n = static_cast<int>(power.size());
   const int half = std::max(4, n / 16);
   double sum = 0.0;
@@ -46,9 +48,7 @@ double LocalLine(const std::vector<double>& power, int peak_k, double* ratio) {
   // model's own residual had a peak 5.3 times the mean of all bins, 28
   // times that of neighbours the fit had emptied. The neighbourhood's mean
   // is taken as at least half the mean of all bins.
-  const double all =
-      std::accumulate(power.begin() + 1, power.end(), 0.0) / std::max(1, n - 1);
-  const double local = std::max(bins > 0 ? sum / bins : 0.0, 0.5 * all);
+  const double local = std::max(bins > 0 ? sum / bins : 0.0, 0.5 * mean);
   *ratio = local > 0.0 ? power[peak_k] / local : 0.0;
   // An exponential ordinate over the mean of `bins` others exceeds x with
   // chance (1 + x / bins)^-bins; over n bins, 1e-3 in all.
@@ -115,7 +115,7 @@ ResidualCheck CheckResiduals(const FitResult& fit,
       }
     }
     check.peak_ratio = total > 0.0 ? peak / (total / (n - 1)) : 0.0;
-    line_limit = LocalLine(power, peak_k, &check.line_ratio);
+    line_limit = LocalLine(power, peak_k, total / (n - 1), &check.line_ratio);
     const double duration = s.data.t.back() - s.data.t.front();
     const int signed_k = peak_k <= n / 2 ? peak_k : peak_k - n;
     check.peak_frequency_hz = signed_k * (n - 1) / (n * duration);

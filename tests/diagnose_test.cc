@@ -462,6 +462,13 @@ Diagnosis DiagnoseRecord(const std::string& file) {
                   DiagnoseOptions());
 }
 
+// The diagnosis, with the default options, of a config kept in tests/data
+// (`file`, under that directory; its data files beside it).
+Diagnosis DiagnoseConfig(const std::string& file) {
+  return Diagnose(LoadConfig(testing::SourcePath("tests/data/" + file)),
+                  DiagnoseOptions());
+}
+
 // At one slow spin (90 deg of roll in the record) a body-fixed trim moment
 // and a roll-synchronous reading error leave the same signature: the
 // verdict says so, adds neither, and names what would separate them.
@@ -1258,9 +1265,7 @@ TEST(Diagnose, AlternativesErrorBarsCoverAnEffectTheRecordCannotExclude) {
 // build of that dereferenced the catalog entry a probe does not have).
 TEST(Diagnose, AProbesAlternativeIsWidenedWithTheProbesBounds) {
   if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
-  const Case c =
-      LoadConfig(testing::SourcePath("tests/data/pair_roll_error_magnus.yaml"));
-  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  const Diagnosis d = DiagnoseConfig("pair_roll_error_magnus.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"roll_interaction"}))
@@ -1357,9 +1362,7 @@ TEST(Diagnose, KeepsATiedEffectTheOthersNeedAsTheTiesStandIn) {
 // of the tied effects is in, are added. Before, nothing was added.
 TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
-  const Case c = LoadConfig(
-      testing::SourcePath("tests/data/pair_stiffness_damping_asymmetry.yaml"));
-  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  const Diagnosis d = DiagnoseConfig("pair_stiffness_damping_asymmetry.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   const std::set<std::string> added = EffectIds(d.steps);
@@ -1523,9 +1526,8 @@ TEST(Diagnose, TheFitsEmptiedBinsRaiseNoLineOnATrueModel) {
 // its profile's (CheckRidges) and covers the truth.
 TEST(Diagnose, AnEffectOutOfItsBoundsLeadsAJointSetWhenNothingElseExplains) {
   if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
-  const Case c = LoadConfig(testing::SourcePath(
-      "tests/data/pair_bearing_calibration_roll_torque.yaml"));
-  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  const Diagnosis d =
+      DiagnoseConfig("pair_bearing_calibration_roll_torque.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
   EXPECT_EQ(EffectIds(d.steps),
