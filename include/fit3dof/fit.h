@@ -169,13 +169,15 @@ FitResult Fit(const Case& c);
 FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data);
 
 // Error bars along the known curved ridges of the sum of squares: a
-// bearing moment whose angle the record does not determine (zero within
-// two standard errors, or no error), where Cm_bearing is determined only along
-// the ridge Cm_bearing x bearing_angle = const and its linear error bar
-// (Eq. 27) sees only the ridge's width. With c.solver.profile_ridges,
-// Cm_bearing's error bars (RMS and standard) become its profile's
+// bearing moment, where Cm_bearing is determined only along the ridge
+// Cm_bearing x bearing_angle = const and its linear error bar (Eq. 27) sees
+// only the ridge's width there. With c.solver.profile_ridges, Cm_bearing's
+// error bars (RMS and standard) become its profile's
 // (src/profile_error_bar.h: the fit repeated with Cm_bearing frozen on
-// either side); in any case a warning names the ridge. `fit` is the fit of
+// either side) when the angle's standard error exceeds 1/30 of it (the
+// ridge bends by 10% over three errors). When the record does not
+// determine the angle (zero within two standard errors, or no error), a
+// warning names the ridge whether profiled or not. `fit` is the fit of
 // case `c` to `data` (as FitSamples takes them). FitSamples calls it;
 // diagnose, which fits without profiles while it searches, calls it on
 // the fits it reports. A fit profiled already is left as it is.
