@@ -126,7 +126,7 @@ std::string ImplausibleBeside(const std::vector<const Effect*>& model,
                               const FitResult& fit) {
   const std::string why = ImplausibleAmong(model, c, fit);
   if (!why.empty()) return why;
-  return ImplausibleWithin(effect, c, fit, added, 2.0);
+  return ImplausibleWithin(effect, c, fit, added, kBoundErrors);
 }
 
 // The BIC weight of a model with an effect added against the model

@@ -120,7 +120,10 @@ void Judge(const FitResult& current,
            OutOfSample* out_of_sample,
            Contender* c) {
   const Candidate& k = *c->candidate;
-  std::string why = Implausible(*k.effect, k.c, c->fit);
+  std::string why =
+      options.bounds_within_errors && k.effect->on_ridge
+          ? ImplausibleWithin(*k.effect, k.c, c->fit, k.added, kBoundErrors)
+          : Implausible(*k.effect, k.c, c->fit);
   c->out_of_bounds = !why.empty();
   // The newcomer may push an earlier effect out of its bounds (a
   // roll-synchronous reading error of 0.15 deg to 0.23 once a trim moment

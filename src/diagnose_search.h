@@ -292,6 +292,10 @@ ResidualCheck SettleFinalModel(
 
 // The final model's error bars (diagnose_error_bars.cc).
 
+// The standard errors an effect's terms are moved toward zero by when its
+// bounds are judged within its errors (ImplausibleWithin).
+constexpr double kBoundErrors = 2.0;
+
 // Why the effect's terms `added`, as `fit` (of case `c`) has them, lie
 // outside its bounds (Implausible) both at the point fit and moved `k` of
 // their standard errors toward zero (Shrunk); empty when either is within

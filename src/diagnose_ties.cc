@@ -270,7 +270,8 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
         w.unfitted_as_good || !w.fitted ||
         (Bic(w.fit) < Bic(fit) + options.ambiguity_bic &&
          (w.effect == nullptr ||
-          ImplausibleWithin(*w.effect, w.c, w.fit, w.terms, 2.0).empty()));
+          ImplausibleWithin(*w.effect, w.c, w.fit, w.terms, kBoundErrors)
+              .empty()));
     VLOG(1) << step.effect << " swapped for " << w.rival->effect << ": "
             << (as_good ? "as good" : "worse");
     if (as_good) open.push_back(*w.rival);

@@ -23,7 +23,10 @@ const std::vector<Effect>& EffectCatalog() {
        {},
        "amplitude",
        "|t1|, |t3| up to half of the pitch and yaw stiffness, |Cm_alpha + t1| "
-       "and |Cm_alpha + t3|"},
+       "and |Cm_alpha + t3|",
+       false,
+       false,
+       true},
       {"tunnel_damping",
        "tunnel-fixed pitch and yaw damping (Eq. 39)",
        {"t2", "t4"},
@@ -32,7 +35,10 @@ const std::vector<Effect>& EffectCatalog() {
        {},
        "amplitude",
        "|t2|, |t4| up to twice the pitch and yaw damping, |Cm_q + t2| and "
-       "|Cm_q + t4|"},
+       "|Cm_q + t4|",
+       false,
+       false,
+       true},
       {"flow_angularity",
        "flow angularity / zero offsets in pitch and yaw",
        {"theta_T", "psi_T"},

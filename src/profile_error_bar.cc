@@ -9,6 +9,7 @@
 
 #include "fit3dof/input_error.h"
 #include "fit3dof/parameters.h"
+#include "fit3dof/thread_budget.h"
 
 namespace fit3dof {
 namespace {
@@ -138,19 +139,37 @@ bool ProfileOf(const Case& c,
       (c.AnySigmaAuto() && fit.segments.size() != 1)) {
     return false;
   }
+  // The two sides' refits are independent: in parallel, each with its own
+  // tally, within the process's thread budget.
+  struct Side {
+    ProfileErrorBar tally;
+    double width = 0.0;
+    bool bounded = true;
+    bool any = false;
+  };
+  Side sides[2];
+  ParallelFor(2, [&](int i) {
+    Side& side = sides[i];
+    side.any = SideWidth(c,
+                         data,
+                         fit,
+                         *e,
+                         i == 0 ? -1.0 : 1.0,
+                         &side.tally,
+                         &side.width,
+                         &side.bounded);
+  });
   ProfileErrorBar profile;
   profile.linear = e->rms_error;
   profile.rms_error = e->rms_error;
   bool any = false;
-  for (const double sign : {-1.0, 1.0}) {
-    double width = 0.0;
-    bool bounded = true;
-    if (!SideWidth(c, data, fit, *e, sign, &profile, &width, &bounded)) {
-      continue;
-    }
+  for (const Side& side : sides) {
+    profile.refits += side.tally.refits;
+    profile.farthest = std::max(profile.farthest, side.tally.farthest);
+    if (!side.any) continue;
     any = true;
-    profile.rms_error = std::max(profile.rms_error, width);
-    profile.bounded = profile.bounded && bounded;
+    profile.rms_error = std::max(profile.rms_error, side.width);
+    profile.bounded = profile.bounded && side.bounded;
   }
   if (!any) return false;
   *out = profile;

@@ -20,7 +20,8 @@
 // about 9 E^2 (the offset a test within three errors needs). The wider of
 // the two sides counts. Error bars are only widened: a profile steeper
 // than the linear one (a sum of squares rising faster than quadratically)
-// keeps the linear error bar.
+// keeps the linear error bar. The two sides are refitted in parallel,
+// within the process's thread budget (thread_budget.h).
 //
 // On one 3-s run with a bearing moment, Cm_bearing = -0.0094 +- 0.0010 with
 // its saturation angle undetermined (3.4 +- 5.7 deg); frozen anywhere from

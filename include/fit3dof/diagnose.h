@@ -214,6 +214,13 @@ struct Effect {
   // pressure): over less than a revolution of roll a roll-locked effect is
   // one too, and such a probe beats it without a margin (ProbeMargin).
   bool drifts_in_time = false;
+  // Its terms lie on Eq. 43's ridge: only their sums with the body's own
+  // coefficients (Cm_alpha + t1, Cm_q + t2) are determined, and a point
+  // fit lands anywhere along it the record allows (a tunnel stiffness's
+  // t1 = t3 = -0.134 +- 0.048 on a coning run, truth 1.8e-4: the true
+  // model's own fit lands there too). A second search judges its bounds
+  // within two of its errors (DiagnoseOptions::bounds_within_errors).
+  bool on_ridge = false;
 };
 
 const std::vector<Effect>& EffectCatalog();
@@ -244,6 +251,11 @@ struct DiagnoseOptions {
   // `not_explained` with such a contender ahead of every one that earned
   // its place.
   bool joint_sets_from_bounds = false;
+  // Judge the bounds of a contender on Eq. 43's ridge (Effect::on_ridge)
+  // within two of its standard errors (moved that far toward zero), as
+  // the effects not excluded are judged, rather than at the point fit.
+  // Set with joint_sets_from_bounds for the second search.
+  bool bounds_within_errors = false;
 };
 
 struct ResidualCheck {
