@@ -1521,9 +1521,9 @@ TEST(Diagnose, TheFitsEmptiedBinsRaiseNoLineOnATrueModel) {
 // ridge at t1 = t3 = -0.134 +- 0.048 (truth 1.8e-4, -6.2e-5; the true
 // model's own fit lands there too), past its bound (0.115) at the point
 // fit: refused, and the verdict was `not_explained`. The second search
-// judges a contender's bounds within two of its errors (FromBounds,
-// bounds_within_errors): the record is explained, the tunnel stiffness
-// beside the tie, and the final error bars cover Cm_alpha.
+// judges a tunnel term's bounds, on Eq. 43's ridge, within two of its
+// errors (FromBounds, bounds_within_errors): the record is explained, the
+// tunnel stiffness beside the tie, and the final error bars cover Cm_alpha.
 TEST(Diagnose, AnEffectOnItsRidgeIsJudgedWithinItsErrorsWhenNothingExplains) {
   const Diagnosis d =
       DiagnoseRecord("coning_stiffness_roll_error_angularity_seed4.csv");

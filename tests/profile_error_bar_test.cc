@@ -6,6 +6,7 @@
 
 #include "profile_error_bar.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -49,6 +50,14 @@ std::vector<TimeHistory> Data(const FitResult& fit) {
   std::vector<TimeHistory> data;
   for (const SegmentFit& s : fit.segments) data.push_back(s.data);
   return data;
+}
+
+// Whether a step of the fit's pipeline starts with `prefix`.
+bool InPipeline(const FitResult& fit, const std::string& prefix) {
+  return std::any_of(
+      fit.pipeline.begin(), fit.pipeline.end(), [&](const std::string& step) {
+        return step.rfind(prefix, 0) == 0;
+      });
 }
 
 // Where the profile is quadratic (Cm_alpha, determined to 0.3%), the
@@ -101,11 +110,8 @@ TEST(ProfileErrorBar, CoversTheBearingMomentAlongItsRidge) {
               3.0 * moment->standard_error)
         << "seed " << seed << ": " << moment->value << " +- "
         << moment->standard_error;
-    bool widened = false;
-    for (const std::string& step : fit.pipeline) {
-      widened |= step.find("Cm_bearing's error bar from its profile") == 0;
-    }
-    EXPECT_TRUE(widened) << ::testing::PrintToString(fit.pipeline);
+    EXPECT_TRUE(InPipeline(fit, "Cm_bearing's error bar from its profile"))
+        << ::testing::PrintToString(fit.pipeline);
   }
   std::cout << ridges << " of " << seeds << " seeds on the ridge\n";
   EXPECT_GT(ridges, 0);
@@ -129,12 +135,9 @@ TEST(ProfileErrorBar, CoversTheBearingMomentWhereADeterminedAngleBendsIt) {
   constexpr double kTruth = -0.000931;
   EXPECT_LT(std::abs(moment->value - kTruth), 3.0 * moment->standard_error)
       << moment->value << " +- " << moment->standard_error;
-  bool widened = false;
-  for (const std::string& step : fit.pipeline) {
-    widened |=
-        step.find("Cm_bearing's error bar from its profile: 3 refits") == 0;
-  }
-  EXPECT_TRUE(widened) << ::testing::PrintToString(fit.pipeline);
+  EXPECT_TRUE(
+      InPipeline(fit, "Cm_bearing's error bar from its profile: 3 refits"))
+      << ::testing::PrintToString(fit.pipeline);
   EXPECT_TRUE(fit.warnings.empty()) << ::testing::PrintToString(fit.warnings);
 }
 
