@@ -133,6 +133,26 @@ PipelineOutcome Solve(const Case& c,
                                " starts, " + std::to_string(m.reached) +
                                " reached the best minimum");
   }
+  if (robust && outcome.integrable) {
+    const MultiStartOutcome b =
+        RunBearingRestarts(c, problem, *values, outcome);
+    result->iterations += b.iterations;
+    if (b.tried > 0) {
+      result->pipeline.push_back(
+          "bearing_angle beyond the record's angles: restarted from " +
+          std::to_string(b.tried - 1) + " angles within them" +
+          (b.improved ? ", probable error " +
+                            FormatNumber("%.3g", outcome.probable_error) +
+                            " -> " + FormatNumber("%.3g", b.best.probable_error)
+                      : ", none did better"));
+    }
+    if (b.improved) {
+      result->iterations += outcome.iterations;
+      outcome = b.best;
+      outcome.iterations = 0;  // counted among the restarts' already
+      *values = b.values;
+    }
+  }
   if (StopRequested()) throw Interrupted();
   result->iterations += outcome.iterations;
   result->failed_evaluations += outcome.failed_evaluations;

@@ -4,6 +4,7 @@
 
 #include "multi_start.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <exception>
@@ -76,17 +77,34 @@ std::vector<std::vector<double>> SpreadStarts(const Case& c,
   return starts;
 }
 
-}  // namespace
-
-MultiStartOutcome RunMultiStart(const Case& c,
-                                const FitProblem& problem,
-                                const PipelineOutcome& first) {
-  const std::vector<double> data_start = DataStart(c, problem);
-  std::vector<std::vector<double>> starts = {data_start};
-  for (const auto& s :
-       SpreadStarts(c, problem.free, data_start, c.solver.starts - 1)) {
-    starts.push_back(s);
+// The position in the global free order of the shared free parameter
+// `name`, or -1.
+int FreeShared(const Case& c, const FreeLayout& free, const std::string& name) {
+  const auto& table = ParameterTable(c.model);
+  for (int g = 0; g < free.size(); ++g) {
+    if (free.segment[g] < 0 && table[free.position[g]].name == name) return g;
   }
+  return -1;
+}
+
+// The largest total angle (deg) of the record's readings, sqrt(theta^2 +
+// psi^2) at the small angles a bearing moment fades over.
+double LargestAngle(const FitProblem& problem) {
+  double largest = 0.0;
+  for (const PreparedSegment& p : problem.segments) {
+    for (int i = 0; i < p.data.size(); ++i) {
+      largest = std::max(largest, std::hypot(p.data.theta[i], p.data.psi[i]));
+    }
+  }
+  return largest;
+}
+
+// Each of `starts` through the whole pipeline, in parallel, against
+// `first`: the best, when one beats it.
+MultiStartOutcome BestOf(const Case& c,
+                         const FitProblem& problem,
+                         const std::vector<std::vector<double>>& starts,
+                         const PipelineOutcome& first) {
   std::vector<PipelineOutcome> outcomes(starts.size());
   std::vector<std::vector<double>> finals = starts;
   // Threads from the process's budget: inside a busy batch the starts run
@@ -121,6 +139,45 @@ MultiStartOutcome RunMultiStart(const Case& c,
     m.values = finals[best_index];
   }
   return m;
+}
+
+}  // namespace
+
+MultiStartOutcome RunMultiStart(const Case& c,
+                                const FitProblem& problem,
+                                const PipelineOutcome& first) {
+  const std::vector<double> data_start = DataStart(c, problem);
+  std::vector<std::vector<double>> starts = {data_start};
+  for (const auto& s :
+       SpreadStarts(c, problem.free, data_start, c.solver.starts - 1)) {
+    starts.push_back(s);
+  }
+  return BestOf(c, problem, starts, first);
+}
+
+MultiStartOutcome RunBearingRestarts(const Case& c,
+                                     const FitProblem& problem,
+                                     const std::vector<double>& solution,
+                                     const PipelineOutcome& first) {
+  const int angle = FreeShared(c, problem.free, "bearing_angle");
+  const int moment = FreeShared(c, problem.free, "Cm_bearing");
+  if (angle < 0 || moment < 0) return {};
+  const double largest = LargestAngle(problem);
+  if (!(std::abs(solution[angle]) > largest)) return {};
+  // The solution's stiffness kept (Cm_alpha + Cm_bearing, the unfaded
+  // moment's), the bearing moment back at its configured start.
+  const int stiffness = FreeShared(c, problem.free, "Cm_alpha");
+  std::vector<std::vector<double>> starts;
+  for (const double fraction : {0.06, 0.15, 0.4}) {
+    std::vector<double> s = solution;
+    s[angle] = fraction * largest;
+    s[moment] = problem.values[moment];
+    if (stiffness >= 0) {
+      s[stiffness] += solution[moment] - problem.values[moment];
+    }
+    starts.push_back(s);
+  }
+  return BestOf(c, problem, starts, first);
 }
 
 }  // namespace fit3dof

@@ -33,6 +33,20 @@ MultiStartOutcome RunMultiStart(const Case& c,
                                 const FitProblem& problem,
                                 const PipelineOutcome& first);
 
+// Restarts of a fit whose bearing moment (Cm_bearing and bearing_angle
+// free) ended with its angle beyond every angle of the record (`solution`,
+// the first attempt's values): there the moment never fades
+// (bearing_moment.h), a linear stiffness that Cm_alpha takes, and the fit
+// stops on that ridge, its information matrix singular. A Table 6 record
+// with a bearing moment at 1 deg, started from Cm_alpha -0.2 and Cm_q -2,
+// ended at bearing_angle 3538 deg, probable error 2.0. From the configured
+// values with the angle at 0.06, 0.15 and 0.4 of the record's largest
+// angle; tried 0 when the angle stayed within the record's.
+MultiStartOutcome RunBearingRestarts(const Case& c,
+                                     const FitProblem& problem,
+                                     const std::vector<double>& solution,
+                                     const PipelineOutcome& first);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_SRC_MULTI_START_H_
