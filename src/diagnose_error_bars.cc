@@ -261,6 +261,60 @@ FitResult Shrunk(FitResult fit,
   return fit;
 }
 
+// The probes the effects of `complete` leave open (Effect::leaves_open),
+// each fitted beside the complete models that hold such an effect; those
+// the record cannot exclude go into d->open_terms (once each, beside the
+// final model when it is not excluded there) and their fits into
+// d->not_excluded_models. On a 3-s run whose pitch reading erred as the
+// angle's signed square less its linear part, the cube named in its place
+// left a gain error of the amplitude, which the known cubic stiffness
+// turned into a Cm_alpha 7.3 of its errors off; freed, the gain raised BIC
+// by 4.9, and moved Cm_alpha by 6.5 of those errors to the truth.
+void FindOpenTerms(const std::vector<CompleteModel>& complete,
+                   const std::vector<TimeHistory>& data,
+                   const DiagnoseOptions& options,
+                   Diagnosis* d) {
+  std::vector<CompleteModel> holding;
+  std::vector<const Effect*> open;
+  for (const CompleteModel& m : complete) {
+    std::vector<const Effect*> probes;
+    for (const Effect* e : m.effects) {
+      const Effect* probe = e == nullptr ? nullptr : FindProbe(e->leaves_open);
+      if (probe != nullptr) probes.push_back(probe);
+    }
+    if (probes.empty()) continue;
+    holding.push_back(m);
+    for (const Effect* p : probes) {
+      if (std::find(open.begin(), open.end(), p) == open.end()) {
+        open.push_back(p);
+      }
+    }
+  }
+  for (const Beside& t : FitBeside(holding, open, data)) {
+    if (!t.fitted) continue;
+    VLOG(1) << t.effect->id << " left open, beside the complete model: BIC "
+            << FormatNumber("%+.1f", t.rise) << " " << t.implausible;
+    if (!NotExcludedBeside(t, options)) continue;
+    d->not_excluded_models.push_back(t.fit.parameters);
+    d->not_excluded_weights.push_back(BicWeight(t.rise));
+    if (std::any_of(
+            d->open_terms.begin(),
+            d->open_terms.end(),
+            [&](const CandidateFit& k) { return k.effect == t.effect->id; })) {
+      continue;
+    }
+    CandidateFit k;
+    k.effect = t.effect->id;
+    k.parameters = Own(t.fit, t.added);
+    k.bic_drop = -t.rise;
+    k.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+    k.rejected =
+        "left open by the form of an effect added, not excluded (BIC " +
+        FormatNumber("%+.1f", t.rise) + ")";
+    d->open_terms.push_back(std::move(k));
+  }
+}
+
 }  // namespace
 
 std::string ImplausibleWithin(const Effect& effect,
@@ -337,14 +391,17 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
                  ")";
     d->not_excluded.push_back(std::move(k));
   }
+  FindOpenTerms(complete, data, options, d);
 }
 
 void WidenForNotExcluded(Diagnosis* d) {
   std::vector<const std::vector<ParameterEstimate>*> models;
   for (const auto& m : d->not_excluded_models) models.push_back(&m);
   std::string which;  // not_excluded holds each effect once
-  for (const CandidateFit& k : d->not_excluded) {
-    which += (which.empty() ? "" : ", ") + k.effect;
+  for (const auto* fits : {&d->not_excluded, &d->open_terms}) {
+    for (const CandidateFit& k : *fits) {
+      which += (which.empty() ? "" : ", ") + k.effect;
+    }
   }
   WidenErrorBars(models,
                  d->not_excluded_weights,

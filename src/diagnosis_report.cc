@@ -162,6 +162,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
         {{"effect", d.stood_in[i].effect}, {"for", d.stood_in_for[i]}});
   }
   out["not_excluded"] = Contenders(d.not_excluded);
+  out["open_terms"] = Contenders(d.open_terms);
   if (!d.residual_description.empty()) {
     out["residual_description"] = d.residual_description;
   }
@@ -256,6 +257,10 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   }
   for (const CandidateFit& k : d.not_excluded) {
     out += "  not excluded, the final error bars cover it: " + k.effect + " (" +
+           Values(k.parameters) + "): " + k.rejected + "\n";
+  }
+  for (const CandidateFit& k : d.open_terms) {
+    out += "  left open, the final error bars cover it: " + k.effect + " (" +
            Values(k.parameters) + "): " + k.rejected + "\n";
   }
   for (const CandidateFit& r : d.rejected) {

@@ -142,7 +142,11 @@ const std::vector<Effect>& EffectCatalog() {
        {},
        "amplitude",
        "up to 0.2 deg, or 3% of the angle if more, at each channel's "
-       "largest angle"},
+       "largest angle",
+       false,
+       false,
+       false,
+       "reading_gain"},
   };
   return catalog;
 }

@@ -221,6 +221,14 @@ struct Effect {
   // model's own fit lands there too). A second search judges its bounds
   // within two of its errors (DiagnoseOptions::bounds_within_errors).
   bool on_ridge = false;
+  // A probe (Probes()) whose terms the effect's form leaves open: a
+  // calibration nonlinearity written as a cube takes none of the linear
+  // part a real one has, which the report's linear calibration fit took an
+  // unknown share of (as much as its range made it); what is left is a
+  // gain error, the reading_gain probe's. Not fitted with the effect; freed
+  // beside each complete model that holds it, and where the record cannot
+  // exclude it, the final error bars cover that fit (Diagnosis::open_terms).
+  std::string leaves_open = {};
 };
 
 const std::vector<Effect>& EffectCatalog();
@@ -430,6 +438,11 @@ struct Diagnosis {
   std::vector<CandidateFit> not_excluded;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
   std::vector<double> not_excluded_weights;  // each model's BIC weight
+  // The probes an added effect leaves open (Effect::leaves_open) that the
+  // record cannot exclude beside the final model: each fitted there, the
+  // rise in BIC as minus bic_drop; the final error bars cover those fits
+  // too (among not_excluded_models).
+  std::vector<CandidateFit> open_terms;
   // The final model's own standard errors of the estimates a tie or an
   // effect not excluded widened (within that model, before widening), by
   // name.
