@@ -334,7 +334,9 @@ void WidenForTie(Diagnosis* d);
 // BIC rises by less than ambiguity_bic and the effects stay within their
 // bounds (ImplausibleBeside: its own within two of its errors). Their fits
 // go into d->not_excluded (bic_drop against the model without) and their
-// parameters into d->not_excluded_models.
+// parameters into d->not_excluded_models. So do, into d->open_terms, the
+// probes a complete model's effects leave open (Effect::leaves_open: the
+// cube's reading gain) where the record cannot exclude them beside it.
 //
 // On a 3-s coning run with a tunnel damping, a Magnus moment and a flow
 // angularity, the tunnel damping and Cm_q absorbed the Magnus moment (one
