@@ -235,6 +235,11 @@ double Bic(const FitResult& r) {
   return n * std::log(rss / n) + r.free_parameters * std::log(n);
 }
 
+double Aic(const FitResult& r) {
+  const double n = 3.0 * r.points;
+  return Bic(r) - r.free_parameters * (std::log(n) - 2.0);
+}
+
 bool Wanted(const DiagnoseOptions& options, const Effect& e) {
   return options.effects.empty() ||
          std::find(options.effects.begin(), options.effects.end(), e.id) !=

@@ -30,6 +30,8 @@ namespace fit3dof {
 // The Bayesian information criterion of a fit: n ln(RSS / n) + k ln(n),
 // n the residuals (three per sample), k the free parameters.
 double Bic(const FitResult& r);
+// Akaike's: n ln(RSS / n) + 2 k.
+double Aic(const FitResult& r);
 
 // A catalog effect (or a probe) as a candidate: the current model with the
 // effect's terms free at zero (their names in `added`), and its score at
@@ -355,19 +357,20 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
                      Diagnosis* d);
 
 // The final error bars cover the models of the effects the record cannot
-// exclude (FindNotExcluded), each with its BIC weight against the model
-// it was added to, exp(-rise / 2) / (1 + exp(-rise / 2)): neither the
-// search nor the final swap added or swapped them in, but the values the
-// record allows with them are part of its answer. Weighted, not the
-// tie's worst case: along Eq. 43 a tunnel damping leaves only Cm_q + t2
-// determined, and one that raised BIC by 9.3 beside a roll damping (two
-// runs) widened Cm_q 138-fold in the worst case, 13-fold weighted.
+// exclude (FindNotExcluded), each with its Akaike weight against the
+// model it was added to, exp(-rise / 2) / (1 + exp(-rise / 2)) for its
+// rise in AIC (diagnose_error_bars.cc AkaikeWeight): neither the search
+// nor the final swap added or swapped them in, but the values the record
+// allows with them are part of its answer. Weighted, not the tie's worst
+// case: along Eq. 43 a tunnel damping leaves only Cm_q + t2 determined,
+// and one that raised BIC by 9.3 beside a roll damping (two runs) widened
+// Cm_q 138-fold in the worst case, 13-fold at its BIC weight.
 void WidenForNotExcluded(Diagnosis* d);
 
 // Each of a tie's complete models (d->alternatives) other than the final
 // one refitted with each effect the record cannot exclude beside the final
 // model (d->not_excluded) added, and its error bars widened as the final
-// model's are (WidenForNotExcluded: BIC weights; the effect within its
+// model's are (WidenForNotExcluded: Akaike weights; the effect within its
 // bounds, its own within two of its errors). An alternative reported
 // without them was sure of values the record does not fix: on a 3-s
 // coning run with a Magnus moment, a nonlinear damping and a calibration

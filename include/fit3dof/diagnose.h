@@ -162,7 +162,7 @@
 // model's effects within their bounds, its own within two of its standard
 // errors of them: on a ridge the point fit lands anywhere the record
 // allows) is not added, but the final error bars cover its model's
-// values, weighted by its BIC weight against the model without it
+// values, weighted by its Akaike weight against the model without it
 // (Diagnosis::not_excluded). A Magnus moment
 // beside a tunnel damping that had absorbed it on one coning run moved
 // Cm_q by 138 of its errors.
@@ -437,7 +437,7 @@ struct Diagnosis {
   // diagnose_error_bars.cc WidenForNotExcluded).
   std::vector<CandidateFit> not_excluded;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
-  std::vector<double> not_excluded_weights;  // each model's BIC weight
+  std::vector<double> not_excluded_weights;  // each model's Akaike weight
   // The probes an added effect leaves open (Effect::leaves_open) that the
   // record cannot exclude beside the final model: each fitted there, the
   // rise in BIC as minus bic_drop; the final error bars cover those fits
