@@ -39,9 +39,11 @@ MultiStartOutcome RunMultiStart(const Case& c,
 // (bearing_moment.h), a linear stiffness that Cm_alpha takes, and the fit
 // stops on that ridge, its information matrix singular. A Table 6 record
 // with a bearing moment at 1 deg, started from Cm_alpha -0.2 and Cm_q -2,
-// ended at bearing_angle 3538 deg, probable error 2.0. From the configured
-// values with the angle at 0.06, 0.15 and 0.4 of the record's largest
-// angle; tried 0 when the angle stayed within the record's.
+// ended at bearing_angle 3538 deg, probable error 2.0. From that solution
+// with the angle at 0.06, 0.15 and 0.4 of the record's largest angle,
+// Cm_bearing back at its configured start and Cm_alpha taking the rest of
+// the unfaded stiffness (Cm_alpha + Cm_bearing kept); tried 0 when the
+// angle stayed within the record's.
 MultiStartOutcome RunBearingRestarts(const Case& c,
                                      const FitProblem& problem,
                                      const std::vector<double>& solution,
