@@ -272,6 +272,29 @@ FitResult Shrunk(FitResult fit,
   return fit;
 }
 
+// `t`'s fit among d->not_excluded_models, with its Akaike weight, and in
+// *listed (once each effect: the first model it is not excluded beside)
+// as a CandidateFit whose `rejected` says `why`.
+void TakeNotExcluded(const Beside& t,
+                     const std::string& why,
+                     std::vector<CandidateFit>* listed,
+                     Diagnosis* d) {
+  d->not_excluded_models.push_back(t.fit.parameters);
+  d->not_excluded_weights.push_back(AkaikeWeight(t.akaike_rise));
+  if (std::any_of(listed->begin(), listed->end(), [&](const CandidateFit& k) {
+        return k.effect == t.effect->id;
+      })) {
+    return;
+  }
+  CandidateFit k;
+  k.effect = t.effect->id;
+  k.parameters = Own(t.fit, t.added);
+  k.bic_drop = -t.rise;
+  k.prediction_gain = std::numeric_limits<double>::quiet_NaN();
+  k.rejected = why;
+  listed->push_back(std::move(k));
+}
+
 // The probes the effects of `complete` leave open (Effect::leaves_open),
 // each fitted beside the complete models that hold such an effect; those
 // the record cannot exclude go into d->open_terms (once each, beside the
@@ -306,23 +329,12 @@ void FindOpenTerms(const std::vector<CompleteModel>& complete,
     VLOG(1) << t.effect->id << " left open, beside the complete model: BIC "
             << FormatNumber("%+.1f", t.rise) << " " << t.implausible;
     if (!NotExcludedBeside(t, options)) continue;
-    d->not_excluded_models.push_back(t.fit.parameters);
-    d->not_excluded_weights.push_back(AkaikeWeight(t.akaike_rise));
-    if (std::any_of(
-            d->open_terms.begin(),
-            d->open_terms.end(),
-            [&](const CandidateFit& k) { return k.effect == t.effect->id; })) {
-      continue;
-    }
-    CandidateFit k;
-    k.effect = t.effect->id;
-    k.parameters = Own(t.fit, t.added);
-    k.bic_drop = -t.rise;
-    k.prediction_gain = std::numeric_limits<double>::quiet_NaN();
-    k.rejected =
+    TakeNotExcluded(
+        t,
         "left open by the form of an effect added, not excluded (BIC " +
-        FormatNumber("%+.1f", t.rise) + ")";
-    d->open_terms.push_back(std::move(k));
+            FormatNumber("%+.1f", t.rise) + ")",
+        &d->open_terms,
+        d);
   }
 }
 
@@ -381,26 +393,15 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
     VLOG(1) << t.effect->id << " beside the complete model: BIC "
             << (rise >= 0.0 ? "+" : "") << rise << " " << t.implausible;
     if (!NotExcludedBeside(t, options)) continue;
-    d->not_excluded_models.push_back(t.fit.parameters);
-    d->not_excluded_weights.push_back(AkaikeWeight(t.akaike_rise));
-    // Each effect once: beside the final model when it is not excluded
-    // there.
-    if (std::any_of(
-            d->not_excluded.begin(),
-            d->not_excluded.end(),
-            [&](const CandidateFit& k) { return k.effect == t.effect->id; })) {
-      continue;
-    }
-    CandidateFit k;
-    k.effect = t.effect->id;
-    k.parameters = Own(t.fit, t.added);
-    k.bic_drop = -rise;
-    k.prediction_gain = std::numeric_limits<double>::quiet_NaN();
-    k.rejected = "not needed beside the " +
-                 std::string(t.model == &complete[0] ? "final" : "search's") +
-                 " model, nor excluded (BIC " + FormatNumber("%+.1f", rise) +
-                 ")";
-    d->not_excluded.push_back(std::move(k));
+    // Each effect listed once: beside the final model when it is not
+    // excluded there.
+    TakeNotExcluded(
+        t,
+        "not needed beside the " +
+            std::string(t.model == &complete[0] ? "final" : "search's") +
+            " model, nor excluded (BIC " + FormatNumber("%+.1f", rise) + ")",
+        &d->not_excluded,
+        d);
   }
   FindOpenTerms(complete, data, options, d);
 }
