@@ -414,11 +414,9 @@ std::string TrimmedShortRun(const std::string& dir,
                          std::to_string(spin) +
                          ", theta0: 8.0}\n"
                          "solver: {step: 0.002}\n");
-  std::vector<double> times;
-  for (double t = 0.0; t <= 3.0; t += 0.0645) times.push_back(t);
   return testing::WriteNoisyRecord(
       LoadConfig(truth),
-      times,
+      testing::ShortRecordTimes(),
       seed,
       dir + "/spin" + std::to_string(int(spin)) + ".csv");
 }

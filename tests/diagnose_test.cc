@@ -397,11 +397,9 @@ Case ShortTruth(double spin) {
 std::string SimulateShort(const Case& truth,
                           const std::string& path,
                           std::uint64_t seed) {
-  std::vector<double> times;
-  for (double t = 0.0; t <= 3.0; t += 0.0645) times.push_back(t);
   Case c = truth;
   c.solver.step = 0.002;
-  return testing::WriteNoisyRecord(c, times, seed, path);
+  return testing::WriteNoisyRecord(c, testing::ShortRecordTimes(), seed, path);
 }
 
 // ShortTruth without its trim moment.
@@ -839,11 +837,10 @@ TEST(Diagnose, ACalibrationErrorOfAnotherFormLeavesTheGainOpen) {
     const std::string dir = testing::ScratchDirectory(
         "diagnose_signed_square_" + std::to_string(seed));
     const Case truth = UntrimmedShortTruth(30.0);
-    std::vector<double> times;
-    for (double t = 0.0; t <= 3.0; t += 0.0645) times.push_back(t);
     Case simulated = truth;
     simulated.solver.step = 0.002;
-    TimeHistory data = SimulateAt(simulated, simulated.Values(), times);
+    TimeHistory data =
+        SimulateAt(simulated, simulated.Values(), testing::ShortRecordTimes());
     for (int i = 0; i < data.size(); ++i) {
       data.theta[i] += reading(data.theta[i]);
       data.psi[i] -= reading(data.psi[i]);
@@ -1165,10 +1162,7 @@ TEST(Diagnose, SwapsInARivalThatLostWhileAnEffectWasMissing) {
 
 // Whether `fit` holds Cm_bearing's error bar from its profile.
 bool Profiled(const FitResult& fit) {
-  return std::any_of(
-      fit.pipeline.begin(), fit.pipeline.end(), [](const std::string& p) {
-        return p.rfind("Cm_bearing's error bar from its profile", 0) == 0;
-      });
+  return testing::InPipeline(fit, "Cm_bearing's error bar from its profile");
 }
 
 // A bearing moment on one 3-s run, where its angle is not determined:

@@ -2,7 +2,6 @@
 //
 // Restarts of the robust pipeline (src/multi_start.h) as `fit` runs them.
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -14,13 +13,6 @@
 
 namespace fit3dof {
 namespace {
-
-bool InPipeline(const FitResult& fit, const std::string& prefix) {
-  return std::any_of(
-      fit.pipeline.begin(), fit.pipeline.end(), [&](const std::string& line) {
-        return line.rfind(prefix, 0) == 0;
-      });
-}
 
 // The Table 6 record with a bearing moment (Cm_bearing -0.000931 at 1 deg;
 // the diagnose suite's, draw 4) fitted with the moment free from guesses
@@ -39,7 +31,8 @@ TEST(MultiStart, RestartsABearingMomentWhoseAngleLeftTheRecord) {
   c.parameters[FindParameter(c.model, "Cm_alpha")].value = -0.2;
   c.parameters[FindParameter(c.model, "Cm_q")].value = -2.0;
   const FitResult fit = Fit(c);
-  EXPECT_TRUE(InPipeline(fit, "bearing_angle beyond the record's angles"))
+  EXPECT_TRUE(
+      testing::InPipeline(fit, "bearing_angle beyond the record's angles"))
       << ::testing::PrintToString(fit.pipeline);
   EXPECT_LT(fit.probable_error, 1.1);
   const ParameterEstimate* moment = SharedEstimate(fit, "Cm_bearing");
@@ -65,7 +58,8 @@ TEST(MultiStart, NoBearingRestartWhereTheAngleStaysWithinTheRecord) {
   const Case c = LoadConfig(
       testing::SourcePath("tests/data/table6_bearing_moment_seed4.yaml"));
   const FitResult fit = Fit(c);
-  EXPECT_FALSE(InPipeline(fit, "bearing_angle beyond the record's angles"))
+  EXPECT_FALSE(
+      testing::InPipeline(fit, "bearing_angle beyond the record's angles"))
       << ::testing::PrintToString(fit.pipeline);
 }
 

@@ -6,7 +6,6 @@
 
 #include "profile_error_bar.h"
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -50,14 +49,6 @@ std::vector<TimeHistory> Data(const FitResult& fit) {
   std::vector<TimeHistory> data;
   for (const SegmentFit& s : fit.segments) data.push_back(s.data);
   return data;
-}
-
-// Whether a step of the fit's pipeline starts with `prefix`.
-bool InPipeline(const FitResult& fit, const std::string& prefix) {
-  return std::any_of(
-      fit.pipeline.begin(), fit.pipeline.end(), [&](const std::string& step) {
-        return step.rfind(prefix, 0) == 0;
-      });
 }
 
 // Where the profile is quadratic (Cm_alpha, determined to 0.3%), the
@@ -110,7 +101,8 @@ TEST(ProfileErrorBar, CoversTheBearingMomentAlongItsRidge) {
               3.0 * moment->standard_error)
         << "seed " << seed << ": " << moment->value << " +- "
         << moment->standard_error;
-    EXPECT_TRUE(InPipeline(fit, "Cm_bearing's error bar from its profile"))
+    EXPECT_TRUE(
+        testing::InPipeline(fit, "Cm_bearing's error bar from its profile"))
         << ::testing::PrintToString(fit.pipeline);
   }
   std::cout << ridges << " of " << seeds << " seeds on the ridge\n";
@@ -135,8 +127,8 @@ TEST(ProfileErrorBar, CoversTheBearingMomentWhereADeterminedAngleBendsIt) {
   constexpr double kTruth = -0.000931;
   EXPECT_LT(std::abs(moment->value - kTruth), 3.0 * moment->standard_error)
       << moment->value << " +- " << moment->standard_error;
-  EXPECT_TRUE(
-      InPipeline(fit, "Cm_bearing's error bar from its profile: 3 refits"))
+  EXPECT_TRUE(testing::InPipeline(
+      fit, "Cm_bearing's error bar from its profile: 3 refits"))
       << ::testing::PrintToString(fit.pipeline);
   EXPECT_TRUE(fit.warnings.empty()) << ::testing::PrintToString(fit.warnings);
 }

@@ -4,6 +4,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -81,6 +82,19 @@ std::string WriteNoisyRecord(const Case& truth,
   AddNoise(noise, &data);
   WriteTimeHistory(path, data);
   return path;
+}
+
+std::vector<double> ShortRecordTimes() {
+  std::vector<double> times;
+  for (double t = 0.0; t <= 3.0; t += 0.0645) times.push_back(t);
+  return times;
+}
+
+bool InPipeline(const FitResult& fit, const std::string& prefix) {
+  return std::any_of(
+      fit.pipeline.begin(), fit.pipeline.end(), [&](const std::string& line) {
+        return line.rfind(prefix, 0) == 0;
+      });
 }
 
 Case ShortRun(const std::string& dir,

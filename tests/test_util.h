@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fit3dof/case.h"
+#include "fit3dof/fit.h"
 
 namespace fit3dof::testing {
 
@@ -66,6 +67,13 @@ std::string WriteNoisyRecord(const Case& truth,
 Case ShortRun(const std::string& dir,
               const std::string& terms,
               std::uint64_t seed);
+
+// The short condition's sample times: 3 s at 10 points per cycle of its
+// 1.55-Hz motion (0.0645 s apart).
+std::vector<double> ShortRecordTimes();
+
+// Whether a line of `fit`'s pipeline starts with `prefix`.
+bool InPipeline(const FitResult& fit, const std::string& prefix);
 
 // Runs the built fit3dof binary with the given arguments (shell-quoted by
 // the caller where needed).
