@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fit3dof/diagnose.h"
+#include "fit3dof/parameters.h"
 #include "format.h"
 #include "json_values.h"
 
@@ -113,6 +114,35 @@ std::vector<CandidateFit> Tied(const Diagnosis& d) {
     tied.insert(tied.end(), tie.begin(), tie.end());
   }
   return tied;
+}
+
+// The coefficients' error bars the models the record cannot exclude (a
+// tie, an effect not excluded, a term left open) widened at least twice,
+// each with the final model's own: along Eq. 43's ridge a tunnel term not
+// excluded widens Cm_alpha's or Cm_q's a hundred-fold (only their sums
+// with t1, t2 are determined), which is honest but should not surprise
+// the reader. Empty when none did.
+std::string Widened(const Diagnosis& d) {
+  constexpr double kWorthSaying = 2.0;
+  const ModelKind model = d.FinalFit().model;
+  std::string list;
+  for (const ParameterEstimate& e : d.final_parameters) {
+    const auto it = d.model_standard_errors.find(e.name);
+    if (!e.segment.empty() || IsInitialCondition(model, e.position) ||
+        it == d.model_standard_errors.end() ||
+        !(e.standard_error >= kWorthSaying * it->second)) {
+      continue;
+    }
+    list += std::string(list.empty() ? "" : ", ") + e.name + " +- " +
+            FormatNumber("%.2g", e.standard_error) +
+            " (the final model's own +- " + FormatNumber("%.2g", it->second) +
+            ")";
+  }
+  if (list.empty()) return "";
+  return "  error bars widened by the models the record cannot exclude: " +
+         list +
+         "; diagnosis.json's model_standard_error keeps the final model's "
+         "own, to quote where those effects are known absent\n";
 }
 
 }  // namespace
@@ -268,6 +298,7 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
            "): " + r.rejected + "\n";
   }
   out += "verdict: " + d.verdict_text + "\n";
+  out += Widened(d);
   if (!d.residual_description.empty()) {
     out += "  " + d.residual_description + "\n";
   }

@@ -324,6 +324,10 @@ TEST(Diagnose, AddsNothingToCleanData) {
     added += !d.steps.empty();
     EXPECT_TRUE(d.final.at_noise_level)
         << "seed " << seed << ": " << d.verdict_text;
+    if (d.model_standard_errors.empty()) {
+      EXPECT_EQ(FormatDiagnosis(d, {0.01, 0.01, 0.01}).find("widened"),
+                std::string::npos);
+    }
   }
   std::printf("clean data: effects added in %d of %d seeds\n", added, kSeeds);
   EXPECT_LE(added, kSeeds / 20);
@@ -1482,13 +1486,20 @@ TEST(Diagnose, AnEffectTheRecordCannotSeeWeighsByItsLikelihood) {
 // half an error, and Cm_alpha -0.368. Judged at its point fit it was
 // excluded, and the final Cm_alpha stood 6 of its errors off the truth;
 // within two errors of its bounds it is not excluded, and the final error
-// bars cover it.
+// bars cover it. So widened, Cm_alpha's error bar is printed beside the
+// final model's own.
 TEST(Diagnose, AnEffectOnARidgeIsJudgedWithinItsErrors) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d = DiagnoseRecord("coning_stiffness_damping_asymmetry.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_TRUE(EffectIds(d.not_excluded).count("tunnel_stiffness")) << text;
   ExpectFinalCovers(d, kShortCoefficients, text);
+  const size_t widened = text.find(
+      "error bars widened by the models the record cannot exclude: ");
+  ASSERT_NE(widened, std::string::npos) << text;
+  const std::string line = text.substr(widened, text.find('\n', widened));
+  EXPECT_NE(line.find("Cm_alpha +- "), std::string::npos) << line;
+  EXPECT_NE(line.find("model_standard_error"), std::string::npos) << line;
 }
 
 // tools/diagnose_suite's `short` tunnel damping + Magnus moment + flow
