@@ -73,7 +73,7 @@ bool FitProbes(const Case& current,
     }
   }
   // Refitted: the two with the largest score statistics (a refit on the
-  // 800-sample record costs as much as the scores of all five; the probes
+  // 800-sample record costs as much as the scores of all seven; the probes
   // are near-linear in their parameters, where the score ranks as the
   // refits do).
   RankByScore(data, candidates);

@@ -3,6 +3,7 @@
 // A diagnosis written out (diagnose.h): diagnosis.json (docs/formats.md)
 // and the lines printed by `fit3dof diagnose`.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -155,18 +156,22 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["effects_added"] = json::array();
   for (const DiagnosisStep& s : d.steps)
     out["effects_added"].push_back(s.effect);
-  // Every effect in doubt, the first tie's first; each tie on its own in
-  // ambiguous_groups.
+  // Every effect in doubt, the first tie's first, each once (a probe can
+  // tie in two groups); each tie on its own in ambiguous_groups.
   const std::vector<CandidateFit> tied = Tied(d);
-  out["ambiguous_between"] = json::array();
-  for (const CandidateFit& a : tied)
-    out["ambiguous_between"].push_back(a.effect);
+  std::vector<std::string> ids;
+  for (const CandidateFit& a : tied) {
+    if (std::find(ids.begin(), ids.end(), a.effect) == ids.end()) {
+      ids.push_back(a.effect);
+    }
+  }
+  out["ambiguous_between"] = ids;
   // The tied explanations outside the catalog: a fault to look for at the
   // bench (or in the flow), not a coefficient.
   out["ambiguous_outside_catalog"] = json::array();
-  for (const CandidateFit& a : tied) {
-    if (OutsideCatalog(a.effect)) {
-      out["ambiguous_outside_catalog"].push_back(a.effect);
+  for (const std::string& effect : ids) {
+    if (OutsideCatalog(effect)) {
+      out["ambiguous_outside_catalog"].push_back(effect);
     }
   }
   out["ambiguous_groups"] = json::array();

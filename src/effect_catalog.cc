@@ -165,7 +165,10 @@ const std::vector<Effect>& EffectCatalog() {
 // moments carry a roll torque a normal force has not), and a Magnus moment
 // imitates it. Dry friction in the bearing damps a small motion more than
 // a large one, as a nonlinear damping with a positive Cm_q_delta2 does (one
-// 3-s run had been called that); a second amplitude tells them apart.
+// 3-s run had been called that); a second amplitude tells them apart. Dry
+// friction about each axis alone damps the small yaw rate of a run
+// pitching in one plane hard, as a tunnel damping in yaw does (3-s runs
+// had been called that, the pitch term a tenth of the yaw one).
 const std::vector<Effect>& Probes() {
   static const std::vector<Effect> probes = {
       {"reading_drift",
@@ -222,6 +225,17 @@ const std::vector<Effect>& Probes() {
        "(outside the catalog)",
        {"Cm_friction"},
        {"Cm_friction"},
+       false,
+       {},
+       "a run at another amplitude (dry friction damps a small motion more "
+       "than a large one, a viscous damping does not)",
+       ""},
+      {"axis_friction",
+       "dry (Coulomb) friction about each of the pitch and yaw axes alone "
+       "(pivots turning about fixed axes, lead wires across the bearing; "
+       "outside the catalog)",
+       {"Cm_axis_friction"},
+       {"Cm_axis_friction"},
        false,
        {},
        "a run at another amplitude (dry friction damps a small motion more "

@@ -62,6 +62,7 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"psi_lag", "psi_lag", 1.0},
       {"theta_gain", "theta_gain", 1.0},
       {"Cm_friction", "Cm_friction", 1.0},
+      {"Cm_axis_friction", "Cm_axis_friction", 1.0},
   };
   return images;
 }

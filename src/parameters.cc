@@ -57,7 +57,8 @@ std::vector<ParameterInfo> RollInteraction(int first) {
 // The gas bearing's moment and calibration nonlinearity (Section 5.2), then
 // the faults diagnose probes for outside its catalog: a drift of the
 // readings and of the dynamic pressure, a flow stiffer in one plane, a lag
-// and a gain error of the readings, dry friction in the bearing.
+// and a gain error of the readings, dry friction in the bearing (against
+// the pitch-yaw rate, and about each axis alone).
 std::vector<ParameterInfo> BearingAndFaults(int first) {
   return Numbered(
       first,
@@ -147,6 +148,15 @@ std::vector<ParameterInfo> BearingAndFaults(int first) {
            S::kPitchStatic,
            "bearing friction: a moment of this size against the pitch-yaw "
            "rate"},
+          // Dry friction about each of the pitch and yaw axes alone (outside
+          // diagnose's catalog).
+          {0,
+           "Cm_axis_friction",
+           "",
+           "-",
+           S::kPitchStatic,
+           "axis friction: a moment of this size about each of the pitch "
+           "and yaw axes against that axis's rate"},
       });
 }
 

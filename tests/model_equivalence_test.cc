@@ -66,7 +66,8 @@ Case SymmetricCase(Incidence incidence, double step) {
       {"theta_lag", 0.006},
       {"psi_lag", -0.003},
       {"theta_gain", 0.02},
-      {"Cm_friction", 0.0005}};
+      {"Cm_friction", 0.0005},
+      {"Cm_axis_friction", 0.0004}};
   for (const auto& [name, value] : values) {
     c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = value;
   }
@@ -150,7 +151,8 @@ TEST(ModelEquivalence, TheExtensionTermsMoveTheMotion) {
                            "theta_lag",
                            "psi_lag",
                            "theta_gain",
-                           "Cm_friction"}) {
+                           "Cm_friction",
+                           "Cm_axis_friction"}) {
     Case without = all;
     without.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.0;
     const std::vector<double> other = motion(without);

@@ -39,8 +39,8 @@ TEST(Parameters, TablesHaveTheReportsSizeAndOrder) {
   // readings' lag (2) and the pitch reading's gain (1).
   EXPECT_EQ(kReportParameters[0], 30);
   EXPECT_EQ(kReportParameters[1], 72);
-  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 48);
-  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 88);
+  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 49);
+  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 89);
   for (ModelKind model : {ModelKind::kSymmetric, ModelKind::kAsymmetric}) {
     const auto& table = ParameterTable(model);
     std::set<std::string> names;

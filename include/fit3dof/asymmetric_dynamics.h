@@ -194,6 +194,15 @@ void AsymmetricMoments(const CoefficientView<Tk>& k,
     *my += fy;
     *mz += fz * (constants.Iy / constants.Iz);
   }
+  // Dry friction about each of the non-rolling frame's pitch and yaw axes
+  // (89; bearing_friction.h): the body rates turned into that frame by the
+  // roll angle, the moments turned back, as for Cn_beta_flow above.
+  if (k.on(89)) {
+    const T fy = AxisFriction(k(89), q * cf - r * sf);
+    const T fz = AxisFriction(k(89), r * cf + q * sf);
+    *my += fy * cf + fz * sf;
+    *mz += (fz * cf - fy * sf) * (constants.Iy / constants.Iz);
+  }
 
   // Tunnel-fixed stiffness and damping, Eqs. 39 and 41. myt is M_yT / I_y
   // and mzt is M_zT / I_z; the ratios of inertias move them to the axis

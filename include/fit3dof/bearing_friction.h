@@ -1,15 +1,16 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
 // Dry (Coulomb) friction of the bearing against the pitch-yaw motion,
-// shared by both programs (symmetric parameter 48, asymmetric 88; outside
-// diagnose's catalog, which fits it as a probe). A ball pivot's dry
+// shared by both programs (outside diagnose's catalog, which fits both
+// forms as probes). A ball pivot's dry
 // friction opposes the sliding velocity with a force of constant size, so
 // the moment about the pivot is
 //
 //   (M_y, M_z) / (q S d) = -Cm_friction (q, r) / |w| s(|w| / w_0),
 //   |w| = sqrt(q^2 + r^2),
 //
-// the transverse angular velocity's direction times a constant size. It is
+// (Cm_friction: symmetric parameter 48, asymmetric 88), the transverse
+// angular velocity's direction times a constant size. It is
 // isotropic, the same in the non-rolling frame and in body axes (a turn
 // about x keeps |w|). The spin's own friction is a constant roll torque
 // while the spin keeps its sign: the catalog's Cl_0, so none is added here.
@@ -20,7 +21,25 @@
 //
 // Unlike a viscous damping (Cm_q, Eq. 39's t2 and t4) its equivalent
 // damping grows as the amplitude falls: a small motion decays linearly in
-// time, not exponentially. Templated on the scalar for ceres::Jet.
+// time, not exponentially.
+//
+// A friction acting on each of the non-rolling frame's pitch and yaw axes
+// alone (Cm_axis_friction: symmetric 49, asymmetric 89) is what pivots
+// turning about fixed axes give (a gimbal's, or lead wires crossing the
+// bearing, which rub as the model pitches and as it yaws):
+//
+//   M_y / (q S d) = -Cm_axis_friction s(q / w_0),
+//   M_z / (q S d) = -Cm_axis_friction s(r / w_0),
+//
+// each a constant size while its own rate keeps its sign. Unlike the
+// ball's, it takes the full size on an axis whose rate is small against
+// the other's: a motion pitching in one plane has its small yaw rate
+// damped hard, which a viscous tunnel damping in yaw (Eq. 39's t4)
+// imitates on one run. One size for both axes: with a size of its own for
+// each, the probe (diagnose.h) explained to the noise a 3-s coning run
+// that a Magnus moment, a nonlinear damping and a calibration error had
+// made (its constant-amplitude rates leave a friction per axis little to
+// tell it from a damping). Templated on the scalar for ceres::Jet.
 
 #ifndef FIT3DOF_BEARING_FRICTION_H_
 #define FIT3DOF_BEARING_FRICTION_H_
@@ -42,6 +61,14 @@ void AddBearingFriction(const Tk& f, const Tw& q, const Tw& r, T* my, T* mz) {
   const T scale = f * BearingFade(x2) / w0;
   *my -= scale * q;
   *mz -= scale * r;
+}
+
+// Dry friction about one axis of rate `w`, per unit of the coefficient's
+// scaled value `f`: -f s(w / w_0), s(x) = tanh x = x BearingFade(x^2).
+template <typename Tw, typename Tk>
+auto AxisFriction(const Tk& f, const Tw& w) {
+  const double w0 = kFrictionFadeRate;
+  return -f * (w * BearingFade(w * w / (w0 * w0)) / w0);
 }
 
 }  // namespace fit3dof

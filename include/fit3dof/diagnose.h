@@ -123,25 +123,25 @@
 // outside the catalog): the record is then `ambiguous` at best, and a
 // record spanning a revolution, or a second run at another spin rate,
 // separates them.
-// Each round also scores six probes outside the catalog: a drift of the
+// Each round also scores seven probes outside the catalog: a drift of the
 // pitch and yaw readings in time (theta_drift, psi_drift), a dynamic
 // pressure drifting during the run (q_drift), a lag of the readings (a
 // filter's: theta_lag, psi_lag), a pitch reading's gain off the yaw
 // reading's (theta_gain), a flow whose stiffness differs between the
 // tunnel's pitch and yaw planes without Eq. 39's roll torque (Cn_beta_flow)
-// and dry friction in the bearing (Cm_friction; docs/parameters.md), and
-// refits the two with the largest scores. The best of those (lowest BIC)
-// is compared, when no catalog effect, refused
-// or not, explains more; it is never adopted. When it lowers BIC by more
-// than `ambiguity_bic` below the best catalog effect that earned its place
-// (or by `min_bic_drop` when none did), nothing is added and the verdict
-// is `not_explained`, naming it and its values
-// (Diagnosis::outside_catalog): on two runs a roll-synchronous reading
-// error and a zero offset had been adopted for a drifting pitch reading.
-// When the best is roll-locked and the records sweep less than a
-// revolution of roll (it is then a drift in time itself), a drift probe
-// needs no margin: better at all, the verdict is `not_explained` (a pitch
-// reading drift on one 3-s run had ended `ambiguous` with a roll reading
+// and dry friction, in the bearing against the pitch-yaw rate
+// (Cm_friction) or about each axis alone (Cm_axis_friction;
+// docs/parameters.md), and refits the two with the largest scores. The best of
+// those (lowest BIC) is compared, when no catalog effect, refused or not,
+// explains more; it is never adopted. When it lowers BIC by more than
+// `ambiguity_bic` below the best catalog effect that earned its place (or by
+// `min_bic_drop` when none did), nothing is added and the verdict is
+// `not_explained`, naming it and its values (Diagnosis::outside_catalog): on
+// two runs a roll-synchronous reading error and a zero offset had been adopted
+// for a drifting pitch reading. When the best is roll-locked and the records
+// sweep less than a revolution of roll (it is then a drift in time itself), a
+// drift probe needs no margin: better at all, the verdict is `not_explained` (a
+// pitch reading drift on one 3-s run had ended `ambiguous` with a roll reading
 // error of twice its parameters). Otherwise, within `ambiguity_bic` of the
 // best, it ties with it (`ambiguous`): on
 // one 3-s run a bearing moment (a stiffness that grows as the amplitude

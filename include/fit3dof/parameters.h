@@ -41,7 +41,10 @@
 //     scales a linear motion, which the initial conditions absorb);
 //   - dry friction of the bearing (symmetric 48, asymmetric 88): a moment
 //     Cm_friction q S d against the pitch-yaw rate, of constant size
-//     (bearing_friction.h; outside diagnose's catalog).
+//     (bearing_friction.h; outside diagnose's catalog);
+//   - dry friction about each of the pitch and yaw axes alone (symmetric
+//     49, asymmetric 89): Cm_axis_friction q S d against each axis's own
+//     rate (bearing_friction.h; outside diagnose's catalog).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -58,7 +61,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 88;
+inline constexpr int kMaxParameters = 89;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};

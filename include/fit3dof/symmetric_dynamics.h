@@ -184,6 +184,11 @@ void SymmetricMoments(const CoefficientView<Tk>& k,
   if (k.on(44)) *mz += k(44) * beta;
   // Dry friction of the bearing (48; bearing_friction.h).
   if (k.on(48)) AddBearingFriction(k(48), q, r, my, mz);
+  // Dry friction about each axis alone (49; bearing_friction.h).
+  if (k.on(49)) {
+    *my += AxisFriction(k(49), q);
+    *mz += AxisFriction(k(49), r);
+  }
 
   // Roll: Cl_0 + p (Cl_p + Cl_p_delta delta + Cl_p_delta2 delta^2).
   T roll_damping(0.0);
