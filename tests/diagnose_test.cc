@@ -431,6 +431,17 @@ Case UntrimmedShortTruth(double spin) {
   return truth;
 }
 
+// One 3-s run without trim at 30 deg/s (`path`, noise seed `seed`) whose
+// truth has the parameter `name` at `value`: a hidden fault's record.
+std::vector<std::string> ShortRunWith(const std::string& path,
+                                      const std::string& name,
+                                      double value,
+                                      std::uint64_t seed) {
+  Case truth = UntrimmedShortTruth(30.0);
+  truth.parameters[FindParameter(truth.model, name)].value = value;
+  return {SimulateShort(truth, path, seed)};
+}
+
 // *c in the asymmetric program with the body's own yaw stiffness: Cn_beta
 // untied from -Cm_alpha and `factor` times it. Returns Cn_beta.
 double UntieBodyYawStiffness(Case* c, double factor) {
@@ -643,10 +654,8 @@ TEST(Diagnose, ADriftingDynamicPressureIsNotExplainedByTheCatalog) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_q_drift");
-  Case truth = UntrimmedShortTruth(30.0);
-  truth.parameters[FindParameter(truth.model, "q_drift")].value = 0.004;
-  const std::vector<std::string> files = {
-      SimulateShort(truth, dir + "/run0.csv", 5)};
+  const std::vector<std::string> files =
+      ShortRunWith(dir + "/run0.csv", "q_drift", 0.004, 5);
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ExpectOutsideCatalog(d, text, "pressure_drift", "q_drift", 0.004);
@@ -727,10 +736,8 @@ TEST(Diagnose, DryFrictionInTheBearingIsNotANonlinearDamping) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_friction");
-  Case truth = UntrimmedShortTruth(30.0);
-  truth.parameters[FindParameter(truth.model, "Cm_friction")].value = 2.8e-4;
-  const std::vector<std::string> files = {
-      SimulateShort(truth, dir + "/run0.csv", 9)};
+  const std::vector<std::string> files =
+      ShortRunWith(dir + "/run0.csv", "Cm_friction", 2.8e-4, 9);
   const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ExpectOutsideCatalog(d, text, "bearing_friction", "Cm_friction", 2.8e-4);
@@ -749,10 +756,8 @@ TEST(Diagnose, DryFrictionAboutEachAxisIsNotATunnelDamping) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_axis_friction");
-  Case truth = UntrimmedShortTruth(30.0);
-  truth.parameters[FindParameter(truth.model, "Cm_axis_friction")].value = 1e-4;
-  const std::vector<std::string> files = {
-      SimulateShort(truth, dir + "/run0.csv", 9)};
+  const std::vector<std::string> files =
+      ShortRunWith(dir + "/run0.csv", "Cm_axis_friction", 1e-4, 9);
   DiagnoseOptions options;
   const Diagnosis d = Diagnose(ShortConfig(files), options);
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -774,10 +779,8 @@ TEST(Diagnose, DryFrictionAboutEachAxisIsNotATunnelDamping) {
 TEST(Diagnose, OneRunNamesADriftOfThePitchReading) {
   const std::string dir = testing::ScratchDirectory("diagnose_pitch_drift");
   for (std::uint64_t seed : {3, 4}) {
-    Case truth = UntrimmedShortTruth(30.0);
-    truth.parameters[FindParameter(truth.model, "theta_drift")].value = 0.015;
-    const std::vector<std::string> files = {
-        SimulateShort(truth, dir + "/run0.csv", seed)};
+    const std::vector<std::string> files =
+        ShortRunWith(dir + "/run0.csv", "theta_drift", 0.015, seed);
     const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
     const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
     EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
