@@ -142,7 +142,8 @@ const std::vector<Effect>& EffectCatalog() {
        {},
        "amplitude",
        "up to 0.2 deg, or 3% of the angle if more, at each channel's "
-       "largest angle",
+       "largest angle; a term determined (over 2 standard errors) up to 3% "
+       "of the angle or 3 noise sigmas where 0.2 deg is more",
        false,
        false,
        false,

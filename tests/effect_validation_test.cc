@@ -65,6 +65,32 @@ TEST(Implausible, CalibrationAtEachChannelsLargestAngle) {
   EXPECT_NE(calibration("psi_cal3", 5.0, 0.5, 20.0), "");
 }
 
+// A term the record determines is held to 3% of its channel's largest
+// angle or three noise sigmas where 0.2 deg is more: on a yaw reading that
+// never left 0.47 deg, psi_cal3 = 56 +- 26 deg (0.047 deg there, 10% of
+// the angle) had stood in, with a nonlinear damping, for a dry friction on
+// the pitch axis alone. Undetermined, or within the noise, it is harmless.
+TEST(Implausible, DeterminedCalibrationOnAQuietChannel) {
+  const auto calibration = [](double value, double error) {
+    FitResult fit = Fitted({{"psi_cal3", value}}, 8.0, 0.47);
+    fit.parameters[0].standard_error = error;
+    fit.segments[0].sigma_deg = {0.01, 0.01, 0.01};
+    return Verdict("calibration_nonlinearity", fit);
+  };
+  const std::string why = calibration(56.0, 26.0);
+  EXPECT_NE(why.find("of 0.47 deg of 0.0465 exceeds 0.03"), std::string::npos)
+      << why;
+  EXPECT_EQ(calibration(56.0, 40.0), "");  // within two errors of zero
+  EXPECT_EQ(calibration(15.3, 5.1), "");   // 0.015 deg: the noise's size
+  // On a channel that reaches 5 deg the bound is 0.15 deg, not 0.2.
+  FitResult wide = Fitted({{"theta_cal3", 0.18}}, 5.0, 0.47);
+  wide.parameters[0].standard_error = 0.01;
+  wide.segments[0].sigma_deg = {0.01, 0.01, 0.01};
+  EXPECT_NE(Verdict("calibration_nonlinearity", wide), "");
+  wide.parameters[0].value = 0.14;
+  EXPECT_EQ(Verdict("calibration_nonlinearity", wide), "");
+}
+
 // A nonlinear damping may change Cm_q by up to 4 times its size at the
 // record's largest angle: 3 times (a damping that reverses at 8 deg) is
 // plausible, 5 is not.
