@@ -71,24 +71,24 @@ TEST(Implausible, CalibrationAtEachChannelsLargestAngle) {
 // the angle) had stood in, with a nonlinear damping, for a dry friction on
 // the pitch axis alone. Undetermined, or within the noise, it is harmless.
 TEST(Implausible, DeterminedCalibrationOnAQuietChannel) {
-  const auto calibration = [](double value, double error) {
-    FitResult fit = Fitted({{"psi_cal3", value}}, 8.0, 0.47);
-    fit.parameters[0].standard_error = error;
-    fit.segments[0].sigma_deg = {0.01, 0.01, 0.01};
-    return Verdict("calibration_nonlinearity", fit);
-  };
-  const std::string why = calibration(56.0, 26.0);
+  // The verdict on one cubic term value +- error, the pitch reading
+  // reaching `theta` deg, the yaw reading 0.47 deg, noise 0.01 deg.
+  const auto calibration =
+      [](const char* name, double value, double error, double theta) {
+        FitResult fit = Fitted({{name, value}}, theta, 0.47);
+        fit.parameters[0].standard_error = error;
+        fit.segments[0].sigma_deg = {0.01, 0.01, 0.01};
+        return Verdict("calibration_nonlinearity", fit);
+      };
+  const std::string why = calibration("psi_cal3", 56.0, 26.0, 8.0);
   EXPECT_NE(why.find("of 0.47 deg of 0.0465 exceeds 0.03"), std::string::npos)
       << why;
-  EXPECT_EQ(calibration(56.0, 40.0), "");  // within two errors of zero
-  EXPECT_EQ(calibration(15.3, 5.1), "");   // 0.015 deg: the noise's size
+  // Within two errors of zero; 0.015 deg, the noise's size.
+  EXPECT_EQ(calibration("psi_cal3", 56.0, 40.0, 8.0), "");
+  EXPECT_EQ(calibration("psi_cal3", 15.3, 5.1, 8.0), "");
   // On a channel that reaches 5 deg the bound is 0.15 deg, not 0.2.
-  FitResult wide = Fitted({{"theta_cal3", 0.18}}, 5.0, 0.47);
-  wide.parameters[0].standard_error = 0.01;
-  wide.segments[0].sigma_deg = {0.01, 0.01, 0.01};
-  EXPECT_NE(Verdict("calibration_nonlinearity", wide), "");
-  wide.parameters[0].value = 0.14;
-  EXPECT_EQ(Verdict("calibration_nonlinearity", wide), "");
+  EXPECT_NE(calibration("theta_cal3", 0.18, 0.01, 5.0), "");
+  EXPECT_EQ(calibration("theta_cal3", 0.14, 0.01, 5.0), "");
 }
 
 // A nonlinear damping may change Cm_q by up to 4 times its size at the
