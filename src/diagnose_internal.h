@@ -55,6 +55,11 @@ CandidateScore Score(const Case& candidate,
 std::string Implausible(const Effect& effect,
                         const Case& c,
                         const FitResult& fit);
+// Why a probe's terms that have a physical sign (a filter's lag, a
+// friction against the motion) lie in `fit` more than two standard errors
+// on the other side, or empty (a lead, or a friction that drives the
+// motion, is no fault of those kinds).
+std::string WrongSign(const Effect& probe, const FitResult& fit);
 // The first of `effects` outside its bounds in `fit`: "<id> (added
 // before): <why>", or empty.
 std::string ImplausibleAmong(const std::vector<const Effect*>& effects,

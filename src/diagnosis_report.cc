@@ -206,6 +206,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
                                ? json(nullptr)
                                : Contender(d.outside_catalog);
   out["outside_catalog_at_noise_level"] = d.outside_at_noise_level;
+  out["outside_catalog_beside"] = d.outside_catalog_beside;
   out["final_parameters"] = Estimates(d.final_parameters);
   // Where a tie or an effect not excluded widened an error bar, the final
   // model's own error too: the one to quote if that effect is known absent
@@ -289,6 +290,14 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
            (d.outside_at_noise_level ? "; residuals at the noise level with it"
                                      : "") +
            "\n";
+  }
+  if (!d.outside_catalog_beside.empty()) {
+    std::string beside;
+    for (const std::string& id : d.outside_catalog_beside) {
+      beside += (beside.empty() ? "" : ", ") + id;
+    }
+    out +=
+        "  beside it, these explain the record (not adopted): " + beside + "\n";
   }
   for (const CandidateFit& k : d.not_excluded) {
     out += "  not excluded, the final error bars cover it: " + k.effect + " (" +

@@ -291,6 +291,25 @@ std::string Implausible(const Effect& effect,
   return it->second(context);
 }
 
+std::string WrongSign(const Effect& probe, const FitResult& fit) {
+  static const char* const kPositive[] = {
+      "theta_lag", "psi_lag", "Cm_friction", "Cm_axis_friction"};
+  for (const ParameterEstimate& e : fit.parameters) {
+    if (!e.free || !e.segment.empty() ||
+        std::find(probe.symmetric.begin(), probe.symmetric.end(), e.name) ==
+            probe.symmetric.end() ||
+        std::find(std::begin(kPositive), std::end(kPositive), e.name) ==
+            std::end(kPositive)) {
+      continue;
+    }
+    if (e.value < -2.0 * e.standard_error) {
+      return e.name + " = " + FormatNumber("%.3g", e.value) + " +- " +
+             FormatNumber("%.2g", e.standard_error) + " is negative";
+    }
+  }
+  return "";
+}
+
 std::string ImplausibleAmong(const std::vector<const Effect*>& effects,
                              const Case& c,
                              const FitResult& fit) {

@@ -1,7 +1,8 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
 // Implausible (effect_validation.cc): each effect's plausibility bound
-// (Effect::bounds) against fitted values and the record's angles.
+// (Effect::bounds) against fitted values and the record's angles; WrongSign:
+// a probe's terms against their physical sign.
 
 #include <cmath>
 #include <string>
@@ -210,6 +211,28 @@ TEST(ImplausibleAmong, NamesTheEarlierEffectPushedPastItsBound) {
   EXPECT_EQ(
       why.find("roll_interaction (added before): a reading error of 0.25"), 0u)
       << why;
+}
+
+// A probe's terms with a physical sign: a filter lags (a lead in pitch, of
+// 2.6 of its errors, had stood in for a Magnus moment beside the other
+// effects of a pair of runs), a friction opposes the motion. Within two
+// standard errors of zero either sign is noise; terms without a sign (a
+// gain, a drift) and terms not the probe's are not judged.
+TEST(WrongSign, LagsAndFrictionsArePositive) {
+  const auto judged =
+      [](const char* probe, const char* name, double value, double error) {
+        FitResult fit = Fitted({{name, value}}, 8.0, 8.0);
+        fit.parameters[0].standard_error = error;
+        return WrongSign(*FindProbe(probe), fit);
+      };
+  EXPECT_EQ(judged("reading_lag", "theta_lag", -0.017, 0.0067),
+            "theta_lag = -0.017 +- 0.0067 is negative");
+  EXPECT_EQ(judged("reading_lag", "psi_lag", -0.005, 0.0062), "");
+  EXPECT_EQ(judged("reading_lag", "psi_lag", 0.017, 0.0067), "");
+  EXPECT_NE(judged("bearing_friction", "Cm_friction", -3e-4, 2e-5), "");
+  EXPECT_NE(judged("axis_friction", "Cm_axis_friction", -1e-4, 1e-5), "");
+  EXPECT_EQ(judged("reading_gain", "theta_gain", -0.05, 0.001), "");
+  EXPECT_EQ(judged("bearing_friction", "theta_lag", -0.017, 0.0067), "");
 }
 
 }  // namespace

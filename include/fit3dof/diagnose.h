@@ -154,7 +154,14 @@
 // a BIC lower than the probe's model's by more than `ambiguity_bic`, it is
 // the answer (a reading lag had beaten a Magnus moment at the first step
 // of a record a Magnus moment, a nonlinear damping and a calibration error
-// explain).
+// explain). Unless the probe, given the same search (the catalog's effects
+// beside it), explains the record with a BIC lower than that answer's by
+// more than `ambiguity_bic`, a lag or a friction of its physical sign
+// (positive): then the verdict stays `not_explained`, naming the effects
+// that would complete the probe (outside_catalog_beside). A dry
+// friction on the pitch axis alone had got a nonlinear damping and a body
+// yaw asymmetry (Cm_q 15 of its errors off the nominal fit's); the ball's
+// friction with a tunnel damping beside it explains that 3-s run better.
 // Every effect that was a contender at some round of the search (it
 // lowered BIC by more than `min_bic_drop` there, however far behind the
 // round's best) and is neither in the model nor in a tie is also tried
@@ -412,6 +419,12 @@ struct Diagnosis {
   // not_explained, and it names what the residual looks like.
   CandidateFit outside_catalog;
   bool outside_at_noise_level = false;
+  // When the catalog's effects together outdid that probe alone but, beside
+  // it, catalog effects explain the record with a BIC lower than theirs by
+  // more than ambiguity_bic, the probe's terms of their physical sign (the
+  // probe weighed with the search the catalog gets): those effects (ids; a
+  // tie's both). Not added.
+  std::vector<std::string> outside_catalog_beside;
   // Every parameter of the final model (its free ones with errors).
   std::vector<ParameterEstimate> final_parameters;
   Case final_case;
