@@ -294,10 +294,11 @@ std::string Implausible(const Effect& effect,
 std::string WrongSign(const Effect& probe, const FitResult& fit) {
   static const char* const kPositive[] = {
       "theta_lag", "psi_lag", "Cm_friction", "Cm_axis_friction"};
+  const auto& own =
+      fit.model == ModelKind::kSymmetric ? probe.symmetric : probe.asymmetric;
   for (const ParameterEstimate& e : fit.parameters) {
     if (!e.free || !e.segment.empty() ||
-        std::find(probe.symmetric.begin(), probe.symmetric.end(), e.name) ==
-            probe.symmetric.end() ||
+        std::find(own.begin(), own.end(), e.name) == own.end() ||
         std::find(std::begin(kPositive), std::end(kPositive), e.name) ==
             std::end(kPositive)) {
       continue;
