@@ -464,7 +464,6 @@ bool CompletedBeside(const SearchNotes& notes,
                      const DiagnoseOptions& without,
                      const Diagnosis& catalog,
                      Diagnosis* d) {
-  CHECK(!notes.probe_fit.parameters.empty()) << "no probe model";
   const Diagnosis beside =
       DiagnoseFrom(notes.probe_case, notes.probe_fit, without);
   const double margin = CompleteBic(beside) - CompleteBic(catalog);
@@ -515,11 +514,12 @@ Diagnosis CatalogAlone(const Case& c,
                        const SearchNotes& notes,
                        Diagnosis d) {
   if (d.outside_at_noise_level) return d;
+  CHECK(!notes.probe_fit.parameters.empty()) << "no probe model";
   DiagnoseOptions without = options;
   without.probes = false;
   Diagnosis other = DiagnoseFrom(c, nominal, without);
   if (!ExplainsRecord(other)) return d;
-  const double probe_bic = Bic(d.fits.back()) - d.outside_catalog.bic_drop;
+  const double probe_bic = Bic(notes.probe_fit);
   const double margin = probe_bic - CompleteBic(other);
   if (!(margin > options.ambiguity_bic) ||
       CompletedBeside(notes, without, other, &d)) {
