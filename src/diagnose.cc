@@ -434,15 +434,13 @@ double CompleteBic(const Diagnosis& d) {
 }
 
 // The effects a diagnosis that explains its record holds, in words: the
-// steps, then each tie's effects joined by "or".
+// steps, then the tie's effects ("A, B or C").
 std::string ExplainedBy(const Diagnosis& d) {
-  std::string text = Described(d.steps);
+  const std::string text = Described(d.steps);
   if (d.ambiguous.empty()) return text;
-  std::string tie;
-  for (const CandidateFit& k : d.ambiguous) {
-    tie += (tie.empty() ? "" : " or ") + Describe(k.effect);
-  }
-  return text + (text.empty() ? "" : ", and ") + tie;
+  std::vector<std::string> tie;
+  for (const CandidateFit& k : d.ambiguous) tie.push_back(Describe(k.effect));
+  return text + (text.empty() ? "" : ", and ") + Joined(tie, " or ");
 }
 
 // Whether the probe `d` names, weighed as the catalog is (`notes`' probe

@@ -103,6 +103,9 @@ std::string Describe(const std::string& id);
 // The steps' descriptions, comma separated.
 std::string Described(const std::vector<DiagnosisStep>& steps);
 
+// "a, b <last> c" (last: " and ", " or ").
+std::string Joined(const std::vector<std::string>& items, const char* last);
+
 // Sets d->verdict and d->verdict_text from what the search left in *d
 // (its ties, steps, partial steps, probe and final residual check), and
 // d->residual_description when the residuals are not explained

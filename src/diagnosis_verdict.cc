@@ -13,9 +13,7 @@
 #include "format.h"
 
 namespace fit3dof {
-namespace {
 
-// "a, b <last> c".
 std::string Joined(const std::vector<std::string>& items, const char* last) {
   std::string text;
   for (size_t i = 0; i < items.size(); ++i) {
@@ -23,6 +21,8 @@ std::string Joined(const std::vector<std::string>& items, const char* last) {
   }
   return text;
 }
+
+namespace {
 
 // "A, B or C" for the tie's effects, and "x, y and z", their BIC drops; for
 // a step that a set replaces alike (Diagnosis::stood_in), "A, or B and C
