@@ -370,6 +370,25 @@ void WidenForTie(Diagnosis* d) {
                  &d->model_standard_errors);
 }
 
+namespace {
+
+// What an effect fitted beside the `model` model, raising its BIC by
+// `rise`, is in the words of a diagnosis. One that lowers it beside a
+// model already at the noise (a nonlinear damping by 22.8 beside a Magnus
+// moment and a calibration error on one coning run) is not "not needed".
+std::string BesideWords(const std::string& model, double rise) {
+  const std::string bic = "(BIC " + FormatNumber("%+.1f", rise) + ")";
+  if (rise >= 0.0) {
+    return "not needed beside the " + model + " model, nor excluded " + bic;
+  }
+  return "the " + model +
+         " model reaches the noise without it, though it lowers BIC "
+         "beside it " +
+         bic;
+}
+
+}  // namespace
+
 void FindNotExcluded(const std::vector<const Effect*>& contended,
                      const std::vector<Case>& models,
                      const Case& current,
@@ -380,8 +399,16 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   // and what might have absorbed part of its unknown structure says
   // nothing about that fit's errors (Conclude's rule).
   if (d->ambiguous.empty() && !d->final.at_noise_level) return;
-  const std::vector<CompleteModel> complete =
-      CompleteModels(*d, models, current);
+  std::vector<CompleteModel> complete = CompleteModels(*d, models, current);
+  // A tie's final model short of the noise is the one before the tie, not
+  // a complete one: beside it, an effect that explains part of what the
+  // tied ones do lowers BIC (a body asymmetry by 162 beside the model
+  // before a coning run's tunnel damping), and "not excluded" would say
+  // nothing. Such effects are judged beside the search's model (the tied
+  // effect it followed in).
+  if (!d->final.at_noise_level && complete.size() > 1) {
+    complete.erase(complete.begin());
+  }
   // A tied effect's models are the tie's (WidenForTie).
   std::vector<const Effect*> effects;
   for (const Effect* e : contended) {
@@ -395,13 +422,9 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
     if (!NotExcludedBeside(t, options)) continue;
     // Each effect listed once: beside the final model when it is not
     // excluded there.
-    TakeNotExcluded(
-        t,
-        "not needed beside the " +
-            std::string(t.model == &complete[0] ? "final" : "search's") +
-            " model, nor excluded (BIC " + FormatNumber("%+.1f", rise) + ")",
-        &d->not_excluded,
-        d);
+    const std::string model =
+        t.model->fit == &d->FinalFit() ? "final" : "search's";
+    TakeNotExcluded(t, BesideWords(model, rise), &d->not_excluded, d);
   }
   FindOpenTerms(complete, data, options, d);
 }

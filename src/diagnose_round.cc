@@ -56,9 +56,10 @@ bool Refit(const Candidate& k,
 }
 
 // The probes (Probes) fitted from the solution `fit` of `current`: the
-// one with the lowest BIC into *probe, its case into *candidates (which
-// *probe points into); false when none could be fitted (the case has their
-// parameters free already, or the fits fail).
+// one with the lowest BIC whose terms have their physical sign (WrongSign)
+// into *probe, its case into *candidates (which *probe points into); false
+// when none could be fitted (the case has their parameters free already,
+// or the fits fail).
 bool FitProbes(const Case& current,
                const FitResult& fit,
                const std::vector<TimeHistory>& data,
@@ -89,11 +90,16 @@ bool FitProbes(const Case& current,
   });
   int best = -1;
   for (int i = 0; i < n; ++i) {
-    if (fitted[i]) {
-      VLOG(1) << fit.name << ": probe " << fits[i].record.effect
-              << ", BIC drop " << fits[i].record.bic_drop;
-    }
-    if (fitted[i] && (best < 0 || fits[i].bic < fits[best].bic)) best = i;
+    if (!fitted[i]) continue;
+    // A lead of the readings, or a friction that drives the motion, is no
+    // fault of the probe's kind, however well it fits.
+    const std::string wrong =
+        WrongSign(*fits[i].candidate->effect, fits[i].fit);
+    VLOG(1) << fit.name << ": probe " << fits[i].record.effect << ", BIC drop "
+            << fits[i].record.bic_drop
+            << (wrong.empty() ? "" : ", refused: " + wrong);
+    if (!wrong.empty()) continue;
+    if (best < 0 || fits[i].bic < fits[best].bic) best = i;
   }
   if (best < 0) return false;
   *probe = std::move(fits[best]);

@@ -744,6 +744,27 @@ TEST(Diagnose, DryFrictionInTheBearingIsNotANonlinearDamping) {
   ExpectOutsideCatalog(d, text, "bearing_friction", "Cm_friction", 2.8e-4);
 }
 
+// tools/diagnose_suite's `short` tunnel damping (t2 = -1.27, t4 = 1.72;
+// draw 2), kept as tests/data/short_tunnel_damping_seed2.csv. The axis
+// friction probe fitted it 3.4 better, with Cm_axis_friction = -1.7e-5 +-
+// 1.9e-6: a friction that drives the motion, no friction at all. The tie
+// it made had left the record `ambiguous`. A probe whose lag or friction
+// has the wrong sign is no answer (WrongSign): the damping is named.
+TEST(Diagnose, AFrictionThatDrivesTheMotionIsNoAnswer) {
+  const Diagnosis d = DiagnoseRecord("short_tunnel_damping_seed2.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
+  EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"tunnel_damping"}))
+      << text;
+  for (const auto& [name, truth] :
+       {std::pair{"tunnel_Cm_thetadot", -1.268}, {"tunnel_Cn_psidot", 1.722}}) {
+    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
+    ASSERT_NE(e, nullptr) << name << "\n" << text;
+    EXPECT_NEAR(e->value, truth, 3.0 * e->standard_error) << name << "\n"
+                                                          << text;
+  }
+}
+
 // Dry friction about each of the pitch and yaw axes alone
 // (Cm_axis_friction = 1e-4, on both axes) on one 3-s run pitching in
 // one plane: the small yaw rate is damped by the friction's full size,
@@ -1386,6 +1407,18 @@ TEST(Diagnose, AlternativesErrorBarsCoverAnEffectTheRecordCannotExclude) {
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   EXPECT_TRUE(EffectIds(d.ambiguous).count("magnus")) << text;
   EXPECT_TRUE(EffectIds(d.not_excluded).count("nonlinear_damping")) << text;
+  // Nothing is added (the tie's final model is the one before it, short of
+  // the noise): beside it a body asymmetry had lowered BIC by 77.6 and was
+  // reported "not needed beside the final model, nor excluded". Effects
+  // are judged beside the search's model, and one that lowers BIC there is
+  // not called "not needed".
+  EXPECT_FALSE(d.final.at_noise_level) << text;
+  for (const CandidateFit& k : d.not_excluded) {
+    EXPECT_NE(k.rejected.find("search's model"), std::string::npos) << text;
+    if (k.bic_drop > 0.0) {
+      EXPECT_EQ(k.rejected.find("not needed"), std::string::npos) << text;
+    }
+  }
   bool checked = false;
   for (const AlternativeModel& a : d.alternatives) {
     if (a.effect != "magnus") continue;

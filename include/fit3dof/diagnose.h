@@ -133,8 +133,11 @@
 // and dry friction, in the bearing against the pitch-yaw rate
 // (Cm_friction) or about each axis alone (Cm_axis_friction;
 // docs/parameters.md), and refits the two with the largest scores. The best of
-// those (lowest BIC) is compared, when no catalog effect, refused or not,
-// explains more; it is never adopted. When it lowers BIC by more than
+// those (lowest BIC) whose lag or friction has its physical sign (a lead,
+// or a friction that drives the motion, beyond two errors is no fault of
+// those kinds: a negative axis friction had tied with a 3-s run's tunnel
+// damping) is compared, when no catalog effect, refused or not, explains
+// more; it is never adopted. When it lowers BIC by more than
 // `ambiguity_bic` below the best catalog effect that earned its place (or by
 // `min_bic_drop` when none did), nothing is added and the verdict is
 // `not_explained`, naming it and its values (Diagnosis::outside_catalog): on
@@ -173,7 +176,10 @@
 // values, weighted by its Akaike weight against the model without it
 // (Diagnosis::not_excluded). A Magnus moment
 // beside a tunnel damping that had absorbed it on one coning run moved
-// Cm_q by 138 of its errors.
+// Cm_q by 138 of its errors. A tie whose final model falls short of the
+// noise (the model before the tie) has it tried beside the search's model
+// (the tied effect it followed in) only: beside the incomplete one a body
+// asymmetry had lowered BIC by 77.6 and been called not needed.
 // When the record is explained by several effects, each is checked again
 // with the others in (backward elimination): one whose removal keeps the
 // residuals at the noise level and costs less than `min_bic_drop` of BIC
