@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "diagnose_search.h"
@@ -372,19 +373,25 @@ void WidenForTie(Diagnosis* d) {
 
 namespace {
 
-// What an effect fitted beside the `model` model, raising its BIC by
-// `rise`, is in the words of a diagnosis. One that lowers it beside a
-// model already at the noise (a nonlinear damping by 22.8 beside a Magnus
-// moment and a calibration error on one coning run) is not "not needed".
-std::string BesideWords(const std::string& model, double rise) {
+// What an effect fitted beside the `model` model (`complete`: at the
+// noise), raising its BIC by `rise`, is in the words of a diagnosis. One
+// that lowers BIC beside a model at the noise (a nonlinear damping by 22.8
+// beside a Magnus moment and a calibration error on one coning run) is not
+// "not needed"; beside a tie's final model, short of the noise, it may
+// explain part of what the tied effects do (a body asymmetry by 77.6).
+std::string BesideWords(const std::string& model, bool complete, double rise) {
   const std::string bic = "(BIC " + FormatNumber("%+.1f", rise) + ")";
   if (rise >= 0.0) {
     return "not needed beside the " + model + " model, nor excluded " + bic;
   }
-  return "the " + model +
-         " model reaches the noise without it, though it lowers BIC "
-         "beside it " +
-         bic;
+  if (complete) {
+    return "the " + model +
+           " model reaches the noise without it, though it lowers BIC "
+           "beside it " +
+           bic;
+  }
+  return "lowers BIC beside the " + model +
+         " model, which the tie leaves short of the noise " + bic;
 }
 
 }  // namespace
@@ -400,14 +407,13 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   // nothing about that fit's errors (Conclude's rule).
   if (d->ambiguous.empty() && !d->final.at_noise_level) return;
   std::vector<CompleteModel> complete = CompleteModels(*d, models, current);
-  // A tie's final model short of the noise is the one before the tie, not
-  // a complete one: beside it, an effect that explains part of what the
-  // tied ones do lowers BIC (a body asymmetry by 162 beside the model
-  // before a coning run's tunnel damping), and "not excluded" would say
-  // nothing. Such effects are judged beside the search's model (the tied
-  // effect it followed in).
+  // A tie's final model short of the noise is the one before the tie: an
+  // effect beside it may explain part of what the tied ones do. Its values
+  // there still widen the final error bars (they are the final model's),
+  // but each effect is listed beside the search's model (the tied effect
+  // it followed in) when not excluded there.
   if (!d->final.at_noise_level && complete.size() > 1) {
-    complete.erase(complete.begin());
+    std::swap(complete[0], complete[1]);
   }
   // A tied effect's models are the tie's (WidenForTie).
   std::vector<const Effect*> effects;
@@ -420,11 +426,15 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
     VLOG(1) << t.effect->id << " beside the complete model: BIC "
             << (rise >= 0.0 ? "+" : "") << rise << " " << t.implausible;
     if (!NotExcludedBeside(t, options)) continue;
-    // Each effect listed once: beside the final model when it is not
-    // excluded there.
-    const std::string model =
-        t.model->fit == &d->FinalFit() ? "final" : "search's";
-    TakeNotExcluded(t, BesideWords(model, rise), &d->not_excluded, d);
+    // Each effect listed once: beside the first complete model it is not
+    // excluded beside.
+    const bool final = t.model->fit == &d->FinalFit();
+    TakeNotExcluded(t,
+                    BesideWords(final ? "final" : "search's",
+                                !final || d->final.at_noise_level,
+                                rise),
+                    &d->not_excluded,
+                    d);
   }
   FindOpenTerms(complete, data, options, d);
 }
