@@ -373,25 +373,26 @@ void WidenForTie(Diagnosis* d) {
 
 namespace {
 
-// What an effect fitted beside the `model` model (`complete`: at the
-// noise), raising its BIC by `rise`, is in the words of a diagnosis. One
+// What an effect fitted beside the `model` model (`at_noise`: its
+// residuals at the noise level), raising its BIC by `rise`, is in the words
+// of a diagnosis. One
 // that lowers BIC beside a model at the noise (a nonlinear damping by 22.8
 // beside a Magnus moment and a calibration error on one coning run) is not
 // "not needed"; beside a tie's final model, short of the noise, it may
 // explain part of what the tied effects do (a body asymmetry by 77.6).
-std::string BesideWords(const std::string& model, bool complete, double rise) {
+std::string BesideWords(const std::string& model, bool at_noise, double rise) {
   const std::string bic = "(BIC " + FormatNumber("%+.1f", rise) + ")";
   if (rise >= 0.0) {
     return "not needed beside the " + model + " model, nor excluded " + bic;
   }
-  if (complete) {
+  if (at_noise) {
     return "the " + model +
            " model reaches the noise without it, though it lowers BIC "
            "beside it " +
            bic;
   }
   return "lowers BIC beside the " + model +
-         " model, which the tie leaves short of the noise " + bic;
+         " model, which is short of the noise " + bic;
 }
 
 }  // namespace
@@ -429,12 +430,13 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
     // Each effect listed once: beside the first complete model it is not
     // excluded beside.
     const bool final = t.model->fit == &d->FinalFit();
-    TakeNotExcluded(t,
-                    BesideWords(final ? "final" : "search's",
-                                !final || d->final.at_noise_level,
-                                rise),
-                    &d->not_excluded,
-                    d);
+    TakeNotExcluded(
+        t,
+        BesideWords(final ? "final" : "search's",
+                    CheckResiduals(*t.model->fit, options).at_noise_level,
+                    rise),
+        &d->not_excluded,
+        d);
   }
   FindOpenTerms(complete, data, options, d);
 }

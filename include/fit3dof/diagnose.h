@@ -177,9 +177,12 @@
 // (Diagnosis::not_excluded). A Magnus moment
 // beside a tunnel damping that had absorbed it on one coning run moved
 // Cm_q by 138 of its errors. A tie whose final model falls short of the
-// noise (the model before the tie) has it tried beside the search's model
-// (the tied effect it followed in) only: beside the incomplete one a body
-// asymmetry had lowered BIC by 77.6 and been called not needed.
+// noise (the model before the tie) has each tried beside it and beside the
+// search's model (the tied effect it followed in), listed beside the
+// latter first; beside the final one an effect may explain part of what the
+// tied ones do (a body asymmetry lowered BIC by 77.6 there; it had been
+// called "not needed"), and its values widen the final error bars all the
+// same.
 // When the record is explained by several effects, each is checked again
 // with the others in (backward elimination): one whose removal keeps the
 // residuals at the noise level and costs less than `min_bic_drop` of BIC
