@@ -1030,6 +1030,46 @@ TEST(Diagnose, FollowsTheOtherBranchOfATieThatLeavesTheRecordUnexplained) {
       {"magnus", "nonlinear_damping", "calibration_nonlinearity"});
 }
 
+// tools/diagnose_suite's `short` bearing moment + calibration error + roll
+// torque (Cm_bearing = -0.02 at 1 deg, theta_cal3 = -psi_cal3 = 0.0371,
+// Cl_0 = -2.28e-7; draw 0), kept as tests/data/short_bearing_calibration_
+// roll_torque_seed0.csv. A drifting dynamic pressure (a probe with no
+// sign to check) lowers BIC most at the second step, but the catalog's
+// effects together explain the record 130 below it (CatalogAlone): the
+// bearing moment and the calibration error are added, the roll torque
+// ties with the roll damping and a tunnel damping (one spin rate), and
+// the probe is reported as outdone.
+TEST(Diagnose, TheCatalogsEffectsTogetherOutdoAProbeThatLedARound) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Diagnosis d =
+      DiagnoseRecord("short_bearing_calibration_roll_torque_seed0.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(
+      EffectIds(d.steps),
+      std::set<std::string>({"bearing_moment", "calibration_nonlinearity"}))
+      << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("roll_torque")) << text;
+  EXPECT_TRUE(d.outside_catalog.effect.empty()) << text;
+  bool outdone = false;
+  for (const CandidateFit& k : d.rejected) {
+    outdone |=
+        k.effect == "pressure_drift" &&
+        k.rejected.find("catalog's effects together") != std::string::npos;
+  }
+  EXPECT_TRUE(outdone) << text;
+  for (const auto& [name, truth] : {std::pair{"Cm_bearing", -0.02},
+                                    {"theta_cal3", 0.0371},
+                                    {"psi_cal3", -0.0371}}) {
+    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
+    ASSERT_NE(e, nullptr) << name << "\n" << text;
+    EXPECT_NEAR(e->value, truth, 3.0 * e->standard_error) << name << "\n"
+                                                          << text;
+  }
+}
+
 // A roll-synchronous reading error ties with a trim moment on one slow
 // run, and a Magnus moment is needed whichever of them is in the model:
 // the Magnus moment is adopted, the pair stays ambiguous, and the complete
