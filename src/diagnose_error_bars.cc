@@ -299,7 +299,7 @@ void TakeNotExcluded(const Beside& t,
 // The probes the effects of `complete` leave open (Effect::leaves_open),
 // each fitted beside the complete models that hold such an effect; those
 // the record cannot exclude go into d->open_terms (once each, beside the
-// final model when it is not excluded there) and their fits into
+// first of `complete` it is not excluded beside) and their fits into
 // d->not_excluded_models. On a 3-s run whose pitch reading erred as the
 // angle's signed square less its linear part, the cube named in its place
 // left a gain error of the amplitude, which the known cubic stiffness
@@ -416,6 +416,12 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   if (!d->final.at_noise_level && complete.size() > 1) {
     std::swap(complete[0], complete[1]);
   }
+  // Whether each model reaches the noise, for the words (checked once per
+  // model, not per effect tried beside it).
+  std::vector<char> at_noise;
+  for (const CompleteModel& m : complete) {
+    at_noise.push_back(CheckResiduals(*m.fit, options).at_noise_level);
+  }
   // A tied effect's models are the tie's (WidenForTie).
   std::vector<const Effect*> effects;
   for (const Effect* e : contended) {
@@ -430,13 +436,12 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
     // Each effect listed once: beside the first complete model it is not
     // excluded beside.
     const bool final = t.model->fit == &d->FinalFit();
-    TakeNotExcluded(
-        t,
-        BesideWords(final ? "final" : "search's",
-                    CheckResiduals(*t.model->fit, options).at_noise_level,
-                    rise),
-        &d->not_excluded,
-        d);
+    TakeNotExcluded(t,
+                    BesideWords(final ? "final" : "search's",
+                                at_noise[t.model - complete.data()],
+                                rise),
+                    &d->not_excluded,
+                    d);
   }
   FindOpenTerms(complete, data, options, d);
 }
