@@ -22,6 +22,7 @@
 
 #include "diagnose_search.h"
 #include "format.h"
+#include "noise_relaxation.h"
 
 namespace fit3dof {
 
@@ -276,6 +277,22 @@ bool BoundedLead(const std::vector<Contender>& contenders,
                      [](const Contender& k) { return k.out_of_bounds; });
 }
 
+// Whether a round past the noise level (DiagnoseOptions::noise_held) may
+// add one of `candidates`, scored at `fit`: some score, the predicted
+// drop of the residual sum of squares in units of its variance, less the
+// candidate's ln(n) per parameter, reaches min_bic_drop. Past the noise
+// the effects left are small and the score predicts their fits well; the
+// refits it spares had taken the Table 6 triples past 5 s.
+bool ScoreMayEarn(const std::vector<Candidate>& candidates,
+                  const FitResult& fit,
+                  const DiagnoseOptions& options) {
+  const double log_n = std::log(3.0 * std::max(1, fit.points));
+  return std::any_of(
+      candidates.begin(), candidates.end(), [&](const Candidate& k) {
+        return k.score.score - k.score.dof * log_n >= options.min_bic_drop;
+      });
+}
+
 // The forward search (diagnose.h) from `nominal`, the fit of `c`, with
 // `options`' catalog; *notes gets what else it found.
 Diagnosis Search(const Case& c,
@@ -293,6 +310,7 @@ Diagnosis Search(const Case& c,
   const std::vector<TimeHistory> data = FittedData(fit);
   d.fits.push_back(fit);
   std::vector<Case> models = {current};  // the model of each of d.fits
+  d.noise_held = options.noise_held;
   d.initial = CheckResiduals(fit, options);
   ResidualCheck check = d.initial;
   // The step at which two contenders first tied (diagnose.h), or -1, and
@@ -302,7 +320,8 @@ Diagnosis Search(const Case& c,
   // Every round's contenders, each once: the effects tried beside the
   // complete model (FindNotExcluded).
   std::vector<const Effect*> contended;
-  for (int step = 0; step < options.max_steps && !check.at_noise_level;
+  for (int step = 0; step < options.max_steps &&
+                     (!check.at_noise_level || options.noise_held);
        ++step) {
     if (Polish(current, data, &fit)) {
       // The same model, further down: the steps' record follows it.
@@ -313,10 +332,13 @@ Diagnosis Search(const Case& c,
       } else {
         d.steps.back().after = check;
       }
-      if (check.at_noise_level) break;
+      if (check.at_noise_level && !options.noise_held) break;
     }
     const std::vector<Candidate> candidates =
         ScoredCandidates(current, fit, options);
+    if (check.at_noise_level && !ScoreMayEarn(candidates, fit, options)) {
+      break;  // past the noise (noise_held), no refit can earn a place
+    }
     std::vector<Contender> contenders =
         Contenders(candidates, fit, data, options);
     for (const Contender& k : contenders) {
@@ -383,6 +405,10 @@ Diagnosis Search(const Case& c,
     models.push_back(current);
     check = TakeStep(best, contenders, candidates, options, &d);
   }
+  // Past the noise level (noise_held) the residuals' look is no
+  // test: a probe that outdoes the catalog there is structure the catalog
+  // lacks, and the record is not explained by it.
+  if (!d.outside_catalog.effect.empty()) check.at_noise_level = false;
   d.partial_fit = d.fits.size() - 1;
   d.final = SettleFinalModel(
       quiet, data, options, models, tie, rivals, check, &d, &current);
@@ -684,7 +710,55 @@ const char* VerdictToString(Verdict verdict) {
   return "";
 }
 
+namespace {
+
+// sigma: auto, whose fits each set their own weights (each channel's RMS
+// residual, noise_relaxation.h): the search's BICs would not compare, and
+// every fit's probable error would be 1, its level no test. The noise is
+// estimated once and held for the search: each channel's the lesser of the
+// nominal fit's RMS residual and the data's model-free noise level
+// (DataNoiseDeg), pooled over the segments. The RMS alone takes in what
+// the model misses: a body asymmetry left the roll residual at 3.2 times
+// the noise on a 3-s run, and held there it weighed roll so little that
+// a Magnus moment and a tunnel stiffness were named instead. With the
+// level no test, the residuals' look decides (CheckResiduals) and the
+// search goes on while an effect earns its place (noise_held). On a 3-s
+// run with a Magnus moment at 1.3 times the noise, the fit with sigma:
+// auto had left residuals as white as noise at its own level, and the
+// diagnosis had said `noise_level`. The final config keeps sigma: auto
+// for its rerun.
+Diagnosis WithNoiseHeld(const Case& c, const DiagnoseOptions& options) {
+  const FitResult relaxed = Fit(c);
+  Case held = c;
+  double* sigma[3] = {&held.sigma.phi, &held.sigma.theta, &held.sigma.psi};
+  for (int ch = 0; ch < 3; ++ch) {
+    if (!c.sigma_auto[ch]) continue;
+    double rms = 0.0, data = 0.0;
+    int n = 0;
+    for (const SegmentFit& s : relaxed.segments) {
+      const double w[3] = {s.sigma_deg.phi, s.sigma_deg.theta, s.sigma_deg.psi};
+      const std::vector<double>* x[3] = {
+          &s.data.phi, &s.data.theta, &s.data.psi};
+      const double free = DataNoiseDeg(*x[ch]);
+      rms += s.data.size() * w[ch] * w[ch];
+      data += s.data.size() * free * free;
+      n += s.data.size();
+    }
+    CHECK_GT(n, 0);
+    *sigma[ch] = std::sqrt(std::min(rms, data) / n);
+    held.sigma_auto[ch] = false;
+  }
+  DiagnoseOptions past = options;
+  past.noise_held = true;
+  Diagnosis d = DiagnoseFrom(held, Fit(held), past);
+  d.final_case.sigma_auto = c.sigma_auto;
+  return d;
+}
+
+}  // namespace
+
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
+  if (c.AnySigmaAuto()) return WithNoiseHeld(c, options);
   return DiagnoseFrom(c, Fit(c), options);
 }
 

@@ -153,6 +153,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["name"] = c.name;
   out["verdict"] = VerdictToString(d.verdict);
   out["verdict_text"] = d.verdict_text;
+  out["noise_held"] = d.noise_held;
   out["effects_added"] = json::array();
   for (const DiagnosisStep& s : d.steps)
     out["effects_added"].push_back(s.effect);

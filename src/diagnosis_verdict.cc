@@ -130,8 +130,23 @@ std::string LargerThanSigma(const ResidualCheck& check,
          FormatNumber("%.3g", check.rms_deg.theta) + ", psi " +
          FormatNumber("%.3g", check.rms_deg.psi) +
          " deg): the noise may be larger than configured (a record of the "
-         "model at rest, or sigma set to these, tells) or an effect leaves "
-         "no structure on this record";
+         "model at rest, or sigma set to these or to auto, tells) or an "
+         "effect leaves no structure on this record";
+}
+
+// sigma: auto (DiagnoseOptions::noise_held): the noise the search held,
+// and what its level could not tell.
+std::string HeldNoise(const Diagnosis& d) {
+  if (!d.noise_held || d.fits.empty() || d.fits[0].segments.empty()) {
+    return "";
+  }
+  const ChannelValues& s = d.fits[0].segments[0].sigma_deg;
+  return "; sigma: auto, the noise held at the nominal fit's estimate (phi " +
+         FormatNumber("%.3g", s.phi) + ", theta " +
+         FormatNumber("%.3g", s.theta) + ", psi " +
+         FormatNumber("%.3g", s.psi) +
+         " deg): an effect is found by its own fit (BIC, the held-out part), "
+         "not by the residuals' size, which no configured sigma measures";
 }
 
 // At the noise level, but further below sigma than noise goes by chance:
@@ -210,11 +225,12 @@ void Conclude(Diagnosis* d) {
     d->verdict_text = (d->steps.empty() ? "residuals at noise level"
                                         : "explained: " + Described(d->steps) +
                                               "; residuals at noise level") +
-                      SmallerThanSigma(d->final);
+                      (d->noise_held ? "" : SmallerThanSigma(d->final));
   } else {
     d->verdict = Verdict::kNotExplained;
     d->verdict_text = NotExplainedText(*d);
   }
+  d->verdict_text += HeldNoise(*d);
   if (d->verdict != Verdict::kNoiseLevel && d->verdict != Verdict::kExplained) {
     d->residual_description = DescribeResiduals(d->FinalFit());
   }

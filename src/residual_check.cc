@@ -55,6 +55,22 @@ double LocalLine(const std::vector<double>& power,
   return bins * (std::pow(n / 1e-3, 1.0 / bins) - 1.0);
 }
 
+// The spread of E^2 (as ProbableErrorSpread) when sigma is the noise the
+// data show without a model (sigma: auto, DiagnoseOptions::noise_held):
+// the estimate's own spread added. DataNoiseDeg's mean square of the d-th
+// differences of white noise over n samples has relative variance about
+// (2 / n) sum_k rho_k^2 = (2 / n) C(4d, 2d) / C(2d, d)^2, at most 7.3 / n
+// for its orders up to 8: on a 47-sample run E may reach 1.51 by chance
+// (1.14 on 800), where a configured sigma allows 1.12 (1.05).
+double HeldSpread(const FitResult& fit) {
+  constexpr double kDataNoiseVariance = 7.3;  // 2 C(32, 16) / C(16, 8)^2
+  const double dof = std::max(
+      1.0, 3.0 * fit.points - static_cast<double>(fit.free_parameters));
+  // The estimate pools the segments' samples (Diagnose, WithNoiseHeld).
+  const double samples = std::max(1, fit.points);
+  return kZ999 * std::sqrt(2.0 / dof + kDataNoiseVariance / samples);
+}
+
 }  // namespace
 
 ResidualCheck CheckResiduals(const FitResult& fit,
@@ -127,8 +143,9 @@ ResidualCheck CheckResiduals(const FitResult& fit,
   // 1 / sqrt(n). On 47 samples E = 1.12 or a lag-1 autocorrelation of 0.4
   // is one noise record in twenty.
   const double spread = ProbableErrorSpread(fit.points, fit.free_parameters);
-  const double noise_limit =
-      std::max(options.noise_limit, std::sqrt(1.0 + spread));
+  const double noise_limit = std::max(
+      options.noise_limit,
+      std::sqrt(1.0 + (options.noise_held ? HeldSpread(fit) : spread)));
   const double whiteness_limit =
       std::max(options.whiteness_limit,
                kZ999 / std::sqrt(std::max(1.0, 1.0 * fit.points)));

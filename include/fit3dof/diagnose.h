@@ -20,6 +20,18 @@
 // E^2 <= 1 + 3.09 sqrt(2 / dof) and lag-1 <= 3.09 / sqrt(n) (one-sided: a fit
 // lowers the lag-1 autocorrelation of noise, a missing effect raises it).
 //
+// sigma: auto (the noise unknown). Each fit would weigh by its own RMS
+// residual, every probable error would be 1 and the BICs would not
+// compare. So the noise is held for the whole search (noise_held): each
+// auto channel's the lesser of the nominal fit's RMS residual and the
+// data's model-free level (noise_relaxation.h DataNoiseDeg), pooled over
+// the segments. The level limit widens by that estimate's own spread,
+// E^2 <= 1 + 3.09 sqrt(2 / dof + 7.3 / n) (1.51 on 47 samples, 1.14 on 800),
+// and the search goes on past the noise level while an effect earns its
+// place (a round there refits only when some candidate's score, less
+// ln(n) per parameter, reaches min_bic_drop). The rerun config keeps
+// sigma: auto.
+//
 // Which effect? Every catalog effect not yet in the model is scored at the
 // current solution by a score (Lagrange-multiplier) test: with g = J_c^T r
 // the gradient of the cost along the candidate's parameters (at zero) and
@@ -267,6 +279,12 @@ struct DiagnoseOptions {
   int held_out_blocks = 8;
   double gain_per_parameter = 2.0;
   int max_steps = 5;
+  // The case's sigma is the noise the nominal fit estimated, held for the
+  // search (Diagnose sets it for sigma: auto): the level is the nominal
+  // fit's own and no test, so the search goes on past it while an effect
+  // earns its place, and residuals below it are no sign of a sigma set
+  // too large.
+  bool noise_held = false;
   std::vector<std::string> effects;  // restrict the catalog (empty: all)
   bool probes = true;                // fit the probes outside the catalog
   // Fit a contender refused for its drag with the next ones (a joint set).
@@ -385,6 +403,9 @@ struct Diagnosis {
   std::vector<DiagnosisStep> pruned;
   Verdict verdict = Verdict::kNoiseLevel;
   std::string verdict_text;  // the sentence for people
+  // sigma: auto: the noise the nominal fit estimated was held for the
+  // search (DiagnoseOptions::noise_held); the fits' weights are it.
+  bool noise_held = false;
   // When ambiguous: the effects, their fits, and what would separate them.
   std::vector<CandidateFit> ambiguous;
   std::string separated_by;
