@@ -145,8 +145,11 @@ std::string HeldNoise(const Diagnosis& d) {
          FormatNumber("%.3g", s.phi) + ", theta " +
          FormatNumber("%.3g", s.theta) + ", psi " +
          FormatNumber("%.3g", s.psi) +
-         " deg): an effect is found by its own fit (BIC, the held-out part), "
-         "not by the residuals' size, which no configured sigma measures";
+         " deg): an effect is found by its own fit (BIC, the held-out part) "
+         "more than by the residuals' size, which that estimate's own spread "
+         "blurs; one that raises them less than " +
+         FormatNumber("%.2g", d.final.noise_limit) +
+         "-fold may pass unseen (give the bench's sigma for a sharper test)";
 }
 
 // At the noise level, but further below sigma than noise goes by chance:
