@@ -405,9 +405,9 @@ Diagnosis Search(const Case& c,
     models.push_back(current);
     check = TakeStep(best, contenders, candidates, options, &d);
   }
-  // Past the noise level (noise_held) the residuals' look is no
-  // test: a probe that outdoes the catalog there is structure the catalog
-  // lacks, and the record is not explained by it.
+  // A probe that outdoes the catalog, even past the noise level
+  // (noise_held), is structure the catalog lacks: the record is not
+  // explained by it.
   if (!d.outside_catalog.effect.empty()) check.at_noise_level = false;
   d.partial_fit = d.fits.size() - 1;
   d.final = SettleFinalModel(
@@ -720,9 +720,9 @@ namespace {
 // (DataNoiseDeg), pooled over the segments. The RMS alone takes in what
 // the model misses: a body asymmetry left the roll residual at 3.2 times
 // the noise on a 3-s run, and held there it weighed roll so little that
-// a Magnus moment and a tunnel stiffness were named instead. With the
-// level no test, the residuals' look decides (CheckResiduals) and the
-// search goes on while an effect earns its place (noise_held). On a 3-s
+// a Magnus moment and a tunnel stiffness were named instead. The level's
+// limit widens by that estimate's spread (CheckResiduals), and the search
+// goes on past it while an effect earns its place (noise_held). On a 3-s
 // run with a Magnus moment at 1.3 times the noise, the fit with sigma:
 // auto had left residuals as white as noise at its own level, and the
 // diagnosis had said `noise_level`. The final config keeps sigma: auto

@@ -141,7 +141,7 @@ std::string HeldNoise(const Diagnosis& d) {
     return "";
   }
   const ChannelValues& s = d.fits[0].segments[0].sigma_deg;
-  return "; sigma: auto, the noise held at the nominal fit's estimate (phi " +
+  return "; sigma: auto, the noise held at the record's own estimate (phi " +
          FormatNumber("%.3g", s.phi) + ", theta " +
          FormatNumber("%.3g", s.theta) + ", psi " +
          FormatNumber("%.3g", s.psi) +

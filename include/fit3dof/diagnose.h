@@ -279,11 +279,11 @@ struct DiagnoseOptions {
   int held_out_blocks = 8;
   double gain_per_parameter = 2.0;
   int max_steps = 5;
-  // The case's sigma is the noise the nominal fit estimated, held for the
-  // search (Diagnose sets it for sigma: auto): the level is the nominal
-  // fit's own and no test, so the search goes on past it while an effect
-  // earns its place, and residuals below it are no sign of a sigma set
-  // too large.
+  // The case's sigma is the noise the record itself gave, held for the
+  // search (Diagnose sets it for sigma: auto): the level is a blunter test
+  // (its limit widens by the estimate's spread, CheckResiduals), so the
+  // search goes on past it while an effect earns its place, and residuals
+  // below it are no sign of a sigma set too large.
   bool noise_held = false;
   std::vector<std::string> effects;  // restrict the catalog (empty: all)
   bool probes = true;                // fit the probes outside the catalog
@@ -403,8 +403,8 @@ struct Diagnosis {
   std::vector<DiagnosisStep> pruned;
   Verdict verdict = Verdict::kNoiseLevel;
   std::string verdict_text;  // the sentence for people
-  // sigma: auto: the noise the nominal fit estimated was held for the
-  // search (DiagnoseOptions::noise_held); the fits' weights are it.
+  // sigma: auto: the noise the record gave was held for the search
+  // (DiagnoseOptions::noise_held); the fits' weights are it.
   bool noise_held = false;
   // When ambiguous: the effects, their fits, and what would separate them.
   std::vector<CandidateFit> ambiguous;
