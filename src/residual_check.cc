@@ -55,20 +55,19 @@ double LocalLine(const std::vector<double>& power,
   return bins * (std::pow(n / 1e-3, 1.0 / bins) - 1.0);
 }
 
-// The spread of E^2 (as ProbableErrorSpread) when sigma is the noise the
-// data show without a model (sigma: auto, DiagnoseOptions::noise_held):
-// the estimate's own spread added. DataNoiseDeg's mean square of the d-th
-// differences of white noise over n samples has relative variance about
-// (2 / n) sum_k rho_k^2 = (2 / n) C(4d, 2d) / C(2d, d)^2, at most 7.3 / n
-// for its orders up to 8: on a 47-sample run E may reach 1.51 by chance
-// (1.14 on 800), where a configured sigma allows 1.12 (1.05).
-double HeldSpread(const FitResult& fit) {
+// The spread of E^2 when sigma is the noise the data show without a model
+// (sigma: auto, DiagnoseOptions::noise_held): `spread`, what noise alone
+// gives (ProbableErrorSpread), with the estimate's own added.
+// DataNoiseDeg's mean square of the d-th differences of white noise over n
+// samples has relative variance about (2 / n) sum_k rho_k^2 = (2 / n)
+// C(4d, 2d) / C(2d, d)^2, at most 7.3 / n for its orders up to 8: on a
+// 47-sample run E may reach 1.51 by chance (1.14 on 800), where a
+// configured sigma allows 1.12 (1.05). `points`: the samples the estimate
+// pooled (all segments', Diagnose).
+double HeldSpread(double spread, int points) {
   constexpr double kDataNoiseVariance = 7.3;  // 2 C(32, 16) / C(16, 8)^2
-  const double dof = std::max(
-      1.0, 3.0 * fit.points - static_cast<double>(fit.free_parameters));
-  // The estimate pools the segments' samples (Diagnose, WithNoiseHeld).
-  const double samples = std::max(1, fit.points);
-  return kZ999 * std::sqrt(2.0 / dof + kDataNoiseVariance / samples);
+  return std::hypot(
+      spread, kZ999 * std::sqrt(kDataNoiseVariance / std::max(1, points)));
 }
 
 }  // namespace
@@ -145,7 +144,8 @@ ResidualCheck CheckResiduals(const FitResult& fit,
   const double spread = ProbableErrorSpread(fit.points, fit.free_parameters);
   const double noise_limit = std::max(
       options.noise_limit,
-      std::sqrt(1.0 + (options.noise_held ? HeldSpread(fit) : spread)));
+      std::sqrt(1.0 + (options.noise_held ? HeldSpread(spread, fit.points)
+                                          : spread)));
   const double whiteness_limit =
       std::max(options.whiteness_limit,
                kZ999 / std::sqrt(std::max(1.0, 1.0 * fit.points)));
