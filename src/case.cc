@@ -114,6 +114,15 @@ bool operator==(const ParameterSetting& a, const ParameterSetting& b) {
          std::tie(b.value, b.free, b.auto_start, b.tied_to, b.tie_factor);
 }
 
+double& ChannelValues::operator[](int ch) {
+  CHECK(ch >= 0 && ch < 3) << "channel " << ch;
+  return ch == 0 ? phi : ch == 1 ? theta : psi;
+}
+
+double ChannelValues::operator[](int ch) const {
+  return (*const_cast<ChannelValues*>(this))[ch];
+}
+
 bool operator==(const ChannelValues& a, const ChannelValues& b) {
   return std::tie(a.phi, a.theta, a.psi) == std::tie(b.phi, b.theta, b.psi);
 }

@@ -490,7 +490,6 @@ void ConfigReader::ReadSigma(const YAML::Node& node, Case* c) const {
   }
   CheckKeys(node, "sigma", {"phi", "theta", "psi"});
   const char* channels[3] = {"phi", "theta", "psi"};
-  double* values[3] = {&c->sigma.phi, &c->sigma.theta, &c->sigma.psi};
   for (int ch = 0; ch < 3; ++ch) {
     const YAML::Node n = node[channels[ch]];
     const std::string key = Join("sigma", channels[ch]);
@@ -499,8 +498,8 @@ void ConfigReader::ReadSigma(const YAML::Node& node, Case* c) const {
       c->sigma_auto[ch] = true;
       continue;
     }
-    *values[ch] = Number(n, key);
-    if (!(*values[ch] > 0.0)) {
+    c->sigma[ch] = Number(n, key);
+    if (!(c->sigma[ch] > 0.0)) {
       Fail(n, key, "must be positive (deg) or auto, got " + n.Scalar());
     }
   }

@@ -154,14 +154,13 @@ void WriteSegments(YAML::Emitter& y, const Case& c) {
 // sigma: auto channels are written as auto (their starting weight is the
 // default 1 deg the reader gives them).
 void WriteSigma(YAML::Emitter& y, const Case& c) {
-  const double values[3] = {c.sigma.phi, c.sigma.theta, c.sigma.psi};
   const char* names[3] = {"phi", "theta", "psi"};
   y << YAML::Key << "sigma" << YAML::Value << YAML::Flow << YAML::BeginMap;
   for (int ch = 0; ch < 3; ++ch) {
     if (c.sigma_auto[ch]) {
       Word(y, names[ch], "auto");
     } else {
-      Number(y, names[ch], values[ch]);
+      Number(y, names[ch], c.sigma[ch]);
     }
   }
   y << YAML::EndMap;

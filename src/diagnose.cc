@@ -730,22 +730,18 @@ namespace {
 Diagnosis WithNoiseHeld(const Case& c, const DiagnoseOptions& options) {
   const FitResult relaxed = Fit(c);
   Case held = c;
-  double* sigma[3] = {&held.sigma.phi, &held.sigma.theta, &held.sigma.psi};
   for (int ch = 0; ch < 3; ++ch) {
     if (!c.sigma_auto[ch]) continue;
     double rms = 0.0, data = 0.0;
     int n = 0;
     for (const SegmentFit& s : relaxed.segments) {
-      const double w[3] = {s.sigma_deg.phi, s.sigma_deg.theta, s.sigma_deg.psi};
-      const std::vector<double>* x[3] = {
-          &s.data.phi, &s.data.theta, &s.data.psi};
-      const double free = DataNoiseDeg(*x[ch]);
-      rms += s.data.size() * w[ch] * w[ch];
+      const double free = DataNoiseDeg(s.data.channel(ch));
+      rms += s.data.size() * s.sigma_deg[ch] * s.sigma_deg[ch];
       data += s.data.size() * free * free;
       n += s.data.size();
     }
     CHECK_GT(n, 0);
-    *sigma[ch] = std::sqrt(std::min(rms, data) / n);
+    held.sigma[ch] = std::sqrt(std::min(rms, data) / n);
     held.sigma_auto[ch] = false;
   }
   DiagnoseOptions past = options;

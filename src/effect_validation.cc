@@ -406,14 +406,12 @@ double PredictionRss(const Case& c,
             values.data(), d.t.data(), d.size(), angles.data(), nullptr)) {
       return std::numeric_limits<double>::infinity();
     }
-    const double w[3] = {weights[s].phi, weights[s].theta, weights[s].psi};
     for (int i = 0; i < d.size(); ++i) {
       if (!held_out.held[s][i]) continue;
-      const double measured[3] = {d.phi[i], d.theta[i], d.psi[i]};
       for (int ch = 0; ch < 3; ++ch) {
-        double r = angles[3 * i + ch] - measured[ch];
+        double r = angles[3 * i + ch] - d.channel(ch)[i];
         if (ch == 0) r -= WholeTurns(r);
-        rss += (r / w[ch]) * (r / w[ch]);
+        rss += (r / weights[s][ch]) * (r / weights[s][ch]);
       }
     }
   }

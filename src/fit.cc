@@ -307,8 +307,7 @@ void FitSegments(const Case& c,
       stats.autocorrelation = series.normalized;
       stats.lag_window = series.lag_window;
       stats.white = series.white;
-      const double weights[3] = {p.sigma.phi, p.sigma.theta, p.sigma.psi};
-      const double weight = weights[ch];
+      const double weight = p.sigma[ch];
       for (const ResidualLine& line : series.lines) {
         stats.error_lines.push_back({line.frequency_hz,
                                      line.amplitude * weight,

@@ -48,12 +48,11 @@ std::vector<ChannelValues> ResidualRms(const FitProblem& p,
   std::vector<ChannelValues> rms;
   size_t row = 0;
   for (const PreparedSegment& s : p.segments) {
-    const double sigma[3] = {s.sigma.phi, s.sigma.theta, s.sigma.psi};
     double sum[3] = {0.0, 0.0, 0.0};
     const int n = s.data.size();
     for (int i = 0; i < n; ++i) {
       for (int ch = 0; ch < 3; ++ch) {
-        const double r = residuals[row++] * sigma[ch];
+        const double r = residuals[row++] * s.sigma[ch];
         sum[ch] += r * r;
       }
     }
@@ -70,13 +69,11 @@ double Reweight(const std::array<bool, 3>& automatic,
   double change = 0.0;
   for (size_t s = 0; s < segments->size(); ++s) {
     ChannelValues& sigma = (*segments)[s].sigma;
-    double* weights[3] = {&sigma.phi, &sigma.theta, &sigma.psi};
-    const double estimates[3] = {rms[s].phi, rms[s].theta, rms[s].psi};
     for (int ch = 0; ch < 3; ++ch) {
       if (!automatic[ch]) continue;
-      const double updated = std::max(estimates[ch], kFloorDeg);
-      change = std::max(change, std::abs(updated - *weights[ch]) / updated);
-      *weights[ch] = updated;
+      const double updated = std::max(rms[s][ch], kFloorDeg);
+      change = std::max(change, std::abs(updated - sigma[ch]) / updated);
+      sigma[ch] = updated;
     }
   }
   return change;
@@ -118,11 +115,8 @@ double DataNoiseDeg(const std::vector<double>& samples) {
 
 void StartNoiseWeights(const Case& c, FitProblem* problem) {
   for (PreparedSegment& s : problem->segments) {
-    const std::vector<double>* channels[3] = {
-        &s.data.phi, &s.data.theta, &s.data.psi};
-    double* weights[3] = {&s.sigma.phi, &s.sigma.theta, &s.sigma.psi};
     for (int ch = 0; ch < 3; ++ch) {
-      if (c.sigma_auto[ch]) *weights[ch] = DataNoiseDeg(*channels[ch]);
+      if (c.sigma_auto[ch]) s.sigma[ch] = DataNoiseDeg(s.data.channel(ch));
     }
   }
 }

@@ -19,6 +19,8 @@
 #include <cstring>
 #include <string>
 
+#include <glog/logging.h>
+
 #include "fit3dof/atomic_file.h"
 #include "fit3dof/input_error.h"
 
@@ -131,6 +133,16 @@ std::string CsvProblem(const io::error::base& e, const std::string& source) {
 }
 
 }  // namespace
+
+const std::vector<double>& TimeHistory::channel(int ch) const {
+  CHECK(ch >= 0 && ch < 3) << "channel " << ch;
+  return ch == 0 ? phi : ch == 1 ? theta : psi;
+}
+
+std::vector<double>& TimeHistory::channel(int ch) {
+  CHECK(ch >= 0 && ch < 3) << "channel " << ch;
+  return ch == 0 ? phi : ch == 1 ? theta : psi;
+}
 
 int ForEachSample(const std::string& path, const SampleSink& sink) {
   std::FILE* file = std::fopen(path.c_str(), "rb");

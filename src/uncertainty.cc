@@ -263,16 +263,13 @@ std::array<Eigen::VectorXd, 3> FittedAngles(const PreparedSegment& segment,
                                             const SolutionInformation& info,
                                             int row) {
   const int n = segment.data.size();
-  const std::vector<double>* measured[3] = {
-      &segment.data.phi, &segment.data.theta, &segment.data.psi};
-  const double sigma[3] = {
-      segment.sigma.phi, segment.sigma.theta, segment.sigma.psi};
   std::array<Eigen::VectorXd, 3> fitted;
   for (int c = 0; c < 3; ++c) {
     fitted[c].resize(n);
     for (int i = 0; i < n; ++i) {
       fitted[c](i) =
-          ((*measured[c])[i] + info.residuals[row + 3 * i + c] * sigma[c]) /
+          (segment.data.channel(c)[i] +
+           info.residuals[row + 3 * i + c] * segment.sigma[c]) /
           kDegreesPerRadian;
     }
   }

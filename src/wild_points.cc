@@ -243,15 +243,11 @@ std::vector<Jump> FindChannelJumps(const std::vector<double>& t,
   return FindJumps(t, x, flagged);
 }
 
-const std::vector<double>& Channel(const TimeHistory& data, int channel) {
-  return channel == 0 ? data.phi : channel == 1 ? data.theta : data.psi;
-}
-
 WildPoint FromJump(const Jump& j,
                    const TimeHistory& data,
                    int channel,
                    WildPointTest test) {
-  const std::vector<double>& x = Channel(data, channel);
+  const std::vector<double>& x = data.channel(channel);
   return {j.sample,
           data.t[j.sample],
           channel,
@@ -319,7 +315,7 @@ std::vector<WildPoint> ScreenData(const TimeHistory& data) {
   const int n = data.size();
   if (n < kMinSamples) return points;
   for (int channel = 0; channel < 3; ++channel) {
-    const std::vector<double>& x = Channel(data, channel);
+    const std::vector<double>& x = data.channel(channel);
     std::vector<char> flagged(n, 0);
     const double reach = channel == 1 ? kThetaReachDeg : kAngleReachDeg;
     for (int i = 0; i < n; ++i) {
@@ -350,7 +346,7 @@ std::vector<WildPoint> ScreenResiduals(const TimeHistory& data,
   std::vector<WildPoint> points;
   if (n < kMinSamples) return points;
   for (int channel = 0; channel < 3; ++channel) {
-    const std::vector<double>& x = Channel(data, channel);
+    const std::vector<double>& x = data.channel(channel);
     std::vector<double> r(n);
     std::vector<char> flagged(n, 0);
     for (int i : known) flagged.at(i) = 1;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "fit3dof/case.h"
 #include "fit3dof/input_error.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
@@ -19,6 +20,25 @@ std::string ReadError(const std::string& path) {
     return e.what();
   }
   return "(no error)";
+}
+
+// The channel accessors follow the order of a record's columns, the order
+// SegmentFit::computed and every per-channel loop use.
+TEST(TimeHistory, ChannelsInColumnOrder) {
+  TimeHistory h;
+  h.Append(0.0, 1.0, 2.0, 3.0);
+  h.channel(1)[0] = 5.0;
+  EXPECT_EQ(h.channel(0), h.phi);
+  EXPECT_EQ(h.theta[0], 5.0);
+  EXPECT_EQ(&h.channel(2), &h.psi);
+  ChannelValues v{0.1, 0.2, 0.3};
+  v[2] = 0.4;
+  const ChannelValues& c = v;
+  EXPECT_EQ(c[0], 0.1);
+  EXPECT_EQ(c[1], 0.2);
+  EXPECT_EQ(v.psi, 0.4);
+  EXPECT_DEATH(h.channel(3), "channel 3");
+  EXPECT_DEATH(v[-1], "channel -1");
 }
 
 TEST(TimeHistory, RoundTripsThroughCsv) {

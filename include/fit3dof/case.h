@@ -69,6 +69,11 @@ struct ChannelValues {
   double phi = 0.0;
   double theta = 0.0;
   double psi = 0.0;
+
+  // Channel `ch`: 0 phi, 1 theta, 2 psi, the order of a record's columns
+  // and of SegmentFit::computed, for loops over the three.
+  double& operator[](int ch);
+  double operator[](int ch) const;
 };
 
 // The report's PART: which samples of a record are used.

@@ -20,6 +20,9 @@ struct TimeHistory {
   std::vector<double> psi;
 
   int size() const { return static_cast<int>(t.size()); }
+  // Angle channel `ch`: 0 phi, 1 theta, 2 psi (ChannelValues' order).
+  const std::vector<double>& channel(int ch) const;
+  std::vector<double>& channel(int ch);
   void Append(double time, double phi_deg, double theta_deg, double psi_deg) {
     t.push_back(time);
     phi.push_back(phi_deg);
