@@ -12,14 +12,14 @@
 #include <libfccp/csv.h>
 #pragma GCC diagnostic pop
 
+#include <glog/logging.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
-
-#include <glog/logging.h>
 
 #include "fit3dof/atomic_file.h"
 #include "fit3dof/input_error.h"

@@ -267,10 +267,9 @@ std::array<Eigen::VectorXd, 3> FittedAngles(const PreparedSegment& segment,
   for (int c = 0; c < 3; ++c) {
     fitted[c].resize(n);
     for (int i = 0; i < n; ++i) {
-      fitted[c](i) =
-          (segment.data.channel(c)[i] +
-           info.residuals[row + 3 * i + c] * segment.sigma[c]) /
-          kDegreesPerRadian;
+      fitted[c](i) = (segment.data.channel(c)[i] +
+                      info.residuals[row + 3 * i + c] * segment.sigma[c]) /
+                     kDegreesPerRadian;
     }
   }
   return fitted;
