@@ -653,9 +653,12 @@ Diagnosis OtherBranch(const Case& c,
 // lands anywhere along Eq. 43's ridge, within two of its errors
 // (bounds_within_errors): on a coning run a tunnel stiffness fitted t1 =
 // -0.134 +- 0.048 (bound 0.115, truth 1.8e-4), where the true model's own
-// fit lands too. Only a tunnel term's: every effect's judged so, the pair
-// of runs above ended `not_explained` again. Only there, since either
-// changes the search's path.
+// fit lands too; and a nonlinear damping's, on a ridge with Cm_q on a 3-s
+// run (a true 4.0 times |Cm_q| over the record, at the bound, fitted at
+// 4.02: the first search ended `not_explained` with the nominal Cm_q 253
+// of its errors off). Only these (Effect::on_ridge): every effect's judged
+// so, the pair of runs above ended `not_explained` again. Only there,
+// since either changes the search's path.
 Diagnosis FromBounds(const Case& c,
                      const FitResult& nominal,
                      const DiagnoseOptions& options,

@@ -98,7 +98,10 @@ const std::vector<Effect>& EffectCatalog() {
        {},
        "amplitude",
        "changes the linear damping by at most 4 times its size over the "
-       "record's angles"},
+       "record's angles",
+       false,
+       false,
+       true},
       {"roll_damping",
        "roll damping (Cl_p)",
        {"Cl_p"},

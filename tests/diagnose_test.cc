@@ -1738,6 +1738,33 @@ TEST(Diagnose, AJointSetsMemberNeededOnlyBesideATiedOneIsNotAdded) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.23}}, text);
 }
 
+// tools/diagnose_suite's `short` roll reading error + nonlinear damping
+// (draw 7), kept as tests/data/short_roll_error_nonlinear_damping_seed7.csv:
+// the damping sized to 1.3 times the noise is Cm_q_delta2 = 1125, which
+// changes Cm_q by 4.0 times its size at 8 deg, at the catalog's bound. The
+// fit put it at 967 +- 83 with Cm_q at -4.73 (the two 99.96% correlated:
+// only Cm_q + 0.0049 Cm_q_delta2 is determined), 4.02 times: refused,
+// and the verdict was `not_explained` with the nominal fit's Cm_q 253 of
+// its errors off. The nonlinear damping's bound is judged within two of
+// its errors in the second search, as a tunnel term's on Eq. 43's ridge.
+TEST(Diagnose, ANonlinearDampingAtItsBoundIsJudgedWithinItsErrors) {
+  const Diagnosis d =
+      DiagnoseRecord("short_roll_error_nonlinear_damping_seed7.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.verdict == Verdict::kExplained ||
+              d.verdict == Verdict::kAmbiguous)
+      << text;
+  std::set<std::string> found = EffectIds(d.steps);
+  for (const auto* fits : {&d.ambiguous, &d.not_excluded}) {
+    for (const std::string& id : EffectIds(*fits)) found.insert(id);
+  }
+  EXPECT_TRUE(found.count("nonlinear_damping")) << text;
+  for (const std::string& id : EffectIds(d.steps)) {
+    EXPECT_TRUE(id == "nonlinear_damping" || id == "roll_interaction") << text;
+  }
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
 // tools/diagnose_suite's `coning` tunnel stiffness + roll reading error +
 // flow angularity (draw 3), kept as tests/data/coning_stiffness_roll_error_
 // angularity_seed3.csv. The true model's own residual has a periodogram

@@ -243,12 +243,15 @@ struct Effect {
   // pressure): over less than a revolution of roll a roll-locked effect is
   // one too, and such a probe beats it without a margin (ProbeMargin).
   bool drifts_in_time = false;
-  // Its terms lie on Eq. 43's ridge: only their sums with the body's own
-  // coefficients (Cm_alpha + t1, Cm_q + t2) are determined, and a point
-  // fit lands anywhere along it the record allows (a tunnel stiffness's
-  // t1 = t3 = -0.134 +- 0.048 on a coning run, truth 1.8e-4: the true
-  // model's own fit lands there too). A second search judges its bounds
-  // within two of its errors (DiagnoseOptions::bounds_within_errors).
+  // Its terms lie on a ridge with the body's own coefficients: only a
+  // combination is determined, and a point fit lands anywhere along it the
+  // record allows. Eq. 43's tunnel terms (Cm_alpha + t1, Cm_q + t2: a
+  // tunnel stiffness's t1 = t3 = -0.134 +- 0.048 on a coning run, truth
+  // 1.8e-4, where the true model's own fit lands too); a nonlinear damping
+  // on a 3-s run (Cm_q + 0.0049 Cm_q_delta2, the two 99.96% correlated:
+  // a true 4.0 times |Cm_q| over the record fitted at 4.02, past the bound
+  // of 4). A second search judges its bounds within two of its errors
+  // (DiagnoseOptions::bounds_within_errors).
   bool on_ridge = false;
   // A probe (Probes()) whose terms the effect's form leaves open: a
   // calibration nonlinearity written as a cube takes none of the linear
@@ -294,7 +297,7 @@ struct DiagnoseOptions {
   // `not_explained` with such a contender ahead of every one that earned
   // its place.
   bool joint_sets_from_bounds = false;
-  // Judge the bounds of a contender on Eq. 43's ridge (Effect::on_ridge)
+  // Judge the bounds of a contender on a ridge (Effect::on_ridge)
   // within two of its standard errors (moved that far toward zero), as
   // the effects not excluded are judged, rather than at the point fit.
   // Set with joint_sets_from_bounds for the second search.
