@@ -120,7 +120,8 @@ double& ChannelValues::operator[](int ch) {
 }
 
 double ChannelValues::operator[](int ch) const {
-  return (*const_cast<ChannelValues*>(this))[ch];
+  CHECK(ch >= 0 && ch < 3) << "channel " << ch;
+  return ch == 0 ? phi : ch == 1 ? theta : psi;
 }
 
 bool operator==(const ChannelValues& a, const ChannelValues& b) {

@@ -20,6 +20,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
 
 #include "fit3dof/atomic_file.h"
 #include "fit3dof/input_error.h"
@@ -140,8 +141,7 @@ const std::vector<double>& TimeHistory::channel(int ch) const {
 }
 
 std::vector<double>& TimeHistory::channel(int ch) {
-  CHECK(ch >= 0 && ch < 3) << "channel " << ch;
-  return ch == 0 ? phi : ch == 1 ? theta : psi;
+  return const_cast<std::vector<double>&>(std::as_const(*this).channel(ch));
 }
 
 int ForEachSample(const std::string& path, const SampleSink& sink) {

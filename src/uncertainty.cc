@@ -266,10 +266,11 @@ std::array<Eigen::VectorXd, 3> FittedAngles(const PreparedSegment& segment,
   std::array<Eigen::VectorXd, 3> fitted;
   for (int c = 0; c < 3; ++c) {
     fitted[c].resize(n);
+    const std::vector<double>& measured = segment.data.channel(c);
     for (int i = 0; i < n; ++i) {
-      fitted[c](i) = (segment.data.channel(c)[i] +
-                      info.residuals[row + 3 * i + c] * segment.sigma[c]) /
-                     kDegreesPerRadian;
+      fitted[c](i) =
+          (measured[i] + info.residuals[row + 3 * i + c] * segment.sigma[c]) /
+          kDegreesPerRadian;
     }
   }
   return fitted;
