@@ -19,6 +19,7 @@
 
 #include "config_node.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/time_history.h"
 #include "node_reader.h"
 
 namespace fit3dof {
@@ -489,10 +490,9 @@ void ConfigReader::ReadSigma(const YAML::Node& node, Case* c) const {
     Fail(node, "sigma", "expected {phi, theta, psi} in deg, or auto");
   }
   CheckKeys(node, "sigma", {"phi", "theta", "psi"});
-  const char* channels[3] = {"phi", "theta", "psi"};
   for (int ch = 0; ch < 3; ++ch) {
-    const YAML::Node n = node[channels[ch]];
-    const std::string key = Join("sigma", channels[ch]);
+    const YAML::Node n = node[ChannelName(ch)];
+    const std::string key = Join("sigma", ChannelName(ch));
     if (!n.IsDefined()) Fail(node, key, "missing (required)");
     if (is_auto(n)) {
       c->sigma_auto[ch] = true;

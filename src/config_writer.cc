@@ -15,6 +15,7 @@
 #include "config_node.h"
 #include "fit3dof/config.h"
 #include "fit3dof/parameters.h"
+#include "fit3dof/time_history.h"
 
 namespace fit3dof {
 
@@ -154,13 +155,12 @@ void WriteSegments(YAML::Emitter& y, const Case& c) {
 // sigma: auto channels are written as auto (their starting weight is the
 // default 1 deg the reader gives them).
 void WriteSigma(YAML::Emitter& y, const Case& c) {
-  const char* names[3] = {"phi", "theta", "psi"};
   y << YAML::Key << "sigma" << YAML::Value << YAML::Flow << YAML::BeginMap;
   for (int ch = 0; ch < 3; ++ch) {
     if (c.sigma_auto[ch]) {
-      Word(y, names[ch], "auto");
+      Word(y, ChannelName(ch), "auto");
     } else {
-      Number(y, names[ch], c.sigma[ch]);
+      Number(y, ChannelName(ch), c.sigma[ch]);
     }
   }
   y << YAML::EndMap;

@@ -144,6 +144,12 @@ std::vector<double>& TimeHistory::channel(int ch) {
   return const_cast<std::vector<double>&>(std::as_const(*this).channel(ch));
 }
 
+const char* ChannelName(int channel) {
+  CHECK(channel >= 0 && channel < 3) << "channel " << channel;
+  static const char* const kNames[] = {"phi", "theta", "psi"};
+  return kNames[channel];
+}
+
 int ForEachSample(const std::string& path, const SampleSink& sink) {
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) {

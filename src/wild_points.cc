@@ -283,12 +283,6 @@ const char* OutlierPolicyName(OutlierPolicy policy) {
   return policy == OutlierPolicy::kReject ? "reject" : "warn";
 }
 
-const char* ChannelName(int channel) {
-  CHECK(channel >= 0 && channel < 3);
-  static const char* const kNames[] = {"phi", "theta", "psi"};
-  return kNames[channel];
-}
-
 std::string WildPoint::Describe() const {
   std::string line = std::string(ChannelName(channel)) + " = " +
                      FormatNumber("%.6g", value) +

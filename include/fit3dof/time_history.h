@@ -31,6 +31,10 @@ struct TimeHistory {
   }
 };
 
+// The name of angle channel `channel` (TimeHistory::channel's order):
+// "phi", "theta" or "psi", as in the CSV header and the configs' keys.
+const char* ChannelName(int channel);
+
 // Reads a CSV record. Throws InputError naming the file and line for a
 // missing column, a token that is not a whole finite decimal number (an
 // empty field, "-", ".", "1.5e", "nan"; the message names the column and

@@ -63,9 +63,6 @@ struct WildPoint {
   std::string Describe() const;
 };
 
-// The channel's name: "phi", "theta" or "psi".
-const char* ChannelName(int channel);
-
 // Wild points of measured data, before any fit: reach and jump tests on
 // each channel, sorted by sample then channel. Records shorter than 8
 // samples are not screened (too few neighbours to judge).
