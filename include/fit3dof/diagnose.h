@@ -130,7 +130,10 @@
 // followed ends `not_explained`, the search is run again without the
 // effect it followed, and its answer is taken when it explains the
 // record, with or without a tie of its own (the effect left is named
-// among the rejected).
+// among the rejected). So is a step taken alone whose next contender came
+// within `near_tie_bic` (20) of it, when the answer is `ambiguous` and
+// without it the search explains the record with a BIC lower by more
+// than `ambiguity_bic`.
 // A roll-locked effect (Effect::roll_locked) on records that span less
 // than a revolution of roll ties with a drift in time (`drift_in_time`,
 // outside the catalog): the record is then `ambiguous` at best, and a
@@ -278,6 +281,12 @@ struct DiagnoseOptions {
   double min_bic_drop = 10.0;
   double ambiguity_bic = 10.0;
   double rival_bic = 30.0;
+  // When the answer is `ambiguous`, a step taken alone whose next
+  // contender (not refused) came within near_tie_bic of it is searched
+  // again without it; that search's answer is taken when it explains the
+  // record with a complete model lower in BIC by more than ambiguity_bic
+  // (the greedy search's wrong turn).
+  double near_tie_bic = 20.0;
   double max_drag = 5.0;
   int held_out_blocks = 8;
   double gain_per_parameter = 2.0;
