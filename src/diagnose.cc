@@ -253,8 +253,9 @@ ResidualCheck TakeJointSteps(JointSet joint,
 
 // What a search tells its caller besides its answer: the effect it
 // followed at a tie of two catalog effects (empty if none), the first
-// step taken alone whose runner-up earned its place within near_tie_bic
-// but not within ambiguity_bic (empty if none), the step the
+// step's effect when it was taken alone, untied, and its next contender
+// not refused came within near_tie_bic (NearTie; empty otherwise), the
+// step the
 // effects not excluded outdid (FindSetReplacements; empty if none), and
 // whether a contender refused for leaving its bounds came ahead of every
 // one that earned its place at some round (a joint set's lead under
@@ -417,7 +418,7 @@ Diagnosis Search(const Case& c,
       tie = static_cast<int>(d.steps.size());
       if (earned.size() > 1) notes->tied_first = best.record.effect;
     }
-    if (step_rivals.empty() && notes->near_first.empty() &&
+    if (d.steps.empty() && step_rivals.empty() &&
         NearTie(contenders, earned, options)) {
       notes->near_first = best.record.effect;
     }
@@ -582,7 +583,8 @@ Diagnosis CatalogAlone(const Case& c,
 }
 
 // Search, and when a probe outdid the catalog, CatalogAlone (whose
-// answer has no notes->outdone).
+// answer has no notes->outdone or near_first: its search had its own
+// second thoughts).
 Diagnosis Searched(const Case& c,
                    const FitResult& nominal,
                    const DiagnoseOptions& options,
@@ -590,6 +592,7 @@ Diagnosis Searched(const Case& c,
   Diagnosis d = Search(c, nominal, options, notes);
   if (d.outside_catalog.effect.empty()) return d;
   notes->outdone.clear();
+  notes->near_first.clear();
   return CatalogAlone(c, nominal, options, *notes, std::move(d));
 }
 
@@ -664,26 +667,34 @@ Diagnosis OtherBranch(const Case& c,
   return other;
 }
 
-// A step taken alone whose runner-up came within near_tie_bic (a near
-// tie, SearchNotes::near_first) may have been the greedy search's wrong
-// turn: the search without its effect is the answer when it explains the
-// record with a complete model whose BIC is lower by more than
-// ambiguity_bic. Only for an `ambiguous` answer: an `explained` one has
-// had the runner-up swapped in for its step with the other effects in
-// (rival_bic) and lose by more than ambiguity_bic, and the search costs
-// as much again (a Table 6 triple, explained alike, went from 2.3 to 4.3
-// s). On a 3-s run with a tunnel damping (yaw term 1.36 times
-// the pitch term), a Magnus moment and a flow angularity, a body yaw
-// asymmetry led the tunnel damping by 14.6 at the first step; the search
-// that followed it added no Magnus moment and ended `ambiguous` over the
-// wrong effects, while the true model's BIC was about 22 lower.
+// A first step taken alone whose runner-up came within near_tie_bic (a
+// near tie, SearchNotes::near_first) may have been the greedy search's
+// wrong turn: the search without its effect is the answer when it
+// explains the record with a complete model whose BIC is lower by more
+// than ambiguity_bic. Only the first step, where every effect is still
+// missing and the signatures mix most; only when the answer claims its
+// effect (a step of it); and only for an `ambiguous` answer: an
+// `explained` one has had the runner-up swapped in for its step with the
+// other effects in (rival_bic) and lose by more than ambiguity_bic. The
+// search costs as much again: a Table 6 triple explained alike went from
+// 2.3 to 4.3 s, and one ambiguous, its first step's tunnel damping left
+// in the tie, from 3.2 to 5.4 s; neither answer changed. On a 3-s run
+// with a tunnel damping (yaw term 1.36 times the pitch term), a Magnus
+// moment and a flow angularity, a body yaw asymmetry led the tunnel
+// damping by 14.6 at the first step and was added; the search that
+// followed it added no Magnus moment and ended `ambiguous` over the wrong
+// effects, while the true model's BIC was about 22 lower.
 Diagnosis NearTieBranch(const Case& c,
                         const FitResult& nominal,
                         const DiagnoseOptions& options,
                         const SearchNotes& notes,
                         Diagnosis d) {
   const std::string& first = notes.near_first;
-  if (first.empty() || d.verdict != Verdict::kAmbiguous) return d;
+  const bool claimed =
+      std::any_of(d.steps.begin(), d.steps.end(), [&](const DiagnosisStep& s) {
+        return s.effect == first;
+      });
+  if (!claimed || d.verdict != Verdict::kAmbiguous) return d;
   SearchNotes unused;
   Diagnosis other = Searched(c, nominal, Without(options, first), &unused);
   const double margin = CompleteBic(d) - CompleteBic(other);
@@ -693,8 +704,9 @@ Diagnosis NearTieBranch(const Case& c,
     if (s.effect == first) followed = AsContender(s);
   }
   followed.rejected =
-      "led its step by less than near_tie_bic; without it the search "
-      "explains the record with a BIC " +
+      "led the next contender at its step by less than " +
+      FormatNumber("%.0f", options.near_tie_bic) +
+      " of BIC; without it the search explains the record with a BIC " +
       FormatNumber("%.1f", margin) + " lower";
   other.rejected.push_back(followed);
   other.verdict_text += "; " + Describe(first) +

@@ -800,6 +800,41 @@ std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
          "differ in)";
 }
 
+// The steps before the tie that TieDissolves pruned from the complete
+// model (`tied`) taken out of the final model *current (d->FinalFit(),
+// the model before the tie; *check its residual check) and reported as
+// partial: beside the tie's effect they were not needed, so before it
+// they only stood in for part of it. On a coning run with a roll reading
+// error and a nonlinear damping (90 deg of roll), a flow angularity,
+// adopted with the damping and a trim moment (tied with the reading
+// error), was pruned beside the trim moment but stayed in the final
+// model, a false effect. Unchanged when the refit fails.
+void WithoutPrunedBeforeTie(const std::vector<TimeHistory>& data,
+                            const DiagnoseOptions& options,
+                            const std::vector<bool>& tied,
+                            Diagnosis* d,
+                            Case* current,
+                            ResidualCheck* check) {
+  std::vector<DiagnosisStep> kept, pruned;
+  for (size_t i = 0; i < d->steps.size(); ++i) {
+    (tied[i] ? pruned : kept).push_back(d->steps[i]);
+  }
+  if (pruned.empty()) return;
+  Case without = CaseAtSolution(*current, d->FinalFit());
+  for (const DiagnosisStep& s : pruned) without = WithoutStep(without, s);
+  FitResult fit;
+  if (!FitFrom(without, d->FinalFit(), data, "without pruned steps", &fit)) {
+    return;
+  }
+  *check = CheckResiduals(fit, options);
+  d->fits.push_back(std::move(fit));
+  d->final_fit = d->fits.size() - 1;
+  *current = std::move(without);
+  d->partial.insert(d->partial.begin(), pruned.begin(), pruned.end());
+  d->steps = std::move(kept);
+  if (!d->steps.empty()) d->steps.back().after = *check;
+}
+
 ResidualCheck SettleFinalModel(
     const Case& user,
     const std::vector<TimeHistory>& data,
@@ -843,7 +878,9 @@ ResidualCheck SettleFinalModel(
     d->steps.resize(tie);
     d->final_fit = tie;
     *current = models[tie];
-    return tie == 0 ? d->initial : d->steps.back().after;
+    ResidualCheck before = tie == 0 ? d->initial : d->steps.back().after;
+    WithoutPrunedBeforeTie(data, options, tied, d, current, &before);
+    return before;
   }
   d->final_fit = d->steps.size();
   Prune(data, options, d, current);

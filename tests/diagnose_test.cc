@@ -1782,6 +1782,21 @@ TEST(Diagnose, ANonlinearDampingAtItsBoundIsJudgedWithinItsErrors) {
   ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
+// The same coning record on draw 9 (tests/data/coning_roll_error_
+// nonlinear_damping_seed9.csv). The damping, which alone dragged Cm_q, is
+// adopted in a joint set with a flow angularity and a trim moment; the
+// trim moment ties with the reading error. Beside the trim moment the
+// angularity was pruned, yet the final model (the one before the tie)
+// kept it: a false effect. It now goes with the tie (partial, not
+// excluded), and only the damping is added.
+TEST(Diagnose, AStepPrunedBesideTheTieIsNotAddedBeforeIt) {
+  const Diagnosis d =
+      DiagnoseRecord("coning_roll_error_nonlinear_damping_seed9.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("flow_angularity")) << text;
+  ExpectTruthAddedOrTied(d, {"roll_interaction", "nonlinear_damping"});
+}
+
 // tools/diagnose_suite's `coning` tunnel stiffness + roll reading error +
 // flow angularity (draw 3), kept as tests/data/coning_stiffness_roll_error_
 // angularity_seed3.csv. The true model's own residual has a periodogram

@@ -130,8 +130,9 @@
 // followed ends `not_explained`, the search is run again without the
 // effect it followed, and its answer is taken when it explains the
 // record, with or without a tie of its own (the effect left is named
-// among the rejected). So is a step taken alone whose next contender came
-// within `near_tie_bic` (20) of it, when the answer is `ambiguous` and
+// among the rejected). So is a first step taken alone whose next
+// contender came within `near_tie_bic` (20) of it, when the answer is
+// `ambiguous`, claims that step's effect, and
 // without it the search explains the record with a BIC lower by more
 // than `ambiguity_bic`.
 // A roll-locked effect (Effect::roll_locked) on records that span less
@@ -281,11 +282,11 @@ struct DiagnoseOptions {
   double min_bic_drop = 10.0;
   double ambiguity_bic = 10.0;
   double rival_bic = 30.0;
-  // When the answer is `ambiguous`, a step taken alone whose next
-  // contender (not refused) came within near_tie_bic of it is searched
-  // again without it; that search's answer is taken when it explains the
-  // record with a complete model lower in BIC by more than ambiguity_bic
-  // (the greedy search's wrong turn).
+  // When the answer is `ambiguous` and claims the effect of a first step
+  // taken alone with its next contender (not refused) within near_tie_bic
+  // of it, the record is searched again without that effect; that search's
+  // answer is taken when it explains the record with a complete model lower in
+  // BIC by more than ambiguity_bic (the greedy search's wrong turn).
   double near_tie_bic = 20.0;
   double max_drag = 5.0;
   int held_out_blocks = 8;
