@@ -690,19 +690,16 @@ Diagnosis NearTieBranch(const Case& c,
                         const SearchNotes& notes,
                         Diagnosis d) {
   const std::string& first = notes.near_first;
-  const bool claimed =
-      std::any_of(d.steps.begin(), d.steps.end(), [&](const DiagnosisStep& s) {
+  const auto claimed =
+      std::find_if(d.steps.begin(), d.steps.end(), [&](const DiagnosisStep& s) {
         return s.effect == first;
       });
-  if (!claimed || d.verdict != Verdict::kAmbiguous) return d;
+  if (claimed == d.steps.end() || d.verdict != Verdict::kAmbiguous) return d;
   SearchNotes unused;
   Diagnosis other = Searched(c, nominal, Without(options, first), &unused);
   const double margin = CompleteBic(d) - CompleteBic(other);
   if (!ExplainsRecord(other) || !(margin > options.ambiguity_bic)) return d;
-  CandidateFit followed = FollowedFirst(d, first);
-  for (const DiagnosisStep& s : d.steps) {
-    if (s.effect == first) followed = AsContender(s);
-  }
+  CandidateFit followed = AsContender(*claimed);
   followed.rejected =
       "led the next contender at its step by less than " +
       FormatNumber("%.0f", options.near_tie_bic) +
