@@ -606,6 +606,28 @@ DiagnoseOptions Without(const DiagnoseOptions& options, const std::string& id) {
   return without;
 }
 
+// The search (Searched) of `c` without the catalog effect `id`: the
+// second thoughts' other answer.
+Diagnosis SearchedWithout(const Case& c,
+                          const FitResult& nominal,
+                          const DiagnoseOptions& options,
+                          const std::string& id) {
+  SearchNotes unused;
+  return Searched(c, nominal, Without(options, id), &unused);
+}
+
+// `other`, the answer found without `dropped`'s effect, names that effect
+// among its rejected (`why`) and in its verdict (its description, then
+// `what`).
+void NoteDropped(CandidateFit dropped,
+                 const std::string& why,
+                 const std::string& what,
+                 Diagnosis* other) {
+  dropped.rejected = why;
+  other->verdict_text += "; " + Describe(dropped.effect) + what;
+  other->rejected.push_back(std::move(dropped));
+}
+
 // A step that the effects not excluded beat together by ambiguity_bic or
 // more (FindSetReplacements, `outdone`) was the search's wrong turn: the
 // search without its effect is the answer when it explains the record
@@ -615,8 +637,7 @@ bool ReplacedStep(const Case& c,
                   const DiagnoseOptions& options,
                   const std::string& outdone,
                   Diagnosis* d) {
-  SearchNotes unused;
-  Diagnosis other = Searched(c, nominal, Without(options, outdone), &unused);
+  Diagnosis other = SearchedWithout(c, nominal, options, outdone);
   const double margin = CompleteBic(*d) - CompleteBic(other);
   if (!ExplainsRecord(other) || !(margin > 0.0)) return false;
   for (const DiagnosisStep& s : d->steps) {
@@ -653,17 +674,14 @@ Diagnosis OtherBranch(const Case& c,
                       Diagnosis d) {
   const std::string& first = notes.tied_first;
   if (d.verdict != Verdict::kNotExplained || first.empty()) return d;
-  SearchNotes unused;
-  Diagnosis other = Searched(c, nominal, Without(options, first), &unused);
+  Diagnosis other = SearchedWithout(c, nominal, options, first);
   if (!ExplainsRecord(other)) return d;
-  CandidateFit followed = FollowedFirst(d, first);
-  followed.rejected =
-      "as good at its step as the effect that replaced it, but whatever "
-      "followed it the residuals stayed structured";
-  other.rejected.push_back(followed);
-  other.verdict_text += "; " + Describe(first) +
-                        ", as good at one step, leaves the residuals "
-                        "structured whatever follows it";
+  NoteDropped(FollowedFirst(d, first),
+              "as good at its step as the effect that replaced it, but "
+              "whatever followed it the residuals stayed structured",
+              ", as good at one step, leaves the residuals structured "
+              "whatever follows it",
+              &other);
   return other;
 }
 
@@ -695,20 +713,18 @@ Diagnosis NearTieBranch(const Case& c,
         return s.effect == first;
       });
   if (claimed == d.steps.end() || d.verdict != Verdict::kAmbiguous) return d;
-  SearchNotes unused;
-  Diagnosis other = Searched(c, nominal, Without(options, first), &unused);
+  Diagnosis other = SearchedWithout(c, nominal, options, first);
   const double margin = CompleteBic(d) - CompleteBic(other);
   if (!ExplainsRecord(other) || !(margin > options.ambiguity_bic)) return d;
-  CandidateFit followed = AsContender(*claimed);
-  followed.rejected =
-      "led the next contender at its step by less than " +
-      FormatNumber("%.0f", options.near_tie_bic) +
-      " of BIC; without it the search explains the record with a BIC " +
-      FormatNumber("%.1f", margin) + " lower";
-  other.rejected.push_back(followed);
-  other.verdict_text += "; " + Describe(first) +
-                        ", taken first by a small lead, explains the record "
-                        "worse than the effects found without it";
+  NoteDropped(AsContender(*claimed),
+              "led the next contender at its step by less than " +
+                  FormatNumber("%.0f", options.near_tie_bic) +
+                  " of BIC; without it the search explains the record "
+                  "with a BIC " +
+                  FormatNumber("%.1f", margin) + " lower",
+              ", taken first by a small lead, explains the record worse "
+              "than the effects found without it",
+              &other);
   return other;
 }
 

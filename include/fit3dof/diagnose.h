@@ -132,9 +132,8 @@
 // record, with or without a tie of its own (the effect left is named
 // among the rejected). So is a first step taken alone whose next
 // contender came within `near_tie_bic` (20) of it, when the answer is
-// `ambiguous`, claims that step's effect, and
-// without it the search explains the record with a BIC lower by more
-// than `ambiguity_bic`.
+// `ambiguous`, claims that step's effect, and without it the search
+// explains the record with a BIC lower by more than `ambiguity_bic`.
 // A roll-locked effect (Effect::roll_locked) on records that span less
 // than a revolution of roll ties with a drift in time (`drift_in_time`,
 // outside the catalog): the record is then `ambiguous` at best, and a
