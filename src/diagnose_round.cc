@@ -221,15 +221,16 @@ double BestBic(const std::vector<Contender>& contenders) {
 // explained: ambiguity_bic; but a roll-locked effect on records that
 // sweep less than a revolution of roll is already a drift in time there
 // (DriftInTime), and when a fitted drift (of the readings or of the
-// dynamic pressure) does better it has nothing left to show for itself.
-// A flow stiffer in one plane is no drift: it needs the margin.
+// dynamic pressure) does better by any evidence at all (drift_bic) it has
+// nothing left to show for itself. A flow stiffer in one plane is no
+// drift: it needs the margin.
 double ProbeMargin(const Contender& best,
                    const Contender& probe,
                    const std::vector<TimeHistory>& data,
                    const DiagnoseOptions& options) {
   return probe.candidate->effect->drifts_in_time &&
                  best.candidate->effect->roll_locked && !RollSeparates(data)
-             ? 0.0
+             ? options.drift_bic
              : options.ambiguity_bic;
 }
 

@@ -159,14 +159,14 @@
 // two runs a roll-synchronous reading error and a zero offset had been adopted
 // for a drifting pitch reading. When the best is roll-locked and the records
 // sweep less than a revolution of roll (it is then a drift in time itself), a
-// drift probe needs no margin: better at all, the verdict is `not_explained` (a
-// pitch reading drift on one 3-s run had ended `ambiguous` with a roll reading
-// error of twice its parameters). Otherwise, within `ambiguity_bic` of the
-// best, it ties with it (`ambiguous`): on
-// one 3-s run a bearing moment (a stiffness that grows as the amplitude
-// decays) and a drifting dynamic pressure do; a drifting pressure had
-// been named a bearing moment.
-// A probe is weighed against one catalog effect at a time: when it wins
+// drift probe needs only `drift_bic` (2): better by that, the verdict is
+// `not_explained` (a pitch reading drift on one 3-s run had ended `ambiguous`
+// with a roll reading error of twice its parameters); closer, the two tie (a
+// trim moment had been left unexplained for a drift better by 0.4). Otherwise,
+// within `ambiguity_bic` of the best, it ties with it (`ambiguous`): on one 3-s
+// run a bearing moment (a stiffness that grows as the amplitude decays) and a
+// drifting dynamic pressure do; a drifting pressure had been named a bearing
+// moment. A probe is weighed against one catalog effect at a time: when it wins
 // without reaching the noise, the diagnosis without probes is run too;
 // when that explains the record (or ties with every branch explained) with
 // a BIC lower than the probe's model's by more than `ambiguity_bic`, it is
@@ -244,7 +244,8 @@ struct Effect {
   bool roll_locked = false;
   // A probe that is a drift in time (of the readings, of the dynamic
   // pressure): over less than a revolution of roll a roll-locked effect is
-  // one too, and such a probe beats it without a margin (ProbeMargin).
+  // one too, and such a probe beats it by any evidence at all (ProbeMargin,
+  // DiagnoseOptions::drift_bic).
   bool drifts_in_time = false;
   // Its terms lie on a ridge with the body's own coefficients: only a
   // combination is determined, and a point fit lands anywhere along it the
@@ -287,6 +288,11 @@ struct DiagnoseOptions {
   // answer is taken when it explains the record with a complete model lower in
   // BIC by more than ambiguity_bic (the greedy search's wrong turn).
   double near_tie_bic = 20.0;
+  // How much lower a drift probe's BIC must be than a roll-locked effect's
+  // on records that sweep less than a revolution of roll, for the record to
+  // be not explained: a difference under 2 is no evidence either way (Kass
+  // and Raftery's scale), and the two tie.
+  double drift_bic = 2.0;
   double max_drag = 5.0;
   int held_out_blocks = 8;
   double gain_per_parameter = 2.0;
