@@ -300,10 +300,10 @@ constexpr double kBoundErrors = 2.0;
 
 // Why the effect's terms `added`, as `fit` (of case `c`) has them, lie
 // outside its bounds (Implausible) both at the point fit and moved `k` of
-// their standard errors toward zero (Shrunk); empty when either is within
-// them. Shrinking a tunnel term alone moves the sum that Eq. 43 leaves
-// determined (Cm_q + t2): one within its bounds as fitted can leave them
-// shrunk (a record's damping turned positive).
+// their standard errors toward where the effect is least (Shrunk); empty when
+// either is within them. Shrinking a tunnel term alone moves the sum that Eq.
+// 43 leaves determined (Cm_q + t2): one within its bounds as fitted can leave
+// them shrunk (a record's damping turned positive).
 std::string ImplausibleWithin(const Effect& effect,
                               const Case& c,
                               const FitResult& fit,

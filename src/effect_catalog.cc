@@ -136,7 +136,10 @@ const std::vector<Effect>& EffectCatalog() {
        {{"bearing_angle", 1.0}},
        "bearing pressure",
        "|Cm_bearing| up to |Cm_alpha|, bearing_angle within the record's "
-       "angles"},
+       "angles",
+       false,
+       false,
+       true},
       {"calibration_nonlinearity",
        "a pitch and yaw calibration nonlinearity (Section 5.2)",
        {"theta_cal3", "psi_cal3"},

@@ -254,7 +254,10 @@ struct Effect {
   // 1.8e-4, where the true model's own fit lands too); a nonlinear damping
   // on a 3-s run (Cm_q + 0.0049 Cm_q_delta2, the two 99.96% correlated:
   // a true 4.0 times |Cm_q| over the record fitted at 4.02, past the bound
-  // of 4). A second search judges its bounds within two of its errors
+  // of 4); a bearing moment whose angle is small against the record's
+  // (Cm_alpha + Cm_bearing, 99.9994% correlated on a pair of runs: a true
+  // 0.5 deg fitted at 9.0 +- 12.8, past the record's 8.0). A second search
+  // judges its bounds within two of its errors
   // (DiagnoseOptions::bounds_within_errors).
   bool on_ridge = false;
   // A probe (Probes()) whose terms the effect's form leaves open: a
