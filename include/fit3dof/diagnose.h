@@ -180,6 +180,9 @@
 // friction on the pitch axis alone had got a nonlinear damping and a body
 // yaw asymmetry (Cm_q 15 of its errors off the nominal fit's); the ball's
 // friction with a tunnel damping beside it explains that 3-s run better.
+// Within `ambiguity_bic` of that answer the answer stands, and its verdict
+// names the probe's model as one that explains the record alike, with what
+// would separate them (outside_catalog_alike).
 // Every effect that was a contender at some round of the search (it
 // lowered BIC by more than `min_bic_drop` there, however far behind the
 // round's best) and is neither in the model nor in a tie is also tried
@@ -476,6 +479,12 @@ struct Diagnosis {
   // probe weighed with the search the catalog gets): those effects (ids; a
   // tie's both). Not added.
   std::vector<std::string> outside_catalog_beside;
+  // When the catalog's answer is taken (`explained` or `ambiguous`) but a
+  // probe that outdid every catalog effect alone, with catalog effects
+  // beside it, explains the record within ambiguity_bic of that answer:
+  // the probe's id, then those effects (ids; a tie's both). Not added; the
+  // verdict says so and what would separate them. Empty otherwise.
+  std::vector<std::string> outside_catalog_alike;
   // Every parameter of the final model (its free ones with errors).
   std::vector<ParameterEstimate> final_parameters;
   Case final_case;
