@@ -493,7 +493,7 @@ std::string ExplainedBy(const Diagnosis& d) {
   return text + (text.empty() ? "" : ", and ") + Joined(tie, " or ");
 }
 
-// The probe `d` names, weighed as the catalog is: `notes`' probe model
+// The probe `probe_id`, weighed as the catalog is: `notes`' probe model
 // searched on with the catalog's effects beside it (`without` probes), its
 // complete model's BIC against `catalog`'s (`margin`, negative when lower),
 // and whether it explains the record with the probe's terms of their
@@ -518,7 +518,7 @@ ProbeBeside SearchedBeside(const SearchNotes& notes,
   return b;
 }
 
-// Whether the probe `d` names, searched beside (SearchedBeside), explains
+// Whether the probe *d names, searched beside (`b`, SearchedBeside), explains
 // the record with a BIC lower than `catalog`'s complete model's by more
 // than ambiguity_bic; if so *d names those effects (outside_catalog_beside)
 // and its verdict says so. A dry friction on the pitch axis alone, which
