@@ -493,6 +493,15 @@ std::string ExplainedBy(const Diagnosis& d) {
   return text + (text.empty() ? "" : ", and ") + Joined(tie, " or ");
 }
 
+// The effects a diagnosis that explains its record holds, as ids: the
+// steps, then the tie's effects (ExplainedBy's, in words).
+std::vector<std::string> ExplainedIds(const Diagnosis& d) {
+  std::vector<std::string> ids;
+  for (const DiagnosisStep& s : d.steps) ids.push_back(s.effect);
+  for (const CandidateFit& k : d.ambiguous) ids.push_back(k.effect);
+  return ids;
+}
+
 // The probe `probe_id`, weighed as the catalog is: `notes`' probe model
 // searched on with the catalog's effects beside it (`without` probes), its
 // complete model's BIC against `catalog`'s (`margin`, negative when lower),
@@ -537,12 +546,7 @@ bool CompletedBeside(const ProbeBeside& b,
                      const Diagnosis& catalog,
                      Diagnosis* d) {
   if (!b.explains || !(b.margin < -options.ambiguity_bic)) return false;
-  for (const DiagnosisStep& s : b.d.steps) {
-    d->outside_catalog_beside.push_back(s.effect);
-  }
-  for (const CandidateFit& k : b.d.ambiguous) {
-    d->outside_catalog_beside.push_back(k.effect);
-  }
+  d->outside_catalog_beside = ExplainedIds(b.d);
   d->verdict_text += "; with " + ExplainedBy(b.d) +
                      " beside it the residuals are at the noise level, BIC " +
                      FormatNumber("%.1f", -b.margin) +
@@ -568,12 +572,9 @@ void AlikeBeside(const ProbeBeside& b,
                           "taken";
   outside->rejected += "; with " + ExplainedBy(b.d) +
                        " beside it, it explains the record alike (" + bic + ")";
-  other->outside_catalog_alike.push_back(outside->effect);
-  for (const DiagnosisStep& s : b.d.steps) {
-    other->outside_catalog_alike.push_back(s.effect);
-  }
-  for (const CandidateFit& k : b.d.ambiguous) {
-    other->outside_catalog_alike.push_back(k.effect);
+  other->outside_catalog_alike = {outside->effect};
+  for (const std::string& id : ExplainedIds(b.d)) {
+    other->outside_catalog_alike.push_back(id);
   }
   const Effect* probe = FindProbe(outside->effect);
   other->verdict_text += "; alike: " + probe->description + " with " +
