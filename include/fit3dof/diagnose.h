@@ -72,7 +72,9 @@
 //     (each moves the coefficients that the others biased): when a
 //     contender is refused for its drag and none with a lower BIC earned
 //     its place (the best may be refused otherwise), the first such is
-//     fitted with one or two of the next three contenders (a joint set),
+//     fitted with one or two of the next three contenders (a joint set;
+//     when fewer than three follow it, those ranked above it that failed
+//     alone only to predict the held-out part join the pool),
 //     and the lowest-BIC set that reaches the noise level, keeps every
 //     effect in the model within its bounds and predicts the held-out
 //     part better (as below, per parameter it adds) is adopted, its
