@@ -133,5 +133,25 @@ TEST(ProfileErrorBar, CoversTheBearingMomentWhereADeterminedAngleBendsIt) {
   EXPECT_TRUE(fit.warnings.empty()) << ::testing::PrintToString(fit.warnings);
 }
 
+// Flatter still beyond the second probe: on a pair of 3-s runs with a
+// bearing moment fading at 0.5 deg, the fit lands at 2.4 +- 1.3 deg on the
+// ridge, and Cm_bearing's sum of squares rises by E^2 only at the second
+// probe (1.8 E^2, 0.0022 out), by 2.0 E^2 at 0.005. The secant there had
+// put the truth (-0.00891, 0.0059 out) 3.6 errors off; probed again where
+// that secant puts three errors, the error bar covers it.
+TEST(ProfileErrorBar, ProbesFurtherWhereTheSecondProbeFindsItFlat) {
+  const Case c = LoadConfig(
+      testing::SourcePath("tests/data/pair_bearing_half_degree_vary13.yaml"));
+  const FitResult fit = Fit(c);
+  const ParameterEstimate* moment = SharedEstimate(fit, "Cm_bearing");
+  ASSERT_NE(moment, nullptr);
+  constexpr double kTruth = -0.00891;
+  EXPECT_LT(std::abs(moment->value - kTruth), 3.0 * moment->standard_error)
+      << moment->value << " +- " << moment->standard_error;
+  EXPECT_TRUE(testing::InPipeline(
+      fit, "Cm_bearing's error bar from its profile: 4 refits"))
+      << ::testing::PrintToString(fit.pipeline);
+}
+
 }  // namespace
 }  // namespace fit3dof
