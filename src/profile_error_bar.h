@@ -15,8 +15,9 @@
 // chi-square). The probe starts at k = 3 and goes to k = 15 when the rise
 // stays below E^2 there. When it rises by E^2 but by less than 80% of a
 // quadratic's k^2 E^2 (at either probe), the profile flattens on that
-// side, and one more probe goes where that secant puts the rise of 9 E^2:
-// the wider secant
+// side, and one more probe goes where that secant puts the rise of 9 E^2,
+// and so on while the rise there stays short of 80% of 9 E^2 (three at
+// most): the widest secant
 // counts, so that three error bars reach where the profile has risen by
 // about 9 E^2 (the offset a test within three errors needs). The wider of
 // the two sides counts. Error bars are only widened: a profile steeper
