@@ -145,8 +145,9 @@ bool SideWidth(const Case& c,
     // 1.3, Cm_bearing rose by E^2 only at the second probe (1.8 E^2, 0.0022
     // out), and 0.005 out by 2.0 E^2; the secant's 0.0017 had put the
     // truth, 0.0059 out, 3.6 errors off.
-    if (rise < kFlatter * k * k)
+    if (rise < kFlatter * k * k) {
       FurtherOut(c, data, fit, e, sign, offset, rise, out, width);
+    }
     break;
   }
   return any;

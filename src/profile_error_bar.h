@@ -17,13 +17,13 @@
 // quadratic's k^2 E^2 (at either probe), the profile flattens on that
 // side, and one more probe goes where that secant puts the rise of 9 E^2,
 // and so on while the rise there stays short of 80% of 9 E^2 (three at
-// most): the widest secant
-// counts, so that three error bars reach where the profile has risen by
-// about 9 E^2 (the offset a test within three errors needs). The wider of
-// the two sides counts. Error bars are only widened: a profile steeper
-// than the linear one (a sum of squares rising faster than quadratically)
-// keeps the linear error bar. The two sides are refitted in parallel,
-// within the process's thread budget (thread_budget.h).
+// most): the widest secant counts, so that three error bars reach where
+// the profile has risen by about 9 E^2 (the offset a test within three
+// errors needs). The wider of the two sides counts. Error bars are only
+// widened: a profile steeper than the linear one (a sum of squares rising
+// faster than quadratically) keeps the linear error bar. The two sides are
+// refitted in parallel, within the process's thread budget
+// (thread_budget.h).
 //
 // On one 3-s run with a bearing moment, Cm_bearing = -0.0094 +- 0.0010 with
 // its saturation angle undetermined (3.4 +- 5.7 deg); frozen anywhere from
