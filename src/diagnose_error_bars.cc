@@ -11,11 +11,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "diagnose_search.h"
+#include "fit3dof/parameters.h"
 #include "fit3dof/thread_budget.h"
 #include "format.h"
 
@@ -406,6 +408,82 @@ std::string BesideWords(const std::string& model, bool at_noise, double rise) {
          " model, which is short of the noise " + bic;
 }
 
+// A near twin is one whose least novel direction keeps less than this
+// fraction of its information once the free parameters have theirs
+// (CandidateScore::novelty).
+constexpr double kTwinNovelty = 0.01;
+// Below this fraction the effect is an exact twin: its terms and the free
+// parameters are one combination to the record (Eq. 43's tunnel terms,
+// 1e-9), and no fit beside the model tells what it allows; the catalog's
+// convention (the nominal fit's) holds it absent. Score's rank drop.
+constexpr double kExactTwin = 1e-6;
+
+// `m`'s case at its solution with its effects' terms held there, not
+// free.
+Case EffectsHeld(const CompleteModel& m) {
+  Case held = CaseAtSolution(m.c, *m.fit);
+  for (const Effect* e : m.effects) {
+    const bool symmetric = held.model == ModelKind::kSymmetric;
+    for (const std::string& name : symmetric ? e->symmetric : e->asymmetric) {
+      const int position = FindParameter(held.model, name);
+      if (position >= 0 && !held.parameters[position].tied()) {
+        held.parameters[position].free = false;
+      }
+    }
+  }
+  held.SettleTies();
+  return held;
+}
+
+// The effects neither in `contended` nor tied that the complete model's
+// effects made near twins of its free parameters: CandidateScore::novelty
+// at `model`'s solution below kTwinNovelty, and less than a tenth of what
+// it is there with the effects' terms held (EffectsHeld). A refit with one
+// moves those terms, not the residual, so its score ranks it out of every
+// round's refits, however far it would drag them. On a 3-s coning run
+// with a tunnel damping, a Magnus moment and a flow angularity, the tunnel
+// damping (its two terms of opposite sign) took the Magnus moment's part
+// once added (novelty 1e-5, against 2e-4 with its terms held): the Magnus
+// moment was never among the contenders, never tried beside the complete
+// model, and Cm_q ended -2.15 +- 0.03 against a truth of -5.5. The twins
+// of the body's own coefficients alone are left out: a tunnel stiffness
+// is Cm_alpha's twin on every record (Eq. 43), and tried beside the
+// nominal fit of a clean record it widened Cm_alpha 8800-fold. There the
+// nominal fit holds them absent, as the report's programs did.
+std::vector<const Effect*> NearTwins(
+    const std::vector<const Effect*>& contended,
+    const CompleteModel& model,
+    const Diagnosis& d,
+    const DiagnoseOptions& options) {
+  if (model.effects.empty()) return {};
+  std::map<const Effect*, double> held;
+  for (const Candidate& k :
+       ScoredCandidates(EffectsHeld(model), *model.fit, options)) {
+    held[k.effect] = k.score.novelty;
+  }
+  std::vector<const Effect*> twins;
+  for (const Candidate& k : ScoredCandidates(model.c, *model.fit, options)) {
+    const auto before = held.find(k.effect);
+    VLOG(1) << k.effect->id << " at the complete model: novelty "
+            << k.score.novelty << " ("
+            << (before == held.end() ? -1.0 : before->second)
+            << " with its effects held), score " << k.score.score;
+    if (k.score.novelty < kTwinNovelty && k.score.novelty >= kExactTwin &&
+        before != held.end() && k.score.novelty < 0.1 * before->second &&
+        !InTie(d, k.effect->id) &&
+        std::find(contended.begin(), contended.end(), k.effect) ==
+            contended.end()) {
+      twins.push_back(k.effect);
+    }
+  }
+  return twins;
+}
+
+// The words for a near twin (NearTwins) not excluded.
+constexpr char kTwinWords[] =
+    "; a near twin of the free parameters, which its score ranked out of "
+    "every round's refits";
+
 }  // namespace
 
 void FindNotExcluded(const std::vector<const Effect*>& contended,
@@ -429,16 +507,25 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   }
   // Whether each model reaches the noise, for the words (checked once per
   // model, not per effect tried beside it).
-  std::vector<char> at_noise;
+  std::map<const FitResult*, bool> at_noise;
   for (const CompleteModel& m : complete) {
-    at_noise.push_back(CheckResiduals(*m.fit, options).at_noise_level);
+    at_noise[m.fit] = CheckResiduals(*m.fit, options).at_noise_level;
   }
   // A tied effect's models are the tie's (WidenForTie).
   std::vector<const Effect*> effects;
   for (const Effect* e : contended) {
     if (!InTie(*d, e->id)) effects.push_back(e);
   }
-  for (const Beside& t : FitBeside(complete, effects, data)) {
+  std::vector<Beside> trials = FitBeside(complete, effects, data);
+  // The near twins of the first complete model's parameters (the one
+  // their words name): tried beside it alone.
+  const std::vector<CompleteModel> first = {complete[0]};
+  const std::vector<const Effect*> twins =
+      NearTwins(effects, first[0], *d, options);
+  for (Beside& t : FitBeside(first, twins, data)) {
+    trials.push_back(std::move(t));
+  }
+  for (const Beside& t : trials) {
     if (!t.fitted) continue;
     const double rise = t.rise;
     VLOG(1) << t.effect->id << " beside the complete model: BIC "
@@ -447,12 +534,16 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
     // Each effect listed once: beside the first complete model it is not
     // excluded beside.
     const bool final = t.model->fit == &d->FinalFit();
-    TakeNotExcluded(t,
-                    BesideWords(final ? "final" : "search's",
-                                at_noise[t.model - complete.data()],
-                                rise),
-                    &d->not_excluded,
-                    d);
+    const bool twin =
+        std::find(twins.begin(), twins.end(), t.effect) != twins.end();
+    TakeNotExcluded(
+        t,
+        BesideWords(
+            final ? "final" : "search's", at_noise[t.model->fit], rise) +
+            (twin ? kTwinWords : ""),
+        &d->not_excluded,
+        d);
+    if (twin) d->near_twins.push_back(t.effect->id);
   }
   FindOpenTerms(complete, data, options, d);
 }
@@ -530,8 +621,12 @@ std::string FindSetReplacements(const std::vector<Case>& models,
   if (!CheckResiduals(*m.fit, options).at_noise_level) return "";
   std::vector<const Effect*> set;
   for (const CandidateFit& k : d->not_excluded) {
-    set.push_back(FindEffect(k.effect));
+    if (std::find(d->near_twins.begin(), d->near_twins.end(), k.effect) ==
+        d->near_twins.end()) {
+      set.push_back(FindEffect(k.effect));
+    }
   }
+  if (set.size() < 2) return "";
   const int n = static_cast<int>(d->steps.size());
   std::vector<Case> cases(n);
   std::vector<FitResult> fits(n);

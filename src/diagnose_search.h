@@ -339,6 +339,10 @@ void WidenForTie(Diagnosis* d);
 // parameters into d->not_excluded_models. So do, into d->open_terms, the
 // probes a complete model's effects leave open (Effect::leaves_open: the
 // cube's reading gain) where the record cannot exclude them beside it.
+// Beside the first complete model, the effects its effects made near twins
+// of its free parameters are tried too, though never contended (their
+// score stays low however far they drag; diagnose_error_bars.cc
+// NearTwins): into d->near_twins as well when not excluded.
 //
 // On a 3-s coning run with a tunnel damping, a Magnus moment and a flow
 // angularity, the tunnel damping and Cm_q absorbed the Magnus moment (one

@@ -198,6 +198,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
         {{"effect", d.stood_in[i].effect}, {"for", d.stood_in_for[i]}});
   }
   out["not_excluded"] = Contenders(d.not_excluded);
+  out["near_twins"] = d.near_twins;
   out["open_terms"] = Contenders(d.open_terms);
   if (!d.residual_description.empty()) {
     out["residual_description"] = d.residual_description;

@@ -40,6 +40,20 @@ Eigen::MatrixXd PseudoInverse(const Eigen::MatrixXd& m,
   return inverse;
 }
 
+// The smallest eigenvalue of the Schur complement `schur` of the
+// effect's information `icc`, each term scaled to its own information:
+// the least fraction of any direction's information left once the free
+// parameters have taken theirs (1 - R^2 for one term).
+double Novelty(const Eigen::MatrixXd& icc, const Eigen::MatrixXd& schur) {
+  const Eigen::ArrayXd own = icc.diagonal().array();
+  if ((own <= 0.0).any()) return 0.0;
+  const Eigen::VectorXd scale = own.rsqrt().matrix();
+  const Eigen::MatrixXd scaled =
+      scale.asDiagonal() * schur * scale.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled);
+  return std::max(eigen.eigenvalues().minCoeff(), 0.0);
+}
+
 }  // namespace
 
 CandidateScore Score(const Case& candidate,
@@ -90,6 +104,7 @@ CandidateScore Score(const Case& candidate,
   const double variance = l.ressum / std::max(dof, 1);
   score.score = g.dot(inverse * g) / variance;
   score.dof = rank;
+  score.novelty = Novelty(icc, schur);
   return score;
 }
 

@@ -342,6 +342,9 @@ TEST(Diagnose, AddsNothingToCleanData) {
     added += !d.steps.empty();
     EXPECT_TRUE(d.final.at_noise_level)
         << "seed " << seed << ": " << d.verdict_text;
+    // A clean record's twins (a tunnel stiffness and Cm_alpha, Eq. 43) are
+    // the nominal fit's convention, not a doubt of the diagnosis.
+    EXPECT_TRUE(d.near_twins.empty()) << "seed " << seed;
     if (d.model_standard_errors.empty()) {
       EXPECT_EQ(FormatDiagnosis(d, {0.01, 0.01, 0.01}).find("widened"),
                 std::string::npos);
@@ -628,6 +631,35 @@ TEST(Diagnose, AJointSetDrawsOnContendersRankedAboveItsLead) {
   EXPECT_TRUE(named.count("roll_interaction")) << text;
   const std::map<std::string, double> truth = {{"Cm_q", -5.5},
                                                {"Cm_q_delta2", 982.87}};
+  int checked = 0;
+  for (const ParameterEstimate& e : d.final_parameters) {
+    const auto it = truth.find(e.name);
+    if (it == truth.end()) continue;
+    ++checked;
+    EXPECT_NEAR(e.value, it->second, 3.0 * e.standard_error) << text;
+  }
+  EXPECT_EQ(checked, 2) << text;
+}
+
+// On a 3-s coning run the Magnus moment acts along the motion as Cm_q
+// does: its score at every round's solution was spanned by Cm_q (novelty
+// about 1e-5), so no round refitted it and it was never tried beside the
+// final model. That model (a tunnel damping, a tie of the angularity and
+// the reading error) reached the noise with Cm_q at -2.15 +- 0.03, 106 of
+// its errors from the truth. Tried there as a near twin (NearTwins), the
+// Magnus moment is not excluded, and the final error bars cover the
+// truth.
+TEST(Diagnose, NearTwinsOfTheFreeParametersAreTriedBesideTheFinalModel) {
+  const Diagnosis d =
+      DiagnoseConfig("coning_damping_magnus_angularity_vary14.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("magnus")) << text;
+  EXPECT_NE(std::find(d.near_twins.begin(), d.near_twins.end(), "magnus"),
+            d.near_twins.end())
+      << text;
+  EXPECT_NE(text.find("near twin"), std::string::npos) << text;
+  const std::map<std::string, double> truth = {{"Cm_alpha", -0.23},
+                                               {"Cm_q", -5.5}};
   int checked = 0;
   for (const ParameterEstimate& e : d.final_parameters) {
     const auto it = truth.find(e.name);
@@ -945,6 +977,14 @@ TEST(Diagnose, NamesABodyFixedYawAsymmetryInTheAsymmetricProgram) {
     EXPECT_FALSE(s.parameters.empty()) << s.effect << "\n" << text;
   }
   EXPECT_EQ(text.find("()"), std::string::npos) << text;
+  // With the body's own yaw stiffness free, a tunnel stiffness is one
+  // combination with it and Cm_alpha (Eq. 43): an exact twin, which no
+  // fit beside the model weighs (it had widened Cm_alpha 2700-fold).
+  EXPECT_EQ(std::count(d.near_twins.begin(),
+                       d.near_twins.end(),
+                       std::string("tunnel_stiffness")),
+            0)
+      << text;
 }
 
 // The true Cm_alpha and Cm_q of the short runs.

@@ -356,6 +356,12 @@ struct CandidateScore {
   std::string effect;
   double score = 0.0;  // LM statistic
   int dof = 0;         // directions not already spanned
+  // The least part of the information in any direction of the effect's
+  // terms that the free parameters do not already carry: 1 - R^2 of a
+  // one-term effect on them. Near 0, the effect is a near twin of
+  // parameters already free: a refit moves them, not the residual, so its
+  // score stays low however much it drags them.
+  double novelty = 1.0;
 };
 
 // A contender refitted in full, and whether it earned its place.
@@ -512,6 +518,11 @@ struct Diagnosis {
   // cover their models' values too (not_excluded_models,
   // diagnose_error_bars.cc WidenForNotExcluded).
   std::vector<CandidateFit> not_excluded;
+  // Those of not_excluded that no round contended: effects the complete
+  // model's effects made near twins of its free parameters, tried beside
+  // it for that alone (diagnose_error_bars.cc NearTwins). Their error bars
+  // count; they do not stand in for a step (FindSetReplacements).
+  std::vector<std::string> near_twins;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
   std::vector<double> not_excluded_weights;  // each model's Akaike weight
   // The probes an added effect leaves open (Effect::leaves_open) that the
