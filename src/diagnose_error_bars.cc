@@ -456,25 +456,34 @@ std::vector<const Effect*> NearTwins(
     const Diagnosis& d,
     const DiagnoseOptions& options) {
   if (model.effects.empty()) return {};
-  std::map<const Effect*, double> held;
-  for (const Candidate& k :
-       ScoredCandidates(EffectsHeld(model), *model.fit, options)) {
-    held[k.effect] = k.score.novelty;
-  }
-  std::vector<const Effect*> twins;
+  std::vector<const Effect*> near;
+  std::vector<double> novelty;
   for (const Candidate& k : ScoredCandidates(model.c, *model.fit, options)) {
-    const auto before = held.find(k.effect);
-    VLOG(1) << k.effect->id << " at the complete model: novelty "
-            << k.score.novelty << " ("
-            << (before == held.end() ? -1.0 : before->second)
-            << " with its effects held), score " << k.score.score;
     if (k.score.novelty < kTwinNovelty && k.score.novelty >= kExactTwin &&
-        before != held.end() && k.score.novelty < 0.1 * before->second &&
         !InTie(d, k.effect->id) &&
         std::find(contended.begin(), contended.end(), k.effect) ==
             contended.end()) {
-      twins.push_back(k.effect);
+      near.push_back(k.effect);
+      novelty.push_back(k.score.novelty);
     }
+  }
+  // Those alone scored again with the effects' terms held.
+  const Case held = EffectsHeld(model);
+  const std::vector<TimeHistory> data = FittedData(*model.fit);
+  std::vector<double> held_novelty(near.size(), 0.0);
+  ParallelFor(static_cast<int>(near.size()), [&](int i) {
+    Case c;
+    std::vector<std::string> added;
+    if (CandidateCase(held, *near[i], &c, &added)) {
+      held_novelty[i] = Score(c, added, near[i]->id, data).novelty;
+    }
+  });
+  std::vector<const Effect*> twins;
+  for (size_t i = 0; i < near.size(); ++i) {
+    VLOG(1) << near[i]->id << " beside the complete model: novelty "
+            << novelty[i] << ", " << held_novelty[i]
+            << " with its effects held";
+    if (novelty[i] < 0.1 * held_novelty[i]) twins.push_back(near[i]);
   }
   return twins;
 }
