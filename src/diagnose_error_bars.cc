@@ -408,16 +408,6 @@ std::string BesideWords(const std::string& model, bool at_noise, double rise) {
          " model, which is short of the noise " + bic;
 }
 
-// A near twin is one whose least novel direction keeps less than this
-// fraction of its information once the free parameters have theirs
-// (CandidateScore::novelty).
-constexpr double kTwinNovelty = 0.01;
-// Below this fraction the effect is an exact twin: its terms and the free
-// parameters are one combination to the record (Eq. 43's tunnel terms,
-// 1e-9), and no fit beside the model tells what it allows; the catalog's
-// convention (the nominal fit's) holds it absent. Score's rank drop.
-constexpr double kExactTwin = 1e-6;
-
 // `m`'s case at its solution with its effects' terms held there, not
 // free.
 Case EffectsHeld(const CompleteModel& m) {
@@ -437,7 +427,7 @@ Case EffectsHeld(const CompleteModel& m) {
 
 // The effects neither in `contended` nor tied that the complete model's
 // effects made near twins of its free parameters: CandidateScore::novelty
-// at `model`'s solution below kTwinNovelty, and less than a tenth of what
+// at `model`'s solution (IsNearTwin), and less than a tenth of what
 // it is there with the effects' terms held (EffectsHeld). A refit with one
 // moves those terms, not the residual, so its score ranks it out of every
 // round's refits, however far it would drag them. On a 3-s coning run
@@ -459,8 +449,7 @@ std::vector<const Effect*> NearTwins(
   std::vector<const Effect*> near;
   std::vector<double> novelty;
   for (const Candidate& k : ScoredCandidates(model.c, *model.fit, options)) {
-    if (k.score.novelty < kTwinNovelty && k.score.novelty >= kExactTwin &&
-        !InTie(d, k.effect->id) &&
+    if (IsNearTwin(k.score) && !InTie(d, k.effect->id) &&
         std::find(contended.begin(), contended.end(), k.effect) ==
             contended.end()) {
       near.push_back(k.effect);
@@ -494,6 +483,14 @@ constexpr char kTwinWords[] =
     "every round's refits";
 
 }  // namespace
+
+bool IsNearTwin(const CandidateScore& score) {
+  // Less than 1% left: a near twin. Less than 1e-6 (Score's rank drop):
+  // an exact one, its terms and the free parameters one combination to
+  // the record (Eq. 43's tunnel terms, 1e-9), which no fit tells apart;
+  // the nominal fit's convention holds it absent.
+  return score.novelty < 0.01 && score.novelty >= 1e-6;
+}
 
 void FindNotExcluded(const std::vector<const Effect*>& contended,
                      const std::vector<Case>& models,

@@ -670,6 +670,30 @@ TEST(Diagnose, NearTwinsOfTheFreeParametersAreTriedBesideTheFinalModel) {
   EXPECT_EQ(checked, 2) << text;
 }
 
+// On a 3-s run with a nonlinear damping at 0.9 of its bound, Cm_q takes
+// it (its near twin, novelty 0.0014): the nominal fit reaches the noise
+// level with Cm_q 61 of its errors off, and the search had stopped there.
+// The damping's score stands 11 above ln(n), so the near twins get one
+// round (HiddenTwins): the damping is named, and Cm_q and its term come
+// within 3 errors of the truth.
+TEST(Diagnose, ANearTwinHiddenAtTheNoiseLevelGetsARound) {
+  const Diagnosis d = DiagnoseRecord("short_nonlinear_damping_vary15.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  std::set<std::string> named = EffectIds(d.ambiguous);
+  for (const DiagnosisStep& s : d.steps) named.insert(s.effect);
+  EXPECT_TRUE(named.count("nonlinear_damping")) << text;
+  const std::map<std::string, double> truth = {{"Cm_q", -5.5},
+                                               {"Cm_q_delta2", 277.19}};
+  int checked = 0;
+  for (const ParameterEstimate& e : d.final_parameters) {
+    const auto it = truth.find(e.name);
+    if (it == truth.end()) continue;
+    ++checked;
+    EXPECT_NEAR(e.value, it->second, 3.0 * e.standard_error) << text;
+  }
+  EXPECT_EQ(checked, 2) << text;
+}
+
 // `d` (printed as `text`) adds nothing, ends not_explained and names the
 // probe `probe` outside the catalog, its parameter `name` within 3
 // standard errors of `truth`.
