@@ -379,7 +379,10 @@ Diagnosis Search(const Case& c,
       } else {
         d.steps.back().after = check;
       }
-      if (check.at_noise_level && !options.noise_held && !hidden) break;
+      if (check.at_noise_level && !options.noise_held &&
+          !(hidden && step == 0)) {
+        break;
+      }
     }
     std::vector<Candidate> candidates = ScoredCandidates(current, fit, options);
     if (check.at_noise_level && !options.noise_held) {
