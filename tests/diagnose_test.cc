@@ -511,6 +511,20 @@ Diagnosis DiagnoseConfig(const std::string& file) {
                   DiagnoseOptions());
 }
 
+// `d`'s final model holds each of `truths` (name -> true value) within 3
+// standard errors; `context` follows a failure's message.
+void ExpectFinalCovers(const Diagnosis& d,
+                       const std::map<std::string, double>& truths,
+                       const std::string& context) {
+  for (const auto& [name, value] : truths) {
+    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
+    ASSERT_NE(e, nullptr) << name << "\n" << context;
+    EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
+        << name << " = " << e->value << " +- " << e->standard_error << "\n"
+        << context;
+  }
+}
+
 // At one slow spin (90 deg of roll in the record) a body-fixed trim moment
 // and a roll-synchronous reading error leave the same signature: the
 // verdict says so, adds neither, and names what would separate them.
@@ -629,16 +643,7 @@ TEST(Diagnose, AJointSetDrawsOnContendersRankedAboveItsLead) {
   for (const DiagnosisStep& s : d.steps) named.insert(s.effect);
   EXPECT_TRUE(named.count("nonlinear_damping")) << text;
   EXPECT_TRUE(named.count("roll_interaction")) << text;
-  const std::map<std::string, double> truth = {{"Cm_q", -5.5},
-                                               {"Cm_q_delta2", 982.87}};
-  int checked = 0;
-  for (const ParameterEstimate& e : d.final_parameters) {
-    const auto it = truth.find(e.name);
-    if (it == truth.end()) continue;
-    ++checked;
-    EXPECT_NEAR(e.value, it->second, 3.0 * e.standard_error) << text;
-  }
-  EXPECT_EQ(checked, 2) << text;
+  ExpectFinalCovers(d, {{"Cm_q", -5.5}, {"Cm_q_delta2", 982.87}}, text);
 }
 
 // On a 3-s coning run the Magnus moment acts along the motion as Cm_q
@@ -658,16 +663,7 @@ TEST(Diagnose, NearTwinsOfTheFreeParametersAreTriedBesideTheFinalModel) {
             d.near_twins.end())
       << text;
   EXPECT_NE(text.find("near twin"), std::string::npos) << text;
-  const std::map<std::string, double> truth = {{"Cm_alpha", -0.23},
-                                               {"Cm_q", -5.5}};
-  int checked = 0;
-  for (const ParameterEstimate& e : d.final_parameters) {
-    const auto it = truth.find(e.name);
-    if (it == truth.end()) continue;
-    ++checked;
-    EXPECT_NEAR(e.value, it->second, 3.0 * e.standard_error) << text;
-  }
-  EXPECT_EQ(checked, 2) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
 }
 
 // On a 3-s run with a nonlinear damping at 0.9 of its bound, Cm_q takes
@@ -682,16 +678,7 @@ TEST(Diagnose, ANearTwinHiddenAtTheNoiseLevelGetsARound) {
   std::set<std::string> named = EffectIds(d.ambiguous);
   for (const DiagnosisStep& s : d.steps) named.insert(s.effect);
   EXPECT_TRUE(named.count("nonlinear_damping")) << text;
-  const std::map<std::string, double> truth = {{"Cm_q", -5.5},
-                                               {"Cm_q_delta2", 277.19}};
-  int checked = 0;
-  for (const ParameterEstimate& e : d.final_parameters) {
-    const auto it = truth.find(e.name);
-    if (it == truth.end()) continue;
-    ++checked;
-    EXPECT_NEAR(e.value, it->second, 3.0 * e.standard_error) << text;
-  }
-  EXPECT_EQ(checked, 2) << text;
+  ExpectFinalCovers(d, {{"Cm_q", -5.5}, {"Cm_q_delta2", 277.19}}, text);
 }
 
 // `d` (printed as `text`) adds nothing, ends not_explained and names the
@@ -1014,20 +1001,6 @@ TEST(Diagnose, NamesABodyFixedYawAsymmetryInTheAsymmetricProgram) {
 // The true Cm_alpha and Cm_q of the short runs.
 const std::map<std::string, double> kShortCoefficients = {{"Cm_alpha", -0.23},
                                                           {"Cm_q", -5.5}};
-
-// `d`'s final model holds each of `truths` (name -> true value) within 3
-// standard errors; `context` follows a failure's message.
-void ExpectFinalCovers(const Diagnosis& d,
-                       const std::map<std::string, double>& truths,
-                       const std::string& context) {
-  for (const auto& [name, value] : truths) {
-    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
-    ASSERT_NE(e, nullptr) << name << "\n" << context;
-    EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
-        << name << " = " << e->value << " +- " << e->standard_error << "\n"
-        << context;
-  }
-}
 
 // `d` explains the record with the true effects `truth`, named or in a
 // tie, adds none other, and its final model covers the true Cm_alpha and
