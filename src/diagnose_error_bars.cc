@@ -484,14 +484,6 @@ constexpr char kTwinWords[] =
 
 }  // namespace
 
-bool IsNearTwin(const CandidateScore& score) {
-  // Less than 1% left: a near twin. Less than 1e-6 (Score's rank drop):
-  // an exact one, its terms and the free parameters one combination to
-  // the record (Eq. 43's tunnel terms, 1e-9), which no fit tells apart;
-  // the nominal fit's convention holds it absent.
-  return score.novelty < 0.01 && score.novelty >= 1e-6;
-}
-
 void FindNotExcluded(const std::vector<const Effect*>& contended,
                      const std::vector<Case>& models,
                      const Case& current,

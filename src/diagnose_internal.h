@@ -50,6 +50,11 @@ CandidateScore Score(const Case& candidate,
                      const std::string& id,
                      const std::vector<TimeHistory>& data);
 
+// Whether a candidate so scored is a near twin of the parameters free at
+// the solution (CandidateScore::novelty under 0.01), though not an exact
+// one (under Score's rank drop, 1e-6).
+bool IsNearTwin(const CandidateScore& score);
+
 // Why the effect's parameters, as `fit` (of case `c`) has them, lie
 // outside its bounds (diagnose.h, Effect::bounds), or empty.
 std::string Implausible(const Effect& effect,

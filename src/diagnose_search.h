@@ -73,11 +73,6 @@ bool Polish(const Case& current,
             const std::vector<TimeHistory>& data,
             FitResult* fit);
 
-// Whether a candidate so scored is a near twin of the parameters free at
-// the solution (CandidateScore::novelty under 0.01), though not an exact
-// one (under 1e-6).
-bool IsNearTwin(const CandidateScore& score);
-
 // Every applicable effect scored at the fit's solution, best first.
 std::vector<Candidate> ScoredCandidates(const Case& current,
                                         const FitResult& fit,

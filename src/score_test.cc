@@ -14,6 +14,11 @@
 namespace fit3dof {
 namespace {
 
+// Directions of the effect's information (scaled to its largest) below
+// this fraction are spanned by the free parameters: dropped from the
+// score, and an effect no more novel than this is an exact twin.
+constexpr double kRankDrop = 1e-6;
+
 // Pseudo-inverse of a symmetric positive semi-definite matrix, dropping
 // directions below `relative` of the largest eigenvalue; `rank` receives
 // the number kept.
@@ -99,13 +104,21 @@ CandidateScore Score(const Case& candidate,
   const double own = icc.diagonal().maxCoeff();
   Eigen::MatrixXd schur_scaled = schur / std::max(own, 1e-300);
   const Eigen::MatrixXd inverse =
-      PseudoInverse(schur_scaled, 1e-6, &rank) / std::max(own, 1e-300);
+      PseudoInverse(schur_scaled, kRankDrop, &rank) / std::max(own, 1e-300);
   const int dof = 3 * l.points - static_cast<int>(f_index.size());
   const double variance = l.ressum / std::max(dof, 1);
   score.score = g.dot(inverse * g) / variance;
   score.dof = rank;
   score.novelty = Novelty(icc, schur);
   return score;
+}
+
+bool IsNearTwin(const CandidateScore& score) {
+  // Less than 1% left: a near twin. Below the rank drop: an exact one, its
+  // terms and the free parameters one combination to the record (Eq. 43's
+  // tunnel terms, 1e-9), which no fit tells apart; the nominal fit's
+  // convention holds it absent.
+  return score.novelty < 0.01 && score.novelty >= kRankDrop;
 }
 
 }  // namespace fit3dof
