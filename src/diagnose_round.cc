@@ -334,9 +334,36 @@ std::vector<ParameterEstimate> Own(const FitResult& fit,
   return own;
 }
 
+namespace {
+
+// The search's fits stop once an iteration lowers BIC by less than
+// kSearchBicTolerance (RefitFromSolution): along a ridge that can be a few
+// tenths above the minimum. A fit diagnose reports is taken on to the
+// user's own rule, as rerunning final.yaml would take it.
+void Converge(const Case& model,
+              const std::vector<TimeHistory>& data,
+              FitResult* fit) {
+  Case start = CaseAtSolution(model, *fit);
+  RefitFromSolution(&start, 0.0);
+  start.solver.bic_tolerance = 0.0;
+  FitResult converged;
+  try {
+    converged = MemoizedFitSamples(start, data);
+  } catch (const std::exception& e) {
+    LOG(WARNING) << fit->name << ": refit to convergence failed: " << e.what();
+    return;
+  }
+  if (!(converged.sum_of_residuals <= fit->sum_of_residuals)) return;
+  converged.iterations += fit->iterations;
+  *fit = std::move(converged);
+}
+
+}  // namespace
+
 void Reported(const Case& model,
               const std::vector<TimeHistory>& data,
               FitResult* fit) {
+  Converge(model, data, fit);
   Case c = model;
   c.solver.profile_ridges = true;
   CheckRidges(c, data, fit);

@@ -83,7 +83,8 @@ std::vector<ParameterEstimate> Own(const FitResult& fit,
                                    const std::vector<std::string>& names);
 
 // A fit diagnose reports (the final model's, an alternative's), of the
-// search's case `model`, with the profiles the search skipped.
+// search's case `model`, taken on to the user's convergence rule and with
+// the profiles the search skipped.
 void Reported(const Case& model,
               const std::vector<TimeHistory>& data,
               FitResult* fit);

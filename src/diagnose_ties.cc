@@ -273,7 +273,11 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
           ImplausibleWithin(*w.effect, w.c, w.fit, w.terms, kBoundErrors)
               .empty()));
     VLOG(1) << step.effect << " swapped for " << w.rival->effect << ": "
-            << (as_good ? "as good" : "worse");
+            << (as_good ? "as good" : "worse")
+            << (w.fitted
+                    ? " (BIC " + FormatNumber("%+.2f", Bic(w.fit) - Bic(fit)) +
+                          ")"
+                    : std::string());
     if (as_good) open.push_back(*w.rival);
     if (as_good && w.fitted) as_good_fits->push_back(std::move(w.fit));
   }

@@ -22,23 +22,27 @@ namespace fit3dof {
 namespace {
 
 // Logs each iteration the way the report's listing prints it and applies its
-// convergence rule: stop when the probable error changes by less than BOUND.
+// convergence rule: stop when the probable error changes by less than BOUND
+// (or, where the settings ask, when the BIC hardly falls).
 class ReportIterationCallback : public ceres::IterationCallback {
  public:
   ReportIterationCallback(const Assembly* assembly,
                           const FreeLayout* free,
                           const std::vector<double>* scale,
                           const std::vector<std::string>* names,
+                          int residuals,
                           int degrees_of_freedom,
-                          double tolerance,
-                          double relative_tolerance)
+                          const StageSettings& settings)
       : assembly_(assembly),
         free_(free),
         scale_(scale),
         names_(names),
+        residuals_(residuals),
         dof_(degrees_of_freedom),
-        tolerance_(tolerance),
-        relative_tolerance_(relative_tolerance) {}
+        settings_(settings) {}
+
+  // Whether the BIC's rule, not the probable error's, ended it.
+  bool stopped_by_bic() const { return stopped_by_bic_; }
 
   ceres::CallbackReturnType operator()(
       const ceres::IterationSummary& summary) override {
@@ -48,6 +52,7 @@ class ReportIterationCallback : public ceres::IterationCallback {
     std::vector<double> values = FreeValues(*assembly_, *free_, *scale_);
     if (summary.iteration == 0) {
       old_e_ = e;
+      old_ressum_ = ressum;
       previous_ = values;
       VLOG(1) << "start: sum of residuals " << std::sqrt(ressum)
               << "  probable error " << e;
@@ -73,9 +78,16 @@ class ReportIterationCallback : public ceres::IterationCallback {
         << "   OLD PROBABLE ERROR = " << old_e_;
     VLOG(1) << log.str();
     const double change = std::abs(e - old_e_);
+    const double bic_drop = residuals_ * std::log(old_ressum_ / ressum);
     old_e_ = e;
+    old_ressum_ = ressum;
     previous_ = values;
-    if (change < std::max(tolerance_, relative_tolerance_ * e)) {
+    if (change <
+        std::max(settings_.tolerance, settings_.relative_tolerance * e)) {
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
+    if (bic_drop < settings_.bic_tolerance) {
+      stopped_by_bic_ = true;
       return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     }
     return ceres::SOLVER_CONTINUE;
@@ -86,10 +98,12 @@ class ReportIterationCallback : public ceres::IterationCallback {
   const FreeLayout* free_;
   const std::vector<double>* scale_;
   const std::vector<std::string>* names_;
+  int residuals_;
   int dof_;
-  double tolerance_;
-  double relative_tolerance_;
+  StageSettings settings_;
   double old_e_ = 0.0;
+  double old_ressum_ = 0.0;
+  bool stopped_by_bic_ = false;
   std::vector<double> previous_;
 };
 
@@ -153,13 +167,8 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
   // SILENT also keeps Ceres from logging every rejected trial step.
   options.logging_type = ceres::SILENT;
   options.update_state_every_iteration = true;
-  ReportIterationCallback callback(&assembly,
-                                   &free,
-                                   &scale,
-                                   &names,
-                                   3 * points - k,
-                                   tolerance,
-                                   relative_tolerance);
+  ReportIterationCallback callback(
+      &assembly, &free, &scale, &names, 3 * points, 3 * points - k, settings);
   options.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(options, assembly.problem.get(), &summary);
@@ -169,7 +178,11 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
   }
   outcome.converged = summary.termination_type == ceres::USER_SUCCESS ||
                       summary.termination_type == ceres::CONVERGENCE;
-  if (summary.termination_type == ceres::USER_SUCCESS) {
+  if (summary.termination_type == ceres::USER_SUCCESS &&
+      callback.stopped_by_bic()) {
+    outcome.termination =
+        "BIC fell by less than " + FormatNumber("%g", settings.bic_tolerance);
+  } else if (summary.termination_type == ceres::USER_SUCCESS) {
     outcome.termination =
         "probable error changed by less than " +
         FormatNumber("%g", std::max(tolerance, relative_tolerance));

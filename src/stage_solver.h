@@ -45,6 +45,8 @@ inline constexpr double kFromSolutionRadius = 1e8;
 struct StageSettings {
   double tolerance = 0.0;           // absolute, on the probable error
   double relative_tolerance = 0.0;  // times the probable error
+  // On the drop of n ln(RSS) in an iteration (SolverOptions).
+  double bic_tolerance = 0.0;
   int max_iterations = 50;
   // Levenberg-Marquardt's first trust region, in the scaling that gives
   // every free coordinate's Jacobian column unit norm (Ceres' radius is

@@ -1982,19 +1982,36 @@ TEST(Diagnose, AnEffectOnItsRidgeIsJudgedWithinItsErrorsWhenNothingExplains) {
 // (bound 0.246) and the bearing moment's angle ran to 8.3 deg, each
 // taking up the other; the search ended `not_explained` with Cm_alpha 6.1
 // of its errors off. A second search lets an effect out of its bounds
-// lead a joint set (FromBounds): the three are named. Along the bearing
-// moment's ridge (angle 2.2 +- 1.6 deg, truth 1) Cm_bearing's error bar is
-// its profile's (CheckRidges) and covers the truth.
+// lead a joint set (FromBounds): the bearing moment and the calibration
+// error are added. The roll torque's place may go to a roll damping: with
+// the others in, the swap raises BIC by 9.7-10.1 (as the search's fits
+// stop a little sooner or later) against ambiguity_bic's 10, so `explained`
+// with the roll torque and `ambiguous` between the two are both right.
+// Along the bearing moment's ridge (angle 2.2 +- 1.6 deg, truth 1)
+// Cm_bearing's error bar is its profile's (CheckRidges) and covers the
+// truth.
 TEST(Diagnose, AnEffectOutOfItsBoundsLeadsAJointSetWhenNothingElseExplains) {
   if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_bearing_calibration_roll_torque.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
-  EXPECT_EQ(EffectIds(d.steps),
-            std::set<std::string>(
-                {"bearing_moment", "calibration_nonlinearity", "roll_torque"}))
-      << text;
+  const std::set<std::string> both = {"bearing_moment",
+                                      "calibration_nonlinearity"};
+  if (d.verdict == Verdict::kAmbiguous) {
+    EXPECT_EQ(EffectIds(d.steps), both) << text;
+    EXPECT_EQ(EffectIds(d.ambiguous),
+              std::set<std::string>({"roll_damping", "roll_torque"}))
+        << text;
+  } else {
+    ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
+    std::set<std::string> three = both;
+    three.insert("roll_torque");
+    EXPECT_EQ(EffectIds(d.steps), three) << text;
+  }
+  // The search's fit of the final model stopped by its BIC rule (10
+  // iterations); the model reported is taken on to the user's (42).
+  EXPECT_EQ(d.FinalFit().termination.find("BIC"), std::string::npos)
+      << d.FinalFit().termination;
   ExpectFinalCovers(d,
                     {{"Cm_alpha", -0.23},
                      {"Cm_q", -5.5},

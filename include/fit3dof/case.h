@@ -164,6 +164,12 @@ struct SolverOptions {
   // effect more or less): Levenberg-Marquardt trusts the Gauss-Newton step
   // from the first iteration (stage_solver.h). Not a config key.
   bool from_solution = false;
+  // Also stop when an iteration lowers n ln(RSS), the fit's part of the
+  // Bayesian information criterion (n residuals, RSS their weighted sum of
+  // squares), by less than this (0: the probable error's rule alone). Not
+  // a config key: diagnose's search judges its fits by BIC and needs no
+  // finer answer (RefitFromSolution).
+  double bic_tolerance = 0.0;
 };
 
 struct SimulateOptions {
