@@ -18,6 +18,7 @@
 #include "diagnose_search.h"
 #include "fit3dof/thread_budget.h"
 #include "format.h"
+#include "stage_solver.h"
 
 namespace fit3dof {
 
@@ -338,11 +339,13 @@ namespace {
 
 // The search's fits stop once an iteration lowers BIC by less than
 // kSearchBicTolerance (RefitFromSolution): along a ridge that can be a few
-// tenths above the minimum. A fit diagnose reports is taken on to the
-// user's own rule, as rerunning final.yaml would take it.
+// tenths above the minimum. A fit diagnose reports that the rule ended is
+// taken on to the user's own rule, as rerunning final.yaml would take it
+// (the nominal fit, the user's, is left as it is).
 void Converge(const Case& model,
               const std::vector<TimeHistory>& data,
               FitResult* fit) {
+  if (fit->termination.rfind(kBicRuleTermination, 0) != 0) return;
   Case start = CaseAtSolution(model, *fit);
   RefitFromSolution(&start, 0.0);
   start.solver.bic_tolerance = 0.0;

@@ -181,7 +181,7 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
   if (summary.termination_type == ceres::USER_SUCCESS &&
       callback.stopped_by_bic()) {
     outcome.termination =
-        "BIC fell by less than " + FormatNumber("%g", settings.bic_tolerance);
+        kBicRuleTermination + FormatNumber("%g", settings.bic_tolerance);
   } else if (summary.termination_type == ceres::USER_SUCCESS) {
     outcome.termination =
         "probable error changed by less than " +

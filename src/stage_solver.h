@@ -17,6 +17,10 @@
 
 namespace fit3dof {
 
+// The start of the termination of a run the BIC rule ended
+// (StageSettings::bic_tolerance).
+inline constexpr char kBicRuleTermination[] = "BIC fell by less than ";
+
 struct StageOutcome {
   bool integrable = true;  // false: the motion blew up at the start values
   bool converged = false;
