@@ -437,24 +437,12 @@ std::vector<int> Earned(const FitResult& current,
   return earned;
 }
 
-bool Jointly(const Case& current,
-             const FitResult& fit,
-             const std::vector<TimeHistory>& data,
-             const DiagnoseOptions& options,
-             const std::vector<const Effect*>& added,
-             OutOfSample* out_of_sample,
-             const std::vector<Contender>& contenders,
-             const std::vector<int>& earned,
-             JointSet* joint) {
-  if (!options.joint_sets) return false;
-  const int judged =
-      earned.empty() ? static_cast<int>(contenders.size()) : earned[0];
-  const auto leads = [&](const Contender& k) {
-    return k.dragged || (options.joint_sets_from_bounds && k.out_of_bounds);
-  };
-  int lead = 0;
-  while (lead < judged && !leads(contenders[lead])) ++lead;
-  if (lead >= judged) return false;
+namespace {
+
+// The sets Jointly tries with the contender at `lead` leading: it with one
+// or two of its pool (JointPool).
+std::vector<std::vector<int>> JointSets(
+    int lead, const std::vector<Contender>& contenders) {
   const std::vector<int> pool = JointPool(lead, contenders);
   std::vector<std::vector<int>> sets;
   for (size_t a = 0; a < pool.size(); ++a) {
@@ -463,6 +451,21 @@ bool Jointly(const Case& current,
       sets.push_back({lead, pool[a], pool[b]});
     }
   }
+  return sets;
+}
+
+// Jointly for one lead: its sets fitted side by side, the lowest-BIC one
+// that earns its place into *joint.
+bool JointlyLedBy(int lead,
+                  const Case& current,
+                  const FitResult& fit,
+                  const std::vector<TimeHistory>& data,
+                  const DiagnoseOptions& options,
+                  const std::vector<const Effect*>& added,
+                  OutOfSample* out_of_sample,
+                  const std::vector<Contender>& contenders,
+                  JointSet* joint) {
+  const std::vector<std::vector<int>> sets = JointSets(lead, contenders);
   const Case at = CaseAtSolution(current, fit);
   const int n = static_cast<int>(sets.size());
   std::vector<Candidate> models(n);
@@ -493,8 +496,9 @@ bool Jointly(const Case& current,
                         &gain)) {
       continue;
     }
-    VLOG(1) << fit.name << ": joint set of " << sets[i].size()
-            << " earns its place, BIC " << Bic(fits[i]) << ", gain " << gain;
+    VLOG(1) << fit.name << ": joint set of " << sets[i].size() << " led by "
+            << contenders[lead].record.effect << " earns its place, BIC "
+            << Bic(fits[i]) << ", gain " << gain;
     // The prefixes: the first member's contender, the pair before a triple.
     int pair = -1;
     if (sets[i].size() == 3) {
@@ -514,6 +518,39 @@ bool Jointly(const Case& current,
     joint->models.push_back(models[i]);
     joint->fits.push_back(fits[i]);
     return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool Jointly(const Case& current,
+             const FitResult& fit,
+             const std::vector<TimeHistory>& data,
+             const DiagnoseOptions& options,
+             const std::vector<const Effect*>& added,
+             OutOfSample* out_of_sample,
+             const std::vector<Contender>& contenders,
+             const std::vector<int>& earned,
+             JointSet* joint) {
+  if (!options.joint_sets) return false;
+  const int judged =
+      earned.empty() ? static_cast<int>(contenders.size()) : earned[0];
+  const auto leads = [&](const Contender& k) {
+    return k.dragged || (options.joint_sets_from_bounds && k.out_of_bounds);
+  };
+  for (int lead = 0; lead < judged; ++lead) {
+    if (leads(contenders[lead]) && JointlyLedBy(lead,
+                                                current,
+                                                fit,
+                                                data,
+                                                options,
+                                                added,
+                                                out_of_sample,
+                                                contenders,
+                                                joint)) {
+      return true;
+    }
   }
   return false;
 }

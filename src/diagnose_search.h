@@ -183,9 +183,14 @@ struct JointSet {
 // damping, the Magnus moment was taken alone, and nothing after it
 // earned its place. Under joint_sets_from_bounds a contender refused for
 // leaving its bounds leads a set too (each may leave them taking up
-// another's part). `earned` (Earned) tells which contenders were judged
-// better than every one that earned its place. The lowest-BIC set that
-// earns its place goes into *joint; false when none.
+// another's part). Each such contender leads its sets in turn, in the
+// order of BIC, until one set earns its place: on a pair of 3-s runs with
+// a tunnel damping, a Magnus moment and a flow angularity, the first to
+// lead was a body yaw asymmetry (it dragged Cm_alpha), none of its sets
+// earned, and the damping's set of the three did. `earned` (Earned) tells
+// which contenders were judged better than every one that earned its
+// place. The lowest-BIC set of the first lead whose set earns its place
+// goes into *joint; false when none.
 bool Jointly(const Case& current,
              const FitResult& fit,
              const std::vector<TimeHistory>& data,
