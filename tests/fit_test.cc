@@ -84,9 +84,10 @@ TEST(Fit, ReproducesTheTable6NoiseStudy) {
 // At 0.01 deg, a finite-difference Cramer-Rao computation on an independent
 // reimplementation gives these bounds; ours agree within 10%.
 // The same config fitted again in the same process gives the same error
-// bars to the last bit, whatever the heap holds (ceres::Covariance orders
-// its columns by block address: assembly.h keeps them in one buffer). The
-// Magnus case has correlations near 1 that amplify any reordering.
+// bars to the last bit, whatever the heap holds (ceres::Covariance, which
+// gave them once, orders its columns by block address: assembly.h keeps
+// them in one buffer). The Magnus case has correlations near 1 that
+// amplify any reordering.
 TEST(Fit, ErrorBarsDoNotDependOnTheHeap) {
   const Case c = Load("asymmetric_magnus_fit.yaml");
   const FitResult first = Fit(c);

@@ -12,7 +12,7 @@
 //   probable error    E = sqrt(S^2 / (3 N - N_free))               Eq. 26
 //   RMS error         E sqrt(B_i), B = (J^T J)^-1                   Eq. 27
 //
-// with J the Jacobian of the weighted residuals, B from ceres::Covariance.
+// with J the Jacobian of the weighted residuals, B from its singular values.
 // Parameters that the data cannot separate (rank deficiency, or correlation
 // above 0.99) are named in warnings together with the combination that is
 // determined.
