@@ -347,10 +347,16 @@ PYBIND11_MODULE(_fit3dof, m) {
       "case's simulate: times with its noise, as `fit3dof simulate`.");
   m.def(
       "diagnose",
-      [](const Case& c) { return Diagnose(c, DiagnoseOptions()); },
+      [](const Case& c, const std::vector<std::string>& absent) {
+        DiagnoseOptions options;
+        options.absent = absent;
+        return Diagnose(c, options);
+      },
       py::arg("case"),
+      py::arg("absent") = std::vector<std::string>(),
       Release(),
-      "Finds, names and adds missing effects.");
+      "Finds, names and adds missing effects; `absent`: catalog effect ids "
+      "known absent, never tried (InputError for any other id).");
   m.def(
       "batch",
       [](const std::string& manifest,

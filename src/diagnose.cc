@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "diagnose_search.h"
+#include "fit3dof/input_error.h"
 #include "format.h"
 #include "noise_relaxation.h"
 
@@ -351,6 +352,7 @@ Diagnosis Search(const Case& c,
   d.fits.push_back(fit);
   std::vector<Case> models = {current};  // the model of each of d.fits
   d.noise_held = options.noise_held;
+  d.absent = options.absent;
   d.initial = CheckResiduals(fit, options);
   ResidualCheck check = d.initial;
   // The step at which two contenders first tied (diagnose.h), or -1, and
@@ -924,7 +926,24 @@ Diagnosis WithNoiseHeld(const Case& c, const DiagnoseOptions& options) {
 
 }  // namespace
 
+namespace {
+
+// Effects declared absent must be the catalog's: a misspelt id would
+// silently leave the effect in.
+void CheckAbsent(const DiagnoseOptions& options) {
+  for (const std::string& id : options.absent) {
+    if (FindEffect(id) != nullptr) continue;
+    std::string ids;
+    for (const Effect& e : EffectCatalog()) ids += " " + e.id;
+    throw InputError("effects known absent (--absent): '" + id +
+                     "' is not an effect of the catalog (one of:" + ids + ")");
+  }
+}
+
+}  // namespace
+
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
+  CheckAbsent(options);
   if (c.AnySigmaAuto()) return WithNoiseHeld(c, options);
   return DiagnoseFrom(c, Fit(c), options);
 }

@@ -271,6 +271,10 @@ double Aic(const FitResult& r) {
 }
 
 bool Wanted(const DiagnoseOptions& options, const Effect& e) {
+  if (std::find(options.absent.begin(), options.absent.end(), e.id) !=
+      options.absent.end()) {
+    return false;
+  }
   return options.effects.empty() ||
          std::find(options.effects.begin(), options.effects.end(), e.id) !=
              options.effects.end();

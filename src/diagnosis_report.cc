@@ -154,6 +154,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["verdict"] = VerdictToString(d.verdict);
   out["verdict_text"] = d.verdict_text;
   out["noise_held"] = d.noise_held;
+  out["effects_known_absent"] = d.absent;
   out["effects_added"] = json::array();
   for (const DiagnosisStep& s : d.steps)
     out["effects_added"].push_back(s.effect);
@@ -236,6 +237,12 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
 
 std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   std::string out;
+  if (!d.absent.empty()) {
+    std::string ids;
+    for (const std::string& id : d.absent)
+      ids += (ids.empty() ? "" : ", ") + id;
+    out += "known absent, not tried: " + ids + "\n";
+  }
   ResidualCheck before = d.initial;
   for (const DiagnosisStep& s : d.steps) {
     // The final model's values: a later step may move an earlier effect's.

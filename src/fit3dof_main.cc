@@ -48,6 +48,7 @@ struct Flags {
   int starts = 200;
   std::uint64_t seed = 1;
   std::string methods = "gauss_newton,levenberg_marquardt,robust";
+  std::vector<std::string> absent;  // diagnose: effects known absent
 };
 Flags FLAGS;
 
@@ -171,10 +172,12 @@ int DiagnoseCommand(const std::vector<std::string>& args) {
     throw InputError("diagnose: --out_dir=DIR is required");
   const Case c = IsDeckFile(args[0]) ? LoadDeckCase(args[0], DataFlag())
                                      : LoadConfig(args[0]);
+  DiagnoseOptions options;
+  options.absent = FLAGS.absent;
   Diagnosis d;
   {
     ProgressLine progress("diagnose " + c.name);
-    d = Diagnose(c, DiagnoseOptions());
+    d = Diagnose(c, options);
   }
   for (size_t i = 0; i < d.fits.size(); ++i) {
     WriteFitOutputs(FLAGS.out_dir + "/step" + std::to_string(i), d.fits[i]);
@@ -291,6 +294,12 @@ void AddNamelistBasinAndDiagnose(CLI::App* app, Handlers* handlers) {
   diagnose->add_option("--out_dir",
                        FLAGS.out_dir,
                        "each step's fit, diagnosis.json, final.yaml");
+  diagnose
+      ->add_option("--absent",
+                   FLAGS.absent,
+                   "catalog effects known absent (ids, comma-separated): "
+                   "never tried, never widen the error bars")
+      ->delimiter(',');
   AddData(diagnose);
   (*handlers)[diagnose] = &DiagnoseCommand;
 }

@@ -674,6 +674,37 @@ TEST(Diagnose, NearTwinsOfTheFreeParametersAreTriedBesideTheFinalModel) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
 }
 
+// An engineer who knows the tunnel has no Magnus moment in it says so
+// (`--absent magnus`): the effect is never tried, so the near twin no
+// longer widens Cm_q's error bar (the other effects not excluded hardly
+// do), and the text and diagnosis.json say what was declared absent.
+TEST(Diagnose, EffectsKnownAbsentAreNeverTried) {
+  DiagnoseOptions options;
+  options.absent = {"magnus"};
+  const Case c = LoadConfig(testing::SourcePath(
+      "tests/data/coning_damping_magnus_angularity_vary14.yaml"));
+  const Diagnosis d = Diagnose(c, options);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.near_twins.empty()) << text;
+  std::set<std::string> tried = EffectIds(d.not_excluded);
+  for (const auto& ids :
+       {EffectIds(d.steps), EffectIds(d.ambiguous), EffectIds(d.rejected)}) {
+    tried.insert(ids.begin(), ids.end());
+  }
+  EXPECT_FALSE(tried.count("magnus")) << text;
+  // The Magnus moment had widened it 120-fold (+- 1.9 against 0.016).
+  const ParameterEstimate* cm_q = SharedEstimate(d.FinalFit(), "Cm_q");
+  ASSERT_NE(cm_q, nullptr);
+  const auto own = d.model_standard_errors.find("Cm_q");
+  if (own != d.model_standard_errors.end()) {
+    EXPECT_LT(cm_q->standard_error, 2.0 * own->second) << text;
+  }
+  EXPECT_NE(text.find("known absent, not tried: magnus"), std::string::npos)
+      << text;
+  const nlohmann::json json = nlohmann::json::parse(DiagnosisJson(d, c));
+  EXPECT_EQ(json["effects_known_absent"], nlohmann::json::array({"magnus"}));
+}
+
 // On a 3-s run with a nonlinear damping at 0.9 of its bound, Cm_q takes
 // it (its near twin, novelty 0.0014): the nominal fit reaches the noise
 // level with Cm_q 61 of its errors off, and the search had stopped there.

@@ -312,7 +312,12 @@ struct DiagnoseOptions {
   // below it are no sign of a sigma set too large.
   bool noise_held = false;
   std::vector<std::string> effects;  // restrict the catalog (empty: all)
-  bool probes = true;                // fit the probes outside the catalog
+  // Catalog effects the engineer knows absent (a tunnel without flow
+  // gradients, a bearing calibrated for the run): never tried, so never
+  // tied, never a near twin and never in the final error bars, which are
+  // then the final model's own where only those effects widened them.
+  std::vector<std::string> absent;
+  bool probes = true;  // fit the probes outside the catalog
   // Fit a contender refused for its drag with the next ones (a joint set).
   bool joint_sets = true;
   // Let a contender refused for leaving its bounds lead a joint set too.
@@ -438,6 +443,8 @@ struct Diagnosis {
   // sigma: auto: the noise the record gave was held for the search
   // (DiagnoseOptions::noise_held); the fits' weights are it.
   bool noise_held = false;
+  // The effects the engineer declared absent (DiagnoseOptions::absent).
+  std::vector<std::string> absent;
   // When ambiguous: the effects, their fits, and what would separate them.
   std::vector<CandidateFit> ambiguous;
   std::string separated_by;

@@ -221,6 +221,15 @@ def test_diagnose_matches_the_command_line(tmp_path):
                               else 1)
 
 
+def test_diagnose_takes_effects_known_absent(tmp_path):
+    case = fit3dof.load_config(os.path.join(REPORT, "table6_sigma0.01.yaml"))
+    d = fit3dof.diagnose(case, absent=["magnus", "tunnel_damping"])
+    assert d.to_dict(case)["effects_known_absent"] == ["magnus",
+                                                       "tunnel_damping"]
+    with pytest.raises(fit3dof.InputError, match="tunnel_buzz"):
+        fit3dof.diagnose(case, absent=["tunnel_buzz"])
+
+
 def test_batch_writes_the_summary_and_returns_it(tmp_path):
     manifest = tmp_path / "manifest.yaml"
     manifest.write_text(
