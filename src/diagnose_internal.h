@@ -26,10 +26,13 @@ namespace fit3dof {
 inline constexpr double kNearSolution = 3.0;
 // Such a fit also stops once an iteration lowers its BIC by less than this
 // (SolverOptions::bic_tolerance): the search compares fits by BIC margins
-// of whole units, and a fit along a flat ridge (a bearing moment's angle
+// of whole units, and fits along a flat ridge (a bearing moment's angle
 // against its coefficient) had crawled 50 iterations for a few hundredths,
-// a third of a diagnosis' time. Within 0.01 of its minimum's BIC a fit is
-// within a tenth of an error of it where the sum of squares is quadratic.
+// more than half of a diagnosis' fitting. Where the sum of squares is
+// quadratic the Gauss-Newton step lands at the minimum and a last gain
+// under 0.01 leaves the fit within a tenth of an error of it; along a
+// curved ridge it can stop a few tenths above (the fits diagnose reports
+// are taken on to the user's rule: Reported).
 inline constexpr double kSearchBicTolerance = 0.01;
 void RefitFromSolution(Case* c, double probable_error);
 
