@@ -17,10 +17,11 @@
 // B comes from the singular values of the weighted Jacobian (what
 // ceres::Covariance's DENSE_SVD computes, from the Jacobian already
 // evaluated) with the free coordinates scaled to unit Jacobian columns, so
-// that its conditioning test measures correlation, not units. What the data cannot determine is named instead of given a number:
-// a parameter without effect on the motion, a singular direction (with the
-// combination that is determined), pairs correlated above 0.99 and groups
-// of three or more nearly dependent parameters (the report's Eq. 43).
+// that its conditioning test measures correlation, not units. What the data
+// cannot determine is named instead of given a number: a parameter without
+// effect on the motion, a singular direction (with the combination that is
+// determined), pairs correlated above 0.99 and groups of three or more nearly
+// dependent parameters (the report's Eq. 43).
 
 #ifndef FIT3DOF_SRC_UNCERTAINTY_H_
 #define FIT3DOF_SRC_UNCERTAINTY_H_
