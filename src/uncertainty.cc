@@ -66,7 +66,7 @@ std::string NoEffect(const std::string& name) {
 }
 
 // The information matrix at the solution, in unit-column coordinates, with
-// the assembly that holds the coordinates the data cannot see at all.
+// the Jacobian it comes from and the coordinates the data cannot see.
 struct SolutionInformation {
   ceres::CRSMatrix jacobian;  // every coordinate's column, scaled
   std::vector<double> residuals;
@@ -91,11 +91,13 @@ SolutionInformation InformationAtSolution(const FitProblem& p,
   info.null_columns = NullColumns(info.jtj);
   info.scale = ColumnScales(info.jtj, info.scale);
   // In the coordinates u = value / scale each column is the physical one
-  // times its scale: no second evaluation of the motion's Jacobian.
+  // times its scale: no second evaluation of the motion's Jacobian, and
+  // J^T J scales the same way.
   for (size_t v = 0; v < info.jacobian.values.size(); ++v) {
     info.jacobian.values[v] *= info.scale[info.jacobian.cols[v]];
   }
-  NormalEquations(info.jacobian, info.residuals, &info.jtj, &info.ressum);
+  const Eigen::Map<const Eigen::VectorXd> s(info.scale.data(), k);
+  info.jtj = s.asDiagonal() * info.jtj * s.asDiagonal();
   return info;
 }
 
@@ -116,6 +118,7 @@ bool SvdCovariance(const SolutionInformation& info, Eigen::MatrixXd* cov_u) {
   for (int g = 0; g < k; ++g) {
     if (!info.null_columns[g]) column[g] = kept++;
   }
+  if (kept == 0) return false;
   const ceres::CRSMatrix& crs = info.jacobian;
   Eigen::MatrixXd j = Eigen::MatrixXd::Zero(crs.num_rows, kept);
   for (int r = 0; r < crs.num_rows; ++r) {
@@ -125,8 +128,7 @@ bool SvdCovariance(const SolutionInformation& info, Eigen::MatrixXd* cov_u) {
   }
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeThinV);
   const Eigen::VectorXd s = svd.singularValues();
-  if (kept == 0 ||
-      !(s.minCoeff() * s.minCoeff() > 1e-14 * s.maxCoeff() * s.maxCoeff())) {
+  if (!(s.minCoeff() * s.minCoeff() > 1e-14 * s.maxCoeff() * s.maxCoeff())) {
     return false;
   }
   const Eigen::MatrixXd v = svd.matrixV();
