@@ -363,16 +363,18 @@ Diagnosis Search(const Case& c,
   // complete model (FindNotExcluded).
   std::vector<const Effect*> contended;
   // At the noise level with sigma given, one round for the near twins alone
-  // (HiddenTwins).
-  const bool hidden =
-      check.at_noise_level && !options.noise_held &&
-      !HiddenTwins(ScoredCandidates(current, fit, options), fit, options)
-           .empty();
+  // (HiddenTwins), scored here once.
+  std::vector<Candidate> twins;
+  if (check.at_noise_level && !options.noise_held) {
+    twins = HiddenTwins(ScoredCandidates(current, fit, options), fit, options);
+  }
+  const bool hidden = !twins.empty();
   for (int step = 0;
        step < options.max_steps &&
        (!check.at_noise_level || options.noise_held || (hidden && step == 0));
        ++step) {
-    if (Polish(current, data, &fit)) {
+    const bool polished = Polish(current, data, &fit);
+    if (polished) {
       // The same model, further down: the steps' record follows it.
       d.fits.back() = fit;
       check = CheckResiduals(fit, options);
@@ -386,7 +388,12 @@ Diagnosis Search(const Case& c,
         break;
       }
     }
-    std::vector<Candidate> candidates = ScoredCandidates(current, fit, options);
+    // The twins' round scores the fit the twins were found at, unless
+    // Polish moved it.
+    std::vector<Candidate> candidates =
+        hidden && step == 0 && !polished
+            ? std::move(twins)
+            : ScoredCandidates(current, fit, options);
     if (check.at_noise_level && !options.noise_held) {
       candidates = HiddenTwins(std::move(candidates), fit, options);
     }
