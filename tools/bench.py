@@ -28,39 +28,36 @@ def run_benchmark(root, runs=8):
     return times
 
 
-def time_fit(root, config, repeats=5):
+def time_command(root, command, config, output, repeats, exits=(0,)):
+    """`fit3dof COMMAND CONFIG --out_dir=...` run `repeats` times: the
+    median seconds and the JSON file `output` it wrote; any exit status
+    outside `exits` fails the benchmark."""
     fit3dof = os.path.join(root, "build", "fit3dof")
     samples = []
     with tempfile.TemporaryDirectory() as out:
         for _ in range(repeats):
             began = time.perf_counter()
-            subprocess.run([fit3dof, "fit", config, "--out_dir=" + out],
-                           check=True, capture_output=True)
+            done = subprocess.run([fit3dof, command, config,
+                                   "--out_dir=" + out], capture_output=True)
+            assert done.returncode in exits, done.stderr[-2000:]
             samples.append(time.perf_counter() - began)
-        with open(os.path.join(out, "report.json")) as f:
-            report = json.load(f)
-    return statistics.median(samples), report
+        with open(os.path.join(out, output)) as f:
+            written = json.load(f)
+    return statistics.median(samples), written
+
+
+def time_fit(root, config, repeats=5):
+    return time_command(root, "fit", config, "report.json", repeats)
 
 
 def time_diagnose(root, config, repeats=3):
     """`fit3dof diagnose` on `config` (median of `repeats`) and a plain
     `fit3dof fit` of it, the search's baseline: the verdict is not
     checked (diagnose exits 1 when the record stays unexplained)."""
-    fit3dof = os.path.join(root, "build", "fit3dof")
-    samples = []
-    with tempfile.TemporaryDirectory() as out:
-        for _ in range(repeats):
-            began = time.perf_counter()
-            done = subprocess.run([fit3dof, "diagnose", config,
-                                   "--out_dir=" + out],
-                                  capture_output=True, cwd=os.path.dirname(
-                                      config))
-            assert done.returncode in (0, 1), done.stderr[-2000:]
-            samples.append(time.perf_counter() - began)
-        with open(os.path.join(out, "diagnosis.json")) as f:
-            diagnosis = json.load(f)
+    seconds, diagnosis = time_command(root, "diagnose", config,
+                                      "diagnosis.json", repeats, (0, 1))
     fit_seconds, _ = time_fit(root, config, repeats)
-    return statistics.median(samples), fit_seconds, diagnosis
+    return seconds, fit_seconds, diagnosis
 
 
 def variant(root, tmp, name, edits):
