@@ -785,48 +785,23 @@ Diagnosis OtherBranch(const Case& c,
   return other;
 }
 
-// Whether, in `d`'s tie, the complete model with another effect than
-// `first` (Diagnosis::alternatives) has a BIC lower by more than
-// ambiguity_bic than the one with `first`: a tie held open by a swap that
-// lowers BIC, not one of effects alike.
-bool OutdoneInTie(const Diagnosis& d,
-                  const std::string& first,
-                  const DiagnoseOptions& options) {
-  double with_first = std::numeric_limits<double>::infinity();
-  double others = std::numeric_limits<double>::infinity();
-  for (const AlternativeModel& a : d.alternatives) {
-    if (a.fit < 0) continue;
-    const double bic = Bic(d.fits[a.fit]);
-    if (a.effect == first) {
-      with_first = std::min(with_first, bic);
-    } else {
-      others = std::min(others, bic);
-    }
-  }
-  return others < with_first - options.ambiguity_bic;
-}
-
 // A first step taken alone whose runner-up came within near_tie_bic (a
 // near tie, SearchNotes::near_first) may have been the greedy search's
 // wrong turn: the search without its effect is the answer when it
 // explains the record with a complete model whose BIC is lower by more
 // than ambiguity_bic. Only the first step, where every effect is still
 // missing and the signatures mix most; only when the answer claims its
-// effect (a step of it), or holds it in a tie whose other side lowers
-// BIC by more than ambiguity_bic (OutdoneInTie); and only for an
-// `ambiguous` answer: an `explained` one has had the runner-up swapped in
-// for its step with the other effects in (rival_bic) and lose by more
-// than ambiguity_bic. The search costs as much again: a Table 6 triple
-// explained alike went from 2.3 to 4.3 s, and one ambiguous, its first
-// step's tunnel damping left in the tie, from 3.2 to 5.4 s; neither
-// answer changed. On a 3-s run with a tunnel damping (yaw term 1.36 times
-// the pitch term), a Magnus moment and a flow angularity, a body yaw
-// asymmetry led the tunnel damping by 14.6 at the first step and was
-// added; the search that followed it added no Magnus moment and ended
-// `ambiguous` over the wrong effects, while the true model's BIC was
-// about 22 lower. On another such run (draw 16) the asymmetry led by 17.4
-// and ended in the tie with the tunnel damping, whose complete model was
-// 15 lower; searched without it, the three effects are named.
+// effect (a step of it); and only for an `ambiguous` answer: an
+// `explained` one has had the runner-up swapped in for its step with the
+// other effects in (rival_bic) and lose by more than ambiguity_bic. The
+// search costs as much again: a Table 6 triple explained alike went from
+// 2.3 to 4.3 s, and one ambiguous, its first step's tunnel damping left
+// in the tie, from 3.2 to 5.4 s; neither answer changed. On a 3-s run
+// with a tunnel damping (yaw term 1.36 times the pitch term), a Magnus
+// moment and a flow angularity, a body yaw asymmetry led the tunnel
+// damping by 14.6 at the first step and was added; the search that
+// followed it added no Magnus moment and ended `ambiguous` over the wrong
+// effects, while the true model's BIC was about 22 lower.
 Diagnosis NearTieBranch(const Case& c,
                         const FitResult& nominal,
                         const DiagnoseOptions& options,
@@ -837,24 +812,11 @@ Diagnosis NearTieBranch(const Case& c,
       std::find_if(d.steps.begin(), d.steps.end(), [&](const DiagnosisStep& s) {
         return s.effect == first;
       });
-  const auto tied = std::find_if(
-      d.ambiguous.begin(), d.ambiguous.end(), [&](const CandidateFit& k) {
-        return k.effect == first;
-      });
-  const bool outdone =
-      tied != d.ambiguous.end() && OutdoneInTie(d, first, options);
-  if ((claimed == d.steps.end() && !outdone) ||
-      d.verdict != Verdict::kAmbiguous) {
-    return d;
-  }
+  if (claimed == d.steps.end() || d.verdict != Verdict::kAmbiguous) return d;
   Diagnosis other = SearchedWithout(c, nominal, options, first);
-  // A tie outdone has shown its other side better by ambiguity_bic
-  // already (CompleteBic counts it): the search without `first` need only
-  // match it.
   const double margin = CompleteBic(d) - CompleteBic(other);
-  const double needed = claimed != d.steps.end() ? options.ambiguity_bic : 0.0;
-  if (!ExplainsRecord(other) || !(margin > needed)) return d;
-  NoteDropped(claimed != d.steps.end() ? AsContender(*claimed) : *tied,
+  if (!ExplainsRecord(other) || !(margin > options.ambiguity_bic)) return d;
+  NoteDropped(AsContender(*claimed),
               "led the next contender at its step by less than " +
                   FormatNumber("%.0f", options.near_tie_bic) +
                   " of BIC; without it the search explains the record "
@@ -862,6 +824,62 @@ Diagnosis NearTieBranch(const Case& c,
                   FormatNumber("%.1f", margin) + " lower",
               ", taken first by a small lead, explains the record worse "
               "than the effects found without it",
+              &other);
+  return other;
+}
+
+// The least BIC of `d`'s complete models with the tied effect `effect`
+// (Diagnosis::alternatives; `with`) and with any other (`without`).
+void TieSidesBic(const Diagnosis& d,
+                 const std::string& effect,
+                 double* with,
+                 double* without) {
+  *with = *without = std::numeric_limits<double>::infinity();
+  for (const AlternativeModel& a : d.alternatives) {
+    if (a.fit < 0) continue;
+    double* side = a.effect == effect ? with : without;
+    *side = std::min(*side, Bic(d.fits[a.fit]));
+  }
+}
+
+// A tie held open by a swap that lowers BIC (Unresolved keeps a rival
+// that is no worse than the followed effect by ambiguity_bic, however much
+// better), not by effects alike: when the complete model with another
+// tied effect is lower than the one with the followed effect by more
+// than ambiguity_bic, the search without the followed effect is the
+// answer if it explains the record as well as that other side (within 1).
+// On a 3-s run with a tunnel damping, a Magnus moment and a flow
+// angularity (draw 16), a body yaw asymmetry led the tunnel damping by
+// 17.4 at the first step and ended tied with it, the tunnel damping's
+// side 17 lower: searched without the asymmetry, the three are named. On
+// a coning run with a Magnus moment, a nonlinear damping and a
+// calibration error, the search followed a tunnel damping that tied with
+// the Magnus moment, whose side was 46 lower: searched without the tunnel
+// damping, the three are named.
+Diagnosis OutdoneTieBranch(const Case& c,
+                           const FitResult& nominal,
+                           const DiagnoseOptions& options,
+                           Diagnosis d) {
+  if (d.verdict != Verdict::kAmbiguous || d.alternatives.empty()) return d;
+  const std::string followed = d.alternatives[0].effect;
+  double with = 0.0, without = 0.0;
+  TieSidesBic(d, followed, &with, &without);
+  if (!(without < with - options.ambiguity_bic)) return d;
+  Diagnosis other = SearchedWithout(c, nominal, options, followed);
+  const double margin = CompleteBic(d) - CompleteBic(other);
+  // Matching it: the search's fits stop within a few tenths of their
+  // minimum (kSearchBicTolerance), and the search without the followed
+  // effect most often finds that other side itself.
+  if (!ExplainsRecord(other) || !(margin > -1.0)) return d;
+  CandidateFit tied = FollowedFirst(d, followed);
+  NoteDropped(tied,
+              "tied with an effect whose complete model is " +
+                  FormatNumber("%.1f", with - without) +
+                  " lower in BIC; without it the search explains the "
+                  "record as well (BIC " +
+                  FormatNumber("%+.1f", -margin) + ")",
+              ", followed in a tie, explains the record worse than the "
+              "effects found without it",
               &other);
   return other;
 }
@@ -920,7 +938,8 @@ Diagnosis DiagnoseFrom(const Case& c,
   }
   d = OtherBranch(c, nominal, options, notes, std::move(d));
   d = FromBounds(c, nominal, options, notes, std::move(d));
-  return NearTieBranch(c, nominal, options, notes, std::move(d));
+  d = NearTieBranch(c, nominal, options, notes, std::move(d));
+  return OutdoneTieBranch(c, nominal, options, std::move(d));
 }
 
 }  // namespace

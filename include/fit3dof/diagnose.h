@@ -135,7 +135,11 @@
 // among the rejected). So is a first step taken alone whose next
 // contender came within `near_tie_bic` (20) of it, when the answer is
 // `ambiguous`, claims that step's effect, and without it the search
-// explains the record with a BIC lower by more than `ambiguity_bic`.
+// explains the record with a BIC lower by more than `ambiguity_bic`; and
+// the effect a tie followed when the complete model with another of its
+// effects is lower than the one with it by more than `ambiguity_bic` (a
+// swap that lowers BIC keeps a tie open): the search without it is taken
+// when it explains the record as well as that other side.
 // A roll-locked effect (Effect::roll_locked) on records that span less
 // than a revolution of roll ties with a drift in time (`drift_in_time`,
 // outside the catalog): the record is then `ambiguous` at best, and a
