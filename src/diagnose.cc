@@ -866,13 +866,13 @@ Diagnosis OutdoneTieBranch(const Case& c,
   TieSidesBic(d, followed, &with, &without);
   if (!(without < with - options.ambiguity_bic)) return d;
   Diagnosis other = SearchedWithout(c, nominal, options, followed);
+  // As well: within a unit of BIC, since the search's fits stop within a
+  // few tenths of their minimum (kSearchBicTolerance), and the search
+  // without the followed effect most often finds that other side itself.
+  constexpr double kAsWell = 1.0;
   const double margin = CompleteBic(d) - CompleteBic(other);
-  // Matching it: the search's fits stop within a few tenths of their
-  // minimum (kSearchBicTolerance), and the search without the followed
-  // effect most often finds that other side itself.
-  if (!ExplainsRecord(other) || !(margin > -1.0)) return d;
-  CandidateFit tied = FollowedFirst(d, followed);
-  NoteDropped(tied,
+  if (!ExplainsRecord(other) || !(margin > -kAsWell)) return d;
+  NoteDropped(FollowedFirst(d, followed),
               "tied with an effect whose complete model is " +
                   FormatNumber("%.1f", with - without) +
                   " lower in BIC; without it the search explains the "
