@@ -189,6 +189,21 @@ void TieFirst(const Case& current,
   InOrder(current, fit, data, contenders, order, joint);
 }
 
+// The round's `contenders` with the members of *joint drawn from beyond
+// them in `pooled` (Contenders' lesser refits) appended, *joint's indices
+// mapped to theirs: the lesser refits are no rivals of the set's steps.
+std::vector<Contender> WithMembers(const std::vector<Contender>& contenders,
+                                   const std::vector<Contender>& pooled,
+                                   JointSet* joint) {
+  std::vector<Contender> with = contenders;
+  for (int& m : joint->members) {
+    if (m < static_cast<int>(contenders.size())) continue;
+    with.push_back(pooled[m]);
+    m = static_cast<int>(with.size()) - 1;
+  }
+  return with;
+}
+
 // Adds the members of `joint` (Jointly) to the search's record *d as
 // steps in turn (TakeStep), each with the round's rivals outside the set,
 // as a step taken alone would have them (*tie, *rivals), and with its
@@ -400,8 +415,9 @@ Diagnosis Search(const Case& c,
     if (check.at_noise_level && !ScoreMayEarn(candidates, fit, options)) {
       break;  // past the noise (noise_held), no refit can earn a place
     }
+    std::vector<Contender> minor;
     std::vector<Contender> contenders =
-        Contenders(candidates, fit, data, options);
+        Contenders(candidates, fit, data, options, &minor);
     for (const Contender& k : contenders) {
       const Effect* e = k.candidate->effect;
       if (std::find(contended.begin(), contended.end(), e) == contended.end()) {
@@ -423,6 +439,13 @@ Diagnosis Search(const Case& c,
       notes->probe_case = probe.candidate->c;
       notes->probe_fit = probe.fit;
     }
+    // A joint set draws on the round's lesser refits too (after the
+    // contenders, which keep their indices): on a coning run with a body
+    // yaw asymmetry (added), a nonlinear damping and a tunnel stiffness
+    // (suite draw 18), the damping dragged Cn_r and was the round's only
+    // contender, the stiffness lowering BIC by 3 beside it alone.
+    std::vector<Contender> pooled = contenders;
+    pooled.insert(pooled.end(), minor.begin(), minor.end());
     JointSet joint;
     if (d.outside_catalog.effect.empty() && Jointly(current,
                                                     fit,
@@ -430,11 +453,13 @@ Diagnosis Search(const Case& c,
                                                     options,
                                                     added,
                                                     &out_of_sample,
-                                                    contenders,
+                                                    pooled,
                                                     earned,
                                                     &joint)) {
+      const std::vector<Contender> with =
+          WithMembers(contenders, pooled, &joint);
       check = TakeJointSteps(joint,
-                             contenders,
+                             with,
                              candidates,
                              data,
                              options,
@@ -785,6 +810,40 @@ Diagnosis OtherBranch(const Case& c,
   return other;
 }
 
+// A search that took steps and adopted none (each left the residuals
+// structured, Diagnosis::partial) may have turned wrong at its first:
+// the search without that effect is the answer when it explains the
+// record. On a 3-s run with a tunnel damping, a Magnus moment and a flow
+// angularity (suite draw 18), a body yaw asymmetry led the round by 26
+// of BIC and, once in, left every other effect failing to predict the
+// held-out part alone: nothing was adopted, Cm_q 55 of its errors off.
+// Not when a probe outside the catalog outdid it (the record is then
+// another's), nor after a tie (OtherBranch follows its other side), nor
+// in the search without probes that checks a probe's win (CatalogAlone):
+// there it tripled the time of a Table 6 record with a pitch-axis
+// friction (1.9 to 5.4 s) and changed no answer.
+Diagnosis DeadEndBranch(const Case& c,
+                        const FitResult& nominal,
+                        const DiagnoseOptions& options,
+                        const SearchNotes& notes,
+                        Diagnosis d) {
+  if (!options.probes || d.verdict != Verdict::kNotExplained ||
+      !d.steps.empty() || d.partial.empty() ||
+      !d.outside_catalog.effect.empty() || !notes.tied_first.empty()) {
+    return d;
+  }
+  const std::string first = d.partial[0].effect;
+  Diagnosis other = SearchedWithout(c, nominal, options, first);
+  if (!ExplainsRecord(other)) return d;
+  NoteDropped(FollowedFirst(d, first),
+              "taken first, but whatever followed it the residuals stayed "
+              "structured and nothing was adopted",
+              ", taken first, leaves the residuals structured whatever "
+              "follows it",
+              &other);
+  return other;
+}
+
 // A first step taken alone whose runner-up came within near_tie_bic (a
 // near tie, SearchNotes::near_first) may have been the greedy search's
 // wrong turn: the search without its effect is the answer when it
@@ -937,6 +996,7 @@ Diagnosis DiagnoseFrom(const Case& c,
     return d;
   }
   d = OtherBranch(c, nominal, options, notes, std::move(d));
+  d = DeadEndBranch(c, nominal, options, notes, std::move(d));
   d = FromBounds(c, nominal, options, notes, std::move(d));
   d = NearTieBranch(c, nominal, options, notes, std::move(d));
   return OutdoneTieBranch(c, nominal, options, std::move(d));

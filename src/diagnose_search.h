@@ -51,6 +51,7 @@ struct Contender {
   CandidateFit record;
   bool dragged = false;        // refused for dragging the coefficients (Judge)
   bool out_of_bounds = false;  // refused for leaving its bounds (Judge)
+  bool minor = false;  // lowered BIC by less than min_bic_drop (Contenders)
 };
 
 // Whether the options' catalog (DiagnoseOptions::effects) holds `e`.
@@ -98,11 +99,14 @@ bool FitFrom(const Case& c,
              FitResult* fit);
 
 // The best `options.refit` candidates refitted on the first fit's samples:
-// those that lower BIC by more than min_bic_drop, lowest BIC first.
+// those that lower BIC by more than min_bic_drop, lowest BIC first; the
+// others refitted, lowest BIC first, into *minor (a joint set may draw on
+// them, Jointly).
 std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
                                   const FitResult& fit,
                                   const std::vector<TimeHistory>& data,
-                                  const DiagnoseOptions& options);
+                                  const DiagnoseOptions& options,
+                                  std::vector<Contender>* minor);
 
 // The out-of-sample check of one round: the current model fitted to the
 // first part of each segment once, each contender against it.
@@ -175,10 +179,11 @@ struct JointSet {
 // the probable error 1.4-fold, and asymmetric_body, whose Cn_r then took
 // up the missing damping, was out of its bounds). The drag rule lets a
 // model that explains the record to the noise move them; so does it a
-// set: the refused contender with one or two of the next three, fitted
-// together, earns its place together (EarnedTogether). The best contender
-// may be refused otherwise and the dragged one come second: on a 3-s run
-// with a tunnel damping, a Magnus moment and a flow angularity, a body yaw
+// set: the refused contender with one or two of three others (JointPool;
+// `contenders` may end with the round's lesser refits, Contender::minor),
+// fitted together, earns its place together (EarnedTogether). The best
+// contender may be refused otherwise and the dragged one come second: on a 3-s
+// run with a tunnel damping, a Magnus moment and a flow angularity, a body yaw
 // asymmetry (predicting nothing held out) came before the dragged
 // damping, the Magnus moment was taken alone, and nothing after it
 // earned its place. Under joint_sets_from_bounds a contender refused for

@@ -72,9 +72,13 @@
 //     (each moves the coefficients that the others biased): when a
 //     contender is refused for its drag and none with a lower BIC earned
 //     its place (the best may be refused otherwise), the first such is
-//     fitted with one or two of the next three contenders (a joint set;
-//     when fewer than three follow it, those ranked above it that failed
-//     alone only to predict the held-out part join the pool),
+//     fitted with one or two of three others (a joint set), drawn in the
+//     order of BIC: the contenders ranked above it that failed alone only
+//     to predict the held-out part, those below it, then the round's
+//     refits that lowered BIC by less than `min_bic_drop`, each only in a
+//     pair with the lead (a tunnel stiffness lowering BIC by 3 beside a
+//     nonlinear damping that dragged Cn_r, alone among the contenders,
+//     made the record with both),
 //     and the lowest-BIC set that reaches the noise level, keeps every
 //     effect in the model within its bounds and predicts the held-out
 //     part better (as below, per parameter it adds) is adopted, its
@@ -139,7 +143,12 @@
 // the effect a tie followed when the complete model with another of its
 // effects is lower than the one with it by more than `ambiguity_bic` (a
 // swap that lowers BIC keeps a tie open): the search without it is taken
-// when it explains the record as well as that other side.
+// when it explains the record as well as that other side. And a search
+// that took steps, no tie among them, and adopted none (each left the
+// residuals structured; no probe outdid them) is run again without its
+// first step's effect, whose answer is taken when it explains the record:
+// a body yaw asymmetry that led the first round of a 3-s run by 26 of BIC
+// had left every true effect failing alone to predict the held-out part.
 // A roll-locked effect (Effect::roll_locked) on records that span less
 // than a revolution of roll ties with a drift in time (`drift_in_time`,
 // outside the catalog): the record is then `ambiguous` at best, and a
