@@ -781,6 +781,22 @@ bool ReplacedStep(const Case& c,
   return true;
 }
 
+// The search without `first`, the effect the search that answered `d`
+// took first, when it explains the record (`first` named among its
+// rejected, `why`, and in its verdict, `what`: NoteDropped); else `d`.
+Diagnosis TakenWithout(const Case& c,
+                       const FitResult& nominal,
+                       const DiagnoseOptions& options,
+                       const std::string& first,
+                       const std::string& why,
+                       const std::string& what,
+                       Diagnosis d) {
+  Diagnosis other = SearchedWithout(c, nominal, options, first);
+  if (!ExplainsRecord(other)) return d;
+  NoteDropped(FollowedFirst(d, first), why, what, &other);
+  return other;
+}
+
 // A tie followed down the better branch that leaves the record unexplained
 // is followed down the other: a Magnus moment and an asymmetric body lower
 // BIC alike on one short run, but only with the Magnus moment do the
@@ -799,15 +815,16 @@ Diagnosis OtherBranch(const Case& c,
                       Diagnosis d) {
   const std::string& first = notes.tied_first;
   if (d.verdict != Verdict::kNotExplained || first.empty()) return d;
-  Diagnosis other = SearchedWithout(c, nominal, options, first);
-  if (!ExplainsRecord(other)) return d;
-  NoteDropped(FollowedFirst(d, first),
-              "as good at its step as the effect that replaced it, but "
-              "whatever followed it the residuals stayed structured",
-              ", as good at one step, leaves the residuals structured "
-              "whatever follows it",
-              &other);
-  return other;
+  return TakenWithout(c,
+                      nominal,
+                      options,
+                      first,
+                      "as good at its step as the effect that replaced it, "
+                      "but whatever followed it the residuals stayed "
+                      "structured",
+                      ", as good at one step, leaves the residuals "
+                      "structured whatever follows it",
+                      std::move(d));
 }
 
 // A search that took steps and adopted none (each left the residuals
@@ -833,15 +850,15 @@ Diagnosis DeadEndBranch(const Case& c,
     return d;
   }
   const std::string first = d.partial[0].effect;
-  Diagnosis other = SearchedWithout(c, nominal, options, first);
-  if (!ExplainsRecord(other)) return d;
-  NoteDropped(FollowedFirst(d, first),
-              "taken first, but whatever followed it the residuals stayed "
-              "structured and nothing was adopted",
-              ", taken first, leaves the residuals structured whatever "
-              "follows it",
-              &other);
-  return other;
+  return TakenWithout(c,
+                      nominal,
+                      options,
+                      first,
+                      "taken first, but whatever followed it the residuals "
+                      "stayed structured and nothing was adopted",
+                      ", taken first, leaves the residuals structured "
+                      "whatever follows it",
+                      std::move(d));
 }
 
 // A first step taken alone whose runner-up came within near_tie_bic (a
