@@ -168,18 +168,18 @@ constexpr int kJointPool = 4;
 // ranked by BIC, the round's lesser refits last), in that rank: those
 // before it only when they failed alone for not predicting the held-out
 // part (a finite prediction_gain: they passed their bounds and did not
-// drag). On a 3-s run with a roll
-// reading error and a nonlinear damping at 3.5 times |Cm_q| over the
-// record, the damping dragged Cm_q and came last of four; the three before
-// it, roll-locked, each failed to predict alone, and with only those after
-// it drawn on no set was tried: the record ended `not_explained`, Cm_q 145
-// of its errors off, while the true model's BIC was 208 lower. And those
-// before it come first: on a pair of 3-s runs with a Magnus moment (added),
-// a tunnel damping and a flow angularity (suite draw 18), the flow
-// angularity led the round and failed to predict alone, the damping second
-// dragged Cm_q 72 of its errors; drawn on after it first, its pool filled
-// with the three ranked below it, and the record ended `not_explained`,
-// Cm_q 75 of its errors off.
+// drag). On a 3-s run with a roll reading error and a nonlinear damping
+// at 3.5 times |Cm_q| over the record, the damping dragged Cm_q and came
+// last of four; the three before it, roll-locked, each failed to predict
+// alone, and with only those after it drawn on no set was tried: the
+// record ended `not_explained`, Cm_q 145 of its errors off, while the
+// true model's BIC was 208 lower. And those before it come first: on a
+// pair of 3-s runs with a Magnus moment (added), a tunnel damping and a
+// flow angularity (suite draw 18), the flow angularity led the round and
+// failed to predict alone, the damping second dragged Cm_q 72 of its
+// errors; drawn on after it first, its pool filled with the three ranked
+// below it, and the record ended `not_explained`, Cm_q 75 of its errors
+// off.
 std::vector<int> JointPool(int lead, const std::vector<Contender>& contenders) {
   std::vector<int> pool;
   const int count = static_cast<int>(contenders.size());
