@@ -533,6 +533,18 @@ void ExpectFinalCovers(const Diagnosis& d,
   }
 }
 
+// `d` names exactly `effects` (`explained`) and its final model holds each
+// of `truths` within 3 standard errors; `context` follows a failure's
+// message.
+void ExpectNamedExactly(const Diagnosis& d,
+                        const std::set<std::string>& effects,
+                        const std::map<std::string, double>& truths,
+                        const std::string& context) {
+  EXPECT_EQ(d.verdict, Verdict::kExplained) << context;
+  EXPECT_EQ(EffectIds(d.steps), effects) << context;
+  ExpectFinalCovers(d, truths, context);
+}
+
 // At one slow spin (90 deg of roll in the record) a body-fixed trim moment
 // and a roll-synchronous reading error leave the same signature: the
 // verdict says so, adds neither, and names what would separate them.
@@ -1468,15 +1480,13 @@ TEST(Diagnose, ABearingAngleOnTheRidgeIsJudgedWithinItsErrors) {
   if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d = DiagnoseConfig("pair_bearing_half_degree_seed11.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
-  EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"bearing_moment"}))
-      << text;
-  ExpectFinalCovers(d,
-                    {{"Cm_alpha", -0.23},
-                     {"Cm_q", -5.5},
-                     {"Cm_bearing", -0.00559},
-                     {"bearing_angle", 0.5}},
-                    text);
+  ExpectNamedExactly(d,
+                     {"bearing_moment"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"Cm_bearing", -0.00559},
+                      {"bearing_angle", 0.5}},
+                     text);
 }
 
 // Whether `fit` holds Cm_bearing's error bar from its profile.
@@ -1760,20 +1770,17 @@ TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d = DiagnoseConfig("pair_stiffness_damping_asymmetry.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(d.verdict, Verdict::kExplained) << text;
-  EXPECT_EQ(EffectIds(d.steps),
-            std::set<std::string>(
-                {"nonlinear_damping", "asymmetric_body", "tunnel_stiffness"}))
-      << text;
+  ExpectNamedExactly(
+      d,
+      {"nonlinear_damping", "asymmetric_body", "tunnel_stiffness"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"Cm_q_alpha2", 136.0},
+       {"tunnel_Cm_theta", 0.000689},
+       {"tunnel_Cn_psi", -0.000241}},
+      text);
   EXPECT_TRUE(EffectIds(d.rejected).count("roll_torque")) << text;
   EXPECT_TRUE(d.stand_in.empty()) << text;
-  ExpectFinalCovers(d,
-                    {{"Cm_alpha", -0.23},
-                     {"Cm_q", -5.5},
-                     {"Cm_q_alpha2", 136.0},
-                     {"tunnel_Cm_theta", 0.000689},
-                     {"tunnel_Cn_psi", -0.000241}},
-                    text);
 }
 
 // tools/diagnose_suite's `coning` tunnel damping + Magnus moment + flow
@@ -1887,19 +1894,15 @@ TEST(Diagnose, ATieOutdoneOnItsOtherSideIsSearchedWithoutItsLead) {
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_vary16.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(d.verdict, Verdict::kExplained) << text;
-  EXPECT_EQ(
-      EffectIds(d.steps),
-      std::set<std::string>({"tunnel_damping", "magnus", "flow_angularity"}))
-      << text;
+  ExpectNamedExactly(d,
+                     {"tunnel_damping", "magnus", "flow_angularity"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"Cm_p_alpha", 4.8258},
+                      {"tunnel_Cm_thetadot", -2.3173},
+                      {"tunnel_Cn_psidot", 3.1459}},
+                     text);
   EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
-  ExpectFinalCovers(d,
-                    {{"Cm_alpha", -0.23},
-                     {"Cm_q", -5.5},
-                     {"Cm_p_alpha", 4.8258},
-                     {"tunnel_Cm_thetadot", -2.3173},
-                     {"tunnel_Cn_psidot", 3.1459}},
-                    text);
 }
 
 // tools/diagnose_suite --vary's `coning` Magnus moment (Cm_p_alpha 103) +
@@ -1920,23 +1923,20 @@ TEST(Diagnose, ATieFollowedWhereItsOtherSideIsBetterIsSearchedWithout) {
   const Diagnosis d =
       DiagnoseRecord("coning_magnus_nonlinear_damping_calibration_vary16.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(d.verdict, Verdict::kExplained) << text;
-  EXPECT_EQ(EffectIds(d.steps),
-            std::set<std::string>(
-                {"magnus", "nonlinear_damping", "calibration_nonlinearity"}))
-      << text;
+  ExpectNamedExactly(
+      d,
+      {"magnus", "nonlinear_damping", "calibration_nonlinearity"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"Cm_p_alpha", 103.157},
+       {"Cm_q_delta2", 251.94},
+       {"theta_cal3", -0.03664},
+       {"psi_cal3", 0.03495}},
+      text);
   EXPECT_TRUE(EffectIds(d.rejected).count("tunnel_damping")) << text;
   EXPECT_EQ(d.outside_catalog_alike.empty() ? "" : d.outside_catalog_alike[0],
             "bearing_friction")
       << text;
-  ExpectFinalCovers(d,
-                    {{"Cm_alpha", -0.23},
-                     {"Cm_q", -5.5},
-                     {"Cm_p_alpha", 103.157},
-                     {"Cm_q_delta2", 251.94},
-                     {"theta_cal3", -0.03664},
-                     {"psi_cal3", 0.03495}},
-                    text);
 }
 
 // The same coning record as above: the body yaw asymmetry (true), added
@@ -2145,31 +2145,16 @@ TEST(Diagnose, EachDraggedContenderLeadsJointSetsInTurn) {
   const Diagnosis d =
       DiagnoseConfig("pair_damping_magnus_angularity_vary15.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
-  EXPECT_EQ(
-      EffectIds(d.steps),
-      std::set<std::string>({"flow_angularity", "magnus", "tunnel_damping"}))
-      << text;
-  ExpectFinalCovers(d,
-                    {{"Cm_alpha", -0.23},
-                     {"Cm_q", -5.5},
-                     {"tunnel_Cm_thetadot", 2.331},
-                     {"tunnel_Cn_psidot", -3.165},
-                     {"Cm_p_alpha", 4.337},
-                     {"theta_T", -0.01574},
-                     {"psi_T", -0.01785}},
-                    text);
-}
-
-// `d` names exactly `effects` (`explained`) and its final model holds each
-// of `truths` within 3 standard errors.
-void ExpectNamedExactly(const Diagnosis& d,
-                        const std::set<std::string>& effects,
-                        const std::map<std::string, double>& truths) {
-  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(d.verdict, Verdict::kExplained) << text;
-  EXPECT_EQ(EffectIds(d.steps), effects) << text;
-  ExpectFinalCovers(d, truths, text);
+  ExpectNamedExactly(d,
+                     {"flow_angularity", "magnus", "tunnel_damping"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"tunnel_Cm_thetadot", 2.331},
+                      {"tunnel_Cn_psidot", -3.165},
+                      {"Cm_p_alpha", 4.337},
+                      {"theta_T", -0.01574},
+                      {"psi_T", -0.01785}},
+                     text);
 }
 
 // The same case on draw 18 (tests/data/pair_damping_magnus_angularity_
@@ -2182,16 +2167,18 @@ void ExpectNamedExactly(const Diagnosis& d,
 // are named.
 TEST(Diagnose, AJointSetDrawsOnItsPoolInTheOrderOfBic) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
-  ExpectNamedExactly(
-      DiagnoseConfig("pair_damping_magnus_angularity_vary18.yaml"),
-      {"flow_angularity", "magnus", "tunnel_damping"},
-      {{"Cm_alpha", -0.23},
-       {"Cm_q", -5.5},
-       {"tunnel_Cm_thetadot", 2.578},
-       {"tunnel_Cn_psidot", -3.500},
-       {"Cm_p_alpha", 5.013},
-       {"theta_T", -0.01815},
-       {"psi_T", -0.02058}});
+  const Diagnosis d =
+      DiagnoseConfig("pair_damping_magnus_angularity_vary18.yaml");
+  ExpectNamedExactly(d,
+                     {"flow_angularity", "magnus", "tunnel_damping"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"tunnel_Cm_thetadot", 2.578},
+                      {"tunnel_Cn_psidot", -3.500},
+                      {"Cm_p_alpha", 5.013},
+                      {"theta_T", -0.01815},
+                      {"psi_T", -0.02058}},
+                     FormatDiagnosis(d, {0.01, 0.01, 0.01}));
 }
 
 // tools/diagnose_suite --vary's `coning` tunnel stiffness (t1 -3.1e-4, t3
@@ -2204,15 +2191,18 @@ TEST(Diagnose, AJointSetDrawsOnItsPoolInTheOrderOfBic) {
 // A joint set draws on the round's lesser refits too: the three are named.
 TEST(Diagnose, AJointSetDrawsOnTheRoundsLesserRefits) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_stiffness_damping_asymmetry_vary18.csv");
   ExpectNamedExactly(
-      DiagnoseRecord("coning_stiffness_damping_asymmetry_vary18.csv"),
+      d,
       {"asymmetric_body", "nonlinear_damping", "tunnel_stiffness"},
       {{"Cm_alpha", -0.23},
        {"Cm_q", -5.5},
        {"Cm_q_alpha2", 259.2},
        {"Cn_beta", 0.230515},
        {"tunnel_Cm_theta", -3.146e-4},
-       {"tunnel_Cn_psi", 1.101e-4}});
+       {"tunnel_Cn_psi", 1.101e-4}},
+      FormatDiagnosis(d, {0.01, 0.01, 0.01}));
 }
 
 // tools/diagnose_suite --vary's `short` tunnel damping (t2 -2.56, t4 3.30)
@@ -2227,6 +2217,7 @@ TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_vary18.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ExpectNamedExactly(d,
                      {"flow_angularity", "magnus", "tunnel_damping"},
                      {{"Cm_alpha", -0.23},
@@ -2235,8 +2226,9 @@ TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
                       {"tunnel_Cn_psidot", 3.300},
                       {"Cm_p_alpha", 5.078},
                       {"theta_T", 0.01952},
-                      {"psi_T", 0.02214}});
-  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body"));
+                      {"psi_T", 0.02214}},
+                     text);
+  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
 }
 
 // sigma: auto, the noise unknown as on a real record. Each fit would set
