@@ -293,6 +293,7 @@ void TakeNotExcluded(const Beside& t,
                      std::vector<CandidateFit>* listed,
                      Diagnosis* d) {
   d->not_excluded_models.push_back(t.fit.parameters);
+  d->least_beside_bic = std::min(d->least_beside_bic, Bic(t.fit));
   d->not_excluded_weights.push_back(AkaikeWeight(t.akaike_rise));
   if (std::any_of(listed->begin(), listed->end(), [&](const CandidateFit& k) {
         return k.effect == t.effect->id;

@@ -32,6 +32,13 @@
 // ln(n) per parameter, reaches min_bic_drop). The rerun config keeps
 // sigma: auto.
 //
+// With sigma given the search stops at the noise level, save for a round
+// for the nominal fit's near twins; an explained answer whose model some
+// contender beside it lowers BIC by more than `min_bic_drop` is searched
+// again with one round past the noise for those effects
+// (DiagnoseOptions::past_noise), each earning its place as in any round
+// (docs/diagnose.md, "Sigma and the noise").
+//
 // Which effect? Every catalog effect not yet in the model is scored at the
 // current solution by a score (Lagrange-multiplier) test: with g = J_c^T r
 // the gradient of the cost along the candidate's parameters (at zero) and
@@ -230,6 +237,7 @@
 #ifndef FIT3DOF_DIAGNOSE_H_
 #define FIT3DOF_DIAGNOSE_H_
 
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -338,6 +346,11 @@ struct DiagnoseOptions {
   // `not_explained` with such a contender ahead of every one that earned
   // its place.
   bool joint_sets_from_bounds = false;
+  // Effects a round at the noise level may still add (sigma given), each
+  // earning its place as in any round. Diagnose names them itself for a
+  // second search when an explained answer leaves one that lowers BIC
+  // beside its model by more than min_bic_drop (not_excluded).
+  std::vector<std::string> past_noise;
   // Judge the bounds of a contender on a ridge (Effect::on_ridge)
   // within two of its standard errors (moved that far toward zero), as
   // the effects not excluded are judged, rather than at the point fit.
@@ -545,6 +558,10 @@ struct Diagnosis {
   std::vector<std::string> near_twins;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
   std::vector<double> not_excluded_weights;  // each model's Akaike weight
+  // The least BIC of a complete model with one of not_excluded or
+  // open_terms beside it (infinity if none): what the record says of the
+  // answer counts it too (diagnose.cc, CompleteBic).
+  double least_beside_bic = std::numeric_limits<double>::infinity();
   // The probes an added effect leaves open (Effect::leaves_open) that the
   // record cannot exclude beside the final model: each fitted there, the
   // rise in BIC as minus bic_drop; the final error bars cover those fits
