@@ -329,7 +329,7 @@ bool ScoreMayEarn(const std::vector<Candidate>& candidates,
       });
 }
 
-// Of `candidates` (scored at `fit`), the near twins of its free parameters
+// Whether `k` (scored at `fit`) is a near twin of its free parameters
 // (IsNearTwin) whose score may earn a place (ScoreMayEarn's rule). At the
 // noise level, with sigma given, the search stops; but a twin's signature
 // hides in the parameters it moves, and the residuals reach the noise
@@ -337,14 +337,19 @@ bool ScoreMayEarn(const std::vector<Candidate>& candidates,
 // its bound, Cm_q took it (-4.5 for -5.5, 61 of its errors off), the
 // nominal fit reached the noise, and the damping's score (16.0, novelty
 // 0.0014) stood 11 above ln(n): the true model's BIC was 11.4 lower.
+bool HiddenTwin(const Candidate& k,
+                const FitResult& fit,
+                const DiagnoseOptions& options) {
+  return IsNearTwin(k.score) && ScoreMayEarn({k}, fit, options);
+}
+
+// Of `candidates` (scored at `fit`), the hidden twins (HiddenTwin).
 std::vector<Candidate> HiddenTwins(std::vector<Candidate> candidates,
                                    const FitResult& fit,
                                    const DiagnoseOptions& options) {
   std::vector<Candidate> twins;
   for (Candidate& k : candidates) {
-    if (IsNearTwin(k.score) && ScoreMayEarn({k}, fit, options)) {
-      twins.push_back(std::move(k));
-    }
+    if (HiddenTwin(k, fit, options)) twins.push_back(std::move(k));
   }
   return twins;
 }
@@ -357,14 +362,12 @@ std::vector<Candidate> AtNoiseLevel(std::vector<Candidate> candidates,
                                     const FitResult& fit,
                                     const DiagnoseOptions& options,
                                     bool first) {
+  const std::vector<std::string>& named = options.past_noise;
   std::vector<Candidate> kept;
   for (Candidate& k : candidates) {
-    const std::vector<std::string>& named = options.past_noise;
-    if (std::find(named.begin(), named.end(), k.effect->id) != named.end()) {
+    if (std::find(named.begin(), named.end(), k.effect->id) != named.end() ||
+        (first && HiddenTwin(k, fit, options))) {
       kept.push_back(std::move(k));
-    } else if (first) {
-      std::vector<Candidate> twin = HiddenTwins({std::move(k)}, fit, options);
-      if (!twin.empty()) kept.push_back(std::move(twin[0]));
     }
   }
   return kept;
@@ -576,8 +579,8 @@ Diagnosis DiagnoseFrom(const Case& c,
 // had followed lowered BIC by 46, and a dry friction weighed against the
 // followed branch alone had seemed to explain the record 46 better than
 // the catalog. An effect the record cannot exclude beside the complete
-// model counts too (Diagnosis::least_beside_bic): past the noise the
-// search adds nothing, and on a 3-s pair of runs with a tunnel stiffness,
+// model counts too (Diagnosis::least_beside_bic): the search stops at
+// the noise, and on a 3-s pair of runs with a tunnel stiffness,
 // a roll reading error and a flow angularity, the search that found the
 // first two (the angularity beside them 47.7 lower) was outdone by one
 // without the stiffness (15.5 lower, a tunnel damping and the angularity
