@@ -5,7 +5,8 @@
 // (Candidate, Contender), one round of the search (diagnose_round.cc),
 // its ties and the final model they leave (diagnose_ties.cc), and the
 // final model's error bars (diagnose_error_bars.cc). diagnose.cc runs the
-// search over them.
+// search over them; diagnose_second_thoughts.cc weighs its answer against
+// others and takes one.
 
 #ifndef FIT3DOF_SRC_DIAGNOSE_SEARCH_H_
 #define FIT3DOF_SRC_DIAGNOSE_SEARCH_H_
@@ -414,6 +415,43 @@ std::string FindSetReplacements(const std::vector<Case>& models,
                                 const std::vector<TimeHistory>& data,
                                 const DiagnoseOptions& options,
                                 Diagnosis* d);
+
+// The search and its second thoughts (diagnose.cc, diagnose_second_
+// thoughts.cc).
+
+// What a search tells its caller besides its answer: the effect it
+// followed at a tie of two catalog effects (empty if none), the first
+// step's effect when it was taken alone, untied, and its next contender
+// not refused came within near_tie_bic (NearTie; empty otherwise), the
+// step the
+// effects not excluded outdid (FindSetReplacements; empty if none), and
+// whether a contender refused for leaving its bounds came ahead of every
+// one that earned its place at some round (a joint set's lead under
+// joint_sets_from_bounds), and the model of the probe that outdid the
+// catalog (Diagnosis::outside_catalog), as fitted.
+struct SearchNotes {
+  std::string tied_first;
+  std::string near_first;
+  std::string outdone;
+  bool bounded_lead = false;
+  Case probe_case;
+  FitResult probe_fit;
+};
+
+// The forward search (diagnose.h) from `nominal`, the fit of `c`, with
+// `options`' catalog; *notes gets what else it found (diagnose.cc).
+Diagnosis Search(const Case& c,
+                 const FitResult& nominal,
+                 const DiagnoseOptions& options,
+                 SearchNotes* notes);
+
+// The search from `nominal`, the fit of `c`, and its second thoughts: an
+// effect past the noise, a step outdone, the other branch of a tie, a
+// first step that led nowhere, joint sets led by an effect out of its
+// bounds, a near or outdone tie (diagnose_second_thoughts.cc).
+Diagnosis DiagnoseFrom(const Case& c,
+                       const FitResult& nominal,
+                       const DiagnoseOptions& options);
 
 }  // namespace fit3dof
 

@@ -560,7 +560,7 @@ struct Diagnosis {
   std::vector<double> not_excluded_weights;  // each model's Akaike weight
   // The least BIC of a complete model with one of not_excluded or
   // open_terms beside it (infinity if none): what the record says of the
-  // answer counts it too (diagnose.cc, CompleteBic).
+  // answer counts it too (diagnose_second_thoughts.cc, CompleteBic).
   double least_beside_bic = std::numeric_limits<double>::infinity();
   // The probes an added effect leaves open (Effect::leaves_open) that the
   // record cannot exclude beside the final model: each fitted there, the
