@@ -423,7 +423,10 @@ Diagnosis Search(const Case& c,
       if (candidates.empty()) break;
     } else if (check.at_noise_level &&
                !ScoreMayEarn(candidates, fit, options)) {
-      break;  // past the noise (noise_held), no refit can earn a place
+      // Past the noise (noise_held) no refit's score can earn a place: the
+      // effects named past the noise alone, if any.
+      candidates = AtNoiseLevel(std::move(candidates), fit, options, false);
+      if (candidates.empty()) break;
     }
     std::vector<Contender> minor;
     std::vector<Contender> contenders =
