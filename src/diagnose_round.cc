@@ -469,8 +469,14 @@ std::vector<std::vector<int>> JointSets(
   return sets;
 }
 
-// Jointly for one lead: its sets fitted side by side, the lowest-BIC one
-// that earns its place into *joint.
+// Jointly for one lead: its pairs fitted side by side, the lowest-BIC one
+// that earns its place into *joint; then, when none does, its triples so.
+// A pair that earns leaves a third effect to the next round, where it
+// must earn its place with the pair in. Weighed together by BIC, a
+// triple had won where a pair earned: on a 3-s coning run with a tunnel
+// stiffness, a nonlinear damping and a body yaw asymmetry, {damping,
+// Magnus, tunnel damping} over {damping, asymmetry}, a false tunnel
+// damping added.
 bool JointlyLedBy(int lead,
                   const Case& current,
                   const FitResult& fit,
@@ -487,52 +493,65 @@ bool JointlyLedBy(int lead,
   std::vector<int> terms(n, 0);
   std::vector<FitResult> fits(n);
   std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
-  ParallelFor(n, [&](int i) {
-    fitted[i] = WithEffects(at, contenders, sets[i], &models[i], &terms[i]) &&
-                FitFrom(models[i].c, fit, data, "with a joint set", &fits[i]);
-  });
-  std::vector<int> order;
-  for (int i = 0; i < n; ++i) {
-    if (fitted[i]) order.push_back(i);
-  }
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return Bic(fits[a]) < Bic(fits[b]);
-  });
-  for (int i : order) {
-    double gain = 0.0;
-    if (!EarnedTogether(models[i].c,
-                        fits[i],
-                        sets[i],
-                        contenders,
-                        added,
-                        terms[i],
-                        options,
-                        out_of_sample,
-                        &gain)) {
-      continue;
+  // The sets of `size` members fitted side by side; the fitted ones, in
+  // the order of BIC.
+  const auto fit_sets = [&](size_t size) {
+    std::vector<int> which;
+    for (int i = 0; i < n; ++i) {
+      if (sets[i].size() == size) which.push_back(i);
     }
-    VLOG(1) << fit.name << ": joint set of " << sets[i].size() << " led by "
-            << contenders[lead].record.effect << " earns its place, BIC "
-            << Bic(fits[i]) << ", gain " << gain;
-    // The prefixes: the first member's contender, the pair before a triple.
-    int pair = -1;
-    if (sets[i].size() == 3) {
-      const std::vector<int> prefix = {lead, sets[i][1]};
-      pair = static_cast<int>(std::find(sets.begin(), sets.end(), prefix) -
-                              sets.begin());
-      if (!fitted[pair]) continue;
+    ParallelFor(static_cast<int>(which.size()), [&](int k) {
+      const int i = which[k];
+      fitted[i] = WithEffects(at, contenders, sets[i], &models[i], &terms[i]) &&
+                  FitFrom(models[i].c, fit, data, "with a joint set", &fits[i]);
+    });
+    which.erase(
+        std::remove_if(
+            which.begin(), which.end(), [&](int i) { return !fitted[i]; }),
+        which.end());
+    std::sort(which.begin(), which.end(), [&](int a, int b) {
+      return Bic(fits[a]) < Bic(fits[b]);
+    });
+    return which;
+  };
+  for (size_t size : {2, 3}) {
+    for (int i : fit_sets(size)) {
+      double gain = 0.0;
+      if (!EarnedTogether(models[i].c,
+                          fits[i],
+                          sets[i],
+                          contenders,
+                          added,
+                          terms[i],
+                          options,
+                          out_of_sample,
+                          &gain)) {
+        continue;
+      }
+      VLOG(1) << fit.name << ": joint set of " << sets[i].size() << " led by "
+              << contenders[lead].record.effect << " earns its place, BIC "
+              << Bic(fits[i]) << ", gain " << gain;
+      // The prefixes: the first member's contender, the pair before a
+      // triple.
+      int pair = -1;
+      if (sets[i].size() == 3) {
+        const std::vector<int> prefix = {lead, sets[i][1]};
+        pair = static_cast<int>(std::find(sets.begin(), sets.end(), prefix) -
+                                sets.begin());
+        if (!fitted[pair]) continue;
+      }
+      joint->members = sets[i];
+      joint->prediction_gain = gain;
+      joint->models = {*contenders[lead].candidate};
+      joint->fits = {contenders[lead].fit};
+      if (pair >= 0) {
+        joint->models.push_back(models[pair]);
+        joint->fits.push_back(fits[pair]);
+      }
+      joint->models.push_back(models[i]);
+      joint->fits.push_back(fits[i]);
+      return true;
     }
-    joint->members = sets[i];
-    joint->prediction_gain = gain;
-    joint->models = {*contenders[lead].candidate};
-    joint->fits = {contenders[lead].fit};
-    if (pair >= 0) {
-      joint->models.push_back(models[pair]);
-      joint->fits.push_back(fits[pair]);
-    }
-    joint->models.push_back(models[i]);
-    joint->fits.push_back(fits[i]);
-    return true;
   }
   return false;
 }

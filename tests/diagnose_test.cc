@@ -2281,6 +2281,30 @@ TEST(Diagnose, AStiffnessBesideAnExplainedModelIsSearchedPastTheNoise) {
       FormatDiagnosis(d, {0.01, 0.01, 0.01}));
 }
 
+// tools/diagnose_suite --vary's `coning` tunnel stiffness (t1 -3.7e-4, t3
+// 1.3e-4) + nonlinear damping (Cm_q_delta2 -127) + body yaw asymmetry
+// (Cn_beta 0.2% above -Cm_alpha), draw 22, kept as tests/data/coning_
+// stiffness_damping_asymmetry_vary22.csv. The damping drags Cm_q alone and
+// the asymmetry earns its place; the damping's joint sets were fitted
+// pairs and triples at once, and the lowest-BIC one that earned, {damping,
+// Magnus, tunnel damping}, was taken: `ambiguous` with a false tunnel
+// damping added. A pair that earns comes first (JointlyLedBy): the
+// damping and the asymmetry, the stiffness not excluded beside them.
+TEST(Diagnose, AJointPairThatEarnsComesBeforeTheTriples) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_stiffness_damping_asymmetry_vary22.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(d,
+                     {"asymmetric_body", "nonlinear_damping"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"Cm_q_alpha2", -126.85},
+                      {"Cn_beta", 0.230504}},
+                     text);
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("tunnel_stiffness")) << text;
+}
+
 // sigma: auto, the noise unknown as on a real record. Each fit would set
 // its own weights, so the diagnosis holds the noise the nominal fit and
 // the data show (WithNoiseHeld) and goes on past it while an effect earns

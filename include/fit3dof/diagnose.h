@@ -86,9 +86,11 @@
 //     pair with the lead (a tunnel stiffness lowering BIC by 3 beside a
 //     nonlinear damping that dragged Cn_r, alone among the contenders,
 //     made the record with both),
-//     and the lowest-BIC set that reaches the noise level, keeps every
+//     and the lowest-BIC pair that reaches the noise level, keeps every
 //     effect in the model within its bounds and predicts the held-out
-//     part better (as below, per parameter it adds) is adopted, its
+//     part better (as below, per parameter it adds) is adopted, or when
+//     no pair does, the lowest-BIC triple that does (a third effect that
+//     belongs is left to the next round), its
 //     effects as steps in turn (DiagnosisStep::note); a step adopted alone
 //     has rivals, so does each of them (a roll-locked one its twins too);
 //   - out of sample: each segment cut into `held_out_blocks` (8) runs of
