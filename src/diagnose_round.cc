@@ -469,6 +469,73 @@ std::vector<std::vector<int>> JointSets(
   return sets;
 }
 
+// The fits of a lead's joint sets (JointSets), by the set's index.
+struct SetFits {
+  std::vector<Candidate> models;
+  std::vector<int> terms;
+  std::vector<FitResult> fits;
+  std::vector<char> fitted;  // not vector<bool>: written in parallel
+};
+
+// The sets of `size` members among `sets` fitted side by side from `fit`
+// (of the model `at`) into *f; the fitted ones, in the order of BIC.
+std::vector<int> FitSets(size_t size,
+                         const std::vector<std::vector<int>>& sets,
+                         const Case& at,
+                         const FitResult& fit,
+                         const std::vector<TimeHistory>& data,
+                         const std::vector<Contender>& contenders,
+                         SetFits* f) {
+  std::vector<int> which;
+  for (size_t i = 0; i < sets.size(); ++i) {
+    if (sets[i].size() == size) which.push_back(static_cast<int>(i));
+  }
+  ParallelFor(static_cast<int>(which.size()), [&](int k) {
+    const int i = which[k];
+    f->fitted[i] =
+        WithEffects(at, contenders, sets[i], &f->models[i], &f->terms[i]) &&
+        FitFrom(f->models[i].c, fit, data, "with a joint set", &f->fits[i]);
+  });
+  which.erase(
+      std::remove_if(
+          which.begin(), which.end(), [&](int i) { return !f->fitted[i]; }),
+      which.end());
+  std::sort(which.begin(), which.end(), [&](int a, int b) {
+    return Bic(f->fits[a]) < Bic(f->fits[b]);
+  });
+  return which;
+}
+
+// *joint takes the set sets[i] led by contenders[lead] (its prediction
+// gain `gain`) with its prefixes' models and fits: the lead's contender,
+// and the pair before a triple. False when that pair was not fitted.
+bool TakeSet(int i,
+             int lead,
+             const std::vector<std::vector<int>>& sets,
+             const SetFits& f,
+             const std::vector<Contender>& contenders,
+             double gain,
+             JointSet* joint) {
+  int pair = -1;
+  if (sets[i].size() == 3) {
+    const std::vector<int> prefix = {lead, sets[i][1]};
+    pair = static_cast<int>(std::find(sets.begin(), sets.end(), prefix) -
+                            sets.begin());
+    if (!f.fitted[pair]) return false;
+  }
+  joint->members = sets[i];
+  joint->prediction_gain = gain;
+  joint->models = {*contenders[lead].candidate};
+  joint->fits = {contenders[lead].fit};
+  if (pair >= 0) {
+    joint->models.push_back(f.models[pair]);
+    joint->fits.push_back(f.fits[pair]);
+  }
+  joint->models.push_back(f.models[i]);
+  joint->fits.push_back(f.fits[i]);
+  return true;
+}
+
 // Jointly for one lead: its pairs fitted side by side, the lowest-BIC one
 // that earns its place into *joint; then, when none does, its triples so.
 // A pair that earns leaves a third effect to the next round, where it
@@ -488,41 +555,20 @@ bool JointlyLedBy(int lead,
                   JointSet* joint) {
   const std::vector<std::vector<int>> sets = JointSets(lead, contenders);
   const Case at = CaseAtSolution(current, fit);
-  const int n = static_cast<int>(sets.size());
-  std::vector<Candidate> models(n);
-  std::vector<int> terms(n, 0);
-  std::vector<FitResult> fits(n);
-  std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
-  // The sets of `size` members fitted side by side; the fitted ones, in
-  // the order of BIC.
-  const auto fit_sets = [&](size_t size) {
-    std::vector<int> which;
-    for (int i = 0; i < n; ++i) {
-      if (sets[i].size() == size) which.push_back(i);
-    }
-    ParallelFor(static_cast<int>(which.size()), [&](int k) {
-      const int i = which[k];
-      fitted[i] = WithEffects(at, contenders, sets[i], &models[i], &terms[i]) &&
-                  FitFrom(models[i].c, fit, data, "with a joint set", &fits[i]);
-    });
-    which.erase(
-        std::remove_if(
-            which.begin(), which.end(), [&](int i) { return !fitted[i]; }),
-        which.end());
-    std::sort(which.begin(), which.end(), [&](int a, int b) {
-      return Bic(fits[a]) < Bic(fits[b]);
-    });
-    return which;
-  };
+  const size_t n = sets.size();
+  SetFits f{std::vector<Candidate>(n),
+            std::vector<int>(n, 0),
+            std::vector<FitResult>(n),
+            std::vector<char>(n, false)};
   for (size_t size : {2, 3}) {
-    for (int i : fit_sets(size)) {
+    for (int i : FitSets(size, sets, at, fit, data, contenders, &f)) {
       double gain = 0.0;
-      if (!EarnedTogether(models[i].c,
-                          fits[i],
+      if (!EarnedTogether(f.models[i].c,
+                          f.fits[i],
                           sets[i],
                           contenders,
                           added,
-                          terms[i],
+                          f.terms[i],
                           options,
                           out_of_sample,
                           &gain)) {
@@ -530,27 +576,8 @@ bool JointlyLedBy(int lead,
       }
       VLOG(1) << fit.name << ": joint set of " << sets[i].size() << " led by "
               << contenders[lead].record.effect << " earns its place, BIC "
-              << Bic(fits[i]) << ", gain " << gain;
-      // The prefixes: the first member's contender, the pair before a
-      // triple.
-      int pair = -1;
-      if (sets[i].size() == 3) {
-        const std::vector<int> prefix = {lead, sets[i][1]};
-        pair = static_cast<int>(std::find(sets.begin(), sets.end(), prefix) -
-                                sets.begin());
-        if (!fitted[pair]) continue;
-      }
-      joint->members = sets[i];
-      joint->prediction_gain = gain;
-      joint->models = {*contenders[lead].candidate};
-      joint->fits = {contenders[lead].fit};
-      if (pair >= 0) {
-        joint->models.push_back(models[pair]);
-        joint->fits.push_back(fits[pair]);
-      }
-      joint->models.push_back(models[i]);
-      joint->fits.push_back(fits[i]);
-      return true;
+              << Bic(f.fits[i]) << ", gain " << gain;
+      if (TakeSet(i, lead, sets, f, contenders, gain, joint)) return true;
     }
   }
   return false;
