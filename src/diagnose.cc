@@ -418,14 +418,16 @@ Diagnosis Search(const Case& c,
         hidden && step == 0 && !polished
             ? std::move(twins)
             : ScoredCandidates(current, fit, options);
-    if (check.at_noise_level && !options.noise_held) {
-      candidates = AtNoiseLevel(std::move(candidates), fit, options, step == 0);
-      if (candidates.empty()) break;
-    } else if (check.at_noise_level &&
-               !ScoreMayEarn(candidates, fit, options)) {
-      // Past the noise (noise_held) no refit's score can earn a place: the
-      // effects named past the noise alone, if any.
-      candidates = AtNoiseLevel(std::move(candidates), fit, options, false);
+    // At the noise level with sigma given, and past it (noise_held) when
+    // no refit's score can earn a place, a round holds only the effects
+    // named past the noise (and, with sigma given, the first round's
+    // hidden twins); with none the search ends.
+    if (check.at_noise_level &&
+        (!options.noise_held || !ScoreMayEarn(candidates, fit, options))) {
+      candidates = AtNoiseLevel(std::move(candidates),
+                                fit,
+                                options,
+                                step == 0 && !options.noise_held);
       if (candidates.empty()) break;
     }
     std::vector<Contender> minor;
