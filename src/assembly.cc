@@ -126,6 +126,19 @@ bool Information(const Assembly& a,
   return true;
 }
 
+bool SumOfSquares(const Assembly& a, double* ressum) {
+  double cost = 0.0;
+  if (!a.problem->Evaluate(ceres::Problem::EvaluateOptions(),
+                           &cost,
+                           nullptr,
+                           nullptr,
+                           nullptr)) {
+    return false;
+  }
+  *ressum = 2.0 * cost;
+  return std::isfinite(*ressum);
+}
+
 std::vector<double> ColumnScales(const Eigen::MatrixXd& jtj_unscaled,
                                  const std::vector<double>& old_scale) {
   std::vector<double> scale(old_scale.size());

@@ -72,6 +72,11 @@ bool Information(const Assembly& a,
                  double* ressum,
                  Eigen::VectorXd* jtr = nullptr);
 
+// The weighted residual sum of squares at the assembly's values; false if
+// the motion cannot be integrated. No Jacobian: the cost of one
+// integration.
+bool SumOfSquares(const Assembly& a, double* ressum);
+
 // Scales that make every Jacobian column of unit length, from J^T J in the
 // coordinates of `old_scale` (columns that are exactly zero keep theirs).
 std::vector<double> ColumnScales(const Eigen::MatrixXd& jtj,

@@ -162,7 +162,9 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
                   a.multi_start,
                   a.starts,
                   a.profile_ridges,
-                  a.from_solution) == std::tie(b.max_iterations,
+                  a.from_solution,
+                  a.far_start,
+                  a.bic_tolerance) == std::tie(b.max_iterations,
                                                b.tolerance,
                                                b.step,
                                                b.continuation,
@@ -171,7 +173,9 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
                                                b.multi_start,
                                                b.starts,
                                                b.profile_ridges,
-                                               b.from_solution);
+                                               b.from_solution,
+                                               b.far_start,
+                                               b.bic_tolerance);
 }
 
 bool operator==(const ProcessNoiseModel& a, const ProcessNoiseModel& b) {

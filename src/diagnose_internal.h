@@ -22,8 +22,13 @@ namespace fit3dof {
 // out-of-sample fits): no multi-start, no rule on the residual level (the
 // diagnosis judges it), and continuation only when the solution is far
 // from the noise (probable error above kNearSolution): near it the
-// growing windows only cost time.
+// growing windows only cost time. But a start near the noise by that
+// measure takes the windows when its own probable error is above kFarStart
+// (SolverOptions::far_start): a model with an effect taken out can start
+// far from the solution it came from. Between the two the Gauss-Newton
+// steps converge faster than windows (continuation.cc, FarStart).
 inline constexpr double kNearSolution = 3.0;
+inline constexpr double kFarStart = 30.0;
 // Such a fit also stops once an iteration lowers its BIC by less than this
 // (SolverOptions::bic_tolerance): the search compares fits by BIC margins
 // of whole units, and fits along a flat ridge (a bearing moment's angle

@@ -359,6 +359,8 @@ void Converge(const Case& model,
   Case start = CaseAtSolution(model, *fit);
   RefitFromSolution(&start, 0.0);
   start.solver.bic_tolerance = 0.0;
+  // The start is the fit itself, wherever its residuals are.
+  start.solver.far_start = 0.0;
   FitResult converged;
   try {
     converged = MemoizedFitSamples(start, data);

@@ -282,6 +282,7 @@ void RefitFromSolution(Case* c, double probable_error) {
   c->solver.multi_start = false;
   c->solver.max_probable_error = 0.0;
   c->solver.from_solution = !c->solver.continuation;
+  c->solver.far_start = c->solver.from_solution ? kFarStart : 0.0;
   c->solver.bic_tolerance = kSearchBicTolerance;
 }
 

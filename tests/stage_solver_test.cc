@@ -3,7 +3,8 @@
 // Levenberg-Marquardt's first trust region (stage_solver.h): a refit from
 // the solution of a nearby model takes the Gauss-Newton step along a
 // straight ridge at once, and reaches the minimum the cautious start
-// reaches.
+// reaches; one that starts far from the noise all the same takes the
+// growing windows (continuation.h).
 
 #include "stage_solver.h"
 
@@ -79,6 +80,48 @@ TEST(StageSolver, ARefitFromASolutionTakesTheRidgeAtOnce) {
   // Where the nominal fit stops short of the ridge's bottom, the cautious
   // start crawls there (13-14 iterations against 5 on two seeds of three).
   EXPECT_LE(2 * trusted_iterations, cautious_iterations);
+}
+
+// A refit from a nearby model's solution whose start is far from the
+// noise after all (SolverOptions::far_start; diagnose's fits of a model
+// with an effect taken out): Cm_alpha a fifth off its solution on an 8-s
+// run of the short condition, the motion out of phase within a few
+// cycles. Checked first, it takes the growing windows, and reaches the
+// minimum the refit from the solution itself reaches.
+TEST(StageSolver, ARefitThatStartsFarFromTheNoiseTakesTheWindows) {
+  const std::string dir = testing::ScratchDirectory("stage_far_start");
+  Case c = testing::ShortRun(dir, "", 1);
+  std::vector<double> times;
+  for (int i = 0; i <= 400; ++i) times.push_back(0.02 * i);
+  c.segments[0].data_file =
+      testing::WriteNoisyRecord(c, times, 1, dir + "/long.csv");
+  c.parameters[FindParameter(c.model, "Cm_alpha")] = {-0.2, true, false};
+  c.parameters[FindParameter(c.model, "Cm_q")] = {-2.0, true, false};
+  const FitResult nominal = Fit(c);
+  ASSERT_LT(nominal.probable_error, 3.0);
+  std::vector<TimeHistory> data;
+  for (const SegmentFit& f : nominal.segments) data.push_back(f.data);
+  Case at = CaseAtSolution(c, nominal);
+  at.solver.continuation = false;
+  at.solver.multi_start = false;
+  at.solver.from_solution = true;
+  Case far = at;
+  far.parameters[FindParameter(far.model, "Cm_alpha")].value *= 1.2;
+  Case unchecked = far;
+  far.solver.far_start = 30.0;
+  const FitResult windows = FitSamples(far, data);
+  const FitResult straight = FitSamples(unchecked, data);
+  std::cout << "far start: " << windows.stages.size() << " stages, "
+            << windows.iterations << " iterations, sum of squares "
+            << windows.sum_of_residuals << "; unchecked "
+            << straight.stages.size() << " stage, " << straight.iterations
+            << " iterations, " << straight.sum_of_residuals << "; nominal "
+            << nominal.sum_of_residuals << "\n";
+  EXPECT_GT(windows.stages.size(), 1u);
+  EXPECT_EQ(straight.stages.size(), 1u);
+  EXPECT_NEAR(windows.sum_of_residuals,
+              nominal.sum_of_residuals,
+              1e-3 * nominal.sum_of_residuals);
 }
 
 // A bearing moment (bearing_moment.h) at 1.5 times the noise's size on the

@@ -164,6 +164,11 @@ struct SolverOptions {
   // effect more or less): Levenberg-Marquardt trusts the Gauss-Newton step
   // from the first iteration (stage_solver.h). Not a config key.
   bool from_solution = false;
+  // With from_solution: the start's own probable error, evaluated first,
+  // above this and the start is far after all (a model without an effect
+  // the record needs): the fit takes the growing windows (continuation.h)
+  // all the same. 0: never. Not a config key.
+  double far_start = 0.0;
   // Also stop when an iteration lowers n ln(RSS), the fit's part of the
   // Bayesian information criterion (n residuals, RSS their weighted sum of
   // squares), by less than this (0: the probable error's rule alone). Not
