@@ -164,18 +164,20 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
                   a.profile_ridges,
                   a.from_solution,
                   a.far_start,
-                  a.bic_tolerance) == std::tie(b.max_iterations,
-                                               b.tolerance,
-                                               b.step,
-                                               b.continuation,
-                                               b.method,
-                                               b.max_probable_error,
-                                               b.multi_start,
-                                               b.starts,
-                                               b.profile_ridges,
-                                               b.from_solution,
-                                               b.far_start,
-                                               b.bic_tolerance);
+                  a.bic_tolerance,
+                  a.stop_below) == std::tie(b.max_iterations,
+                                            b.tolerance,
+                                            b.step,
+                                            b.continuation,
+                                            b.method,
+                                            b.max_probable_error,
+                                            b.multi_start,
+                                            b.starts,
+                                            b.profile_ridges,
+                                            b.from_solution,
+                                            b.far_start,
+                                            b.bic_tolerance,
+                                            b.stop_below);
 }
 
 bool operator==(const ProcessNoiseModel& a, const ProcessNoiseModel& b) {

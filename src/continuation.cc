@@ -109,6 +109,7 @@ PipelineOutcome RunPipeline(const Case& c,
     settings.relative_tolerance = last ? 0.0 : 1e-4;
     settings.max_iterations = last ? c.solver.max_iterations : 50;
     settings.bic_tolerance = c.solver.bic_tolerance;
+    settings.stop_below = c.solver.stop_below;
     if (c.solver.from_solution) settings.initial_radius = kFromSolutionRadius;
     auto solve = [&](std::vector<double>* trial) {
       return gauss_newton

@@ -43,6 +43,8 @@ class ReportIterationCallback : public ceres::IterationCallback {
 
   // Whether the BIC's rule, not the probable error's, ended it.
   bool stopped_by_bic() const { return stopped_by_bic_; }
+  // Whether it ended below StageSettings::stop_below.
+  bool stopped_below() const { return stopped_below_; }
 
   ceres::CallbackReturnType operator()(
       const ceres::IterationSummary& summary) override {
@@ -56,6 +58,10 @@ class ReportIterationCallback : public ceres::IterationCallback {
       previous_ = values;
       VLOG(1) << "start: sum of residuals " << std::sqrt(ressum)
               << "  probable error " << e;
+      if (e < settings_.stop_below) {
+        stopped_below_ = true;
+        return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+      }
       return ceres::SOLVER_CONTINUE;
     }
     CountIteration(e);
@@ -90,6 +96,10 @@ class ReportIterationCallback : public ceres::IterationCallback {
       stopped_by_bic_ = true;
       return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     }
+    if (e < settings_.stop_below) {
+      stopped_below_ = true;
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
     return ceres::SOLVER_CONTINUE;
   }
 
@@ -104,6 +114,7 @@ class ReportIterationCallback : public ceres::IterationCallback {
   double old_e_ = 0.0;
   double old_ressum_ = 0.0;
   bool stopped_by_bic_ = false;
+  bool stopped_below_ = false;
   std::vector<double> previous_;
 };
 
@@ -182,6 +193,10 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
       callback.stopped_by_bic()) {
     outcome.termination =
         kBicRuleTermination + FormatNumber("%g", settings.bic_tolerance);
+  } else if (summary.termination_type == ceres::USER_SUCCESS &&
+             callback.stopped_below()) {
+    outcome.termination =
+        kBelowTermination + FormatNumber("%g", settings.stop_below);
   } else if (summary.termination_type == ceres::USER_SUCCESS) {
     outcome.termination =
         "probable error changed by less than " +

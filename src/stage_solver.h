@@ -20,6 +20,8 @@ namespace fit3dof {
 // The start of the termination of a run the BIC rule ended
 // (StageSettings::bic_tolerance).
 inline constexpr char kBicRuleTermination[] = "BIC fell by less than ";
+// That of a run ended below StageSettings::stop_below.
+inline constexpr char kBelowTermination[] = "probable error below ";
 
 struct StageOutcome {
   bool integrable = true;  // false: the motion blew up at the start values
@@ -51,6 +53,8 @@ struct StageSettings {
   double relative_tolerance = 0.0;  // times the probable error
   // On the drop of n ln(RSS) in an iteration (SolverOptions).
   double bic_tolerance = 0.0;
+  // On the probable error itself (SolverOptions::stop_below; 0: none).
+  double stop_below = 0.0;
   int max_iterations = 50;
   // Levenberg-Marquardt's first trust region, in the scaling that gives
   // every free coordinate's Jacobian column unit norm (Ceres' radius is

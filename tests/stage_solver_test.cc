@@ -124,6 +124,32 @@ TEST(StageSolver, ARefitThatStartsFarFromTheNoiseTakesTheWindows) {
               1e-3 * nominal.sum_of_residuals);
 }
 
+// A fit asked only whether it reaches the noise (SolverOptions::stop_below;
+// diagnose's union of a joint set's members) stops there: the far start
+// above, stopped below 1.1 times the noise, ends there in fewer iterations
+// than the whole descent takes, and above the minimum.
+TEST(StageSolver, AFitStopsOnceBelowTheProbableErrorAsked) {
+  const std::string dir = testing::ScratchDirectory("stage_stop_below");
+  Case c = testing::ShortRun(dir, "", 2);
+  c.parameters[FindParameter(c.model, "Cm_alpha")] = {-0.2, true, false};
+  c.parameters[FindParameter(c.model, "Cm_q")] = {-2.0, true, false};
+  c.solver.multi_start = false;
+  const FitResult whole = Fit(c);
+  Case stopped = c;
+  stopped.solver.stop_below = 1.1;
+  const FitResult below = Fit(stopped);
+  ASSERT_TRUE(whole.converged) << whole.termination;
+  std::cout << "stopped below 1.1: " << below.iterations
+            << " iterations, probable error " << below.probable_error << " ("
+            << below.termination << "); the whole descent " << whole.iterations
+            << ", " << whole.probable_error << "\n";
+  EXPECT_EQ(below.termination.rfind(kBelowTermination, 0), 0u)
+      << below.termination;
+  EXPECT_LT(below.probable_error, 1.1);
+  EXPECT_GE(below.probable_error, whole.probable_error);
+  EXPECT_LT(below.iterations, whole.iterations);
+}
+
 // A bearing moment (bearing_moment.h) at 1.5 times the noise's size on the
 // short run: from Cm_bearing = 0 and its angle at 1 deg, as diagnose adds
 // it, the fit crawls along the ridge where Cm_bearing x bearing_angle

@@ -175,6 +175,10 @@ struct SolverOptions {
   // a config key: diagnose's search judges its fits by BIC and needs no
   // finer answer (RefitFromSolution).
   double bic_tolerance = 0.0;
+  // Also stop once the probable error falls below this (0: never). Not a
+  // config key: diagnose asks of some fits only whether they reach the
+  // noise level (diagnose_round.cc, UnionMayReachTheNoise).
+  double stop_below = 0.0;
 };
 
 struct SimulateOptions {
