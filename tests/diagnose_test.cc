@@ -2230,6 +2230,33 @@ TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
                      text);
   EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
 }
+
+// The same case on draw 23 (t2 -2.09, t4 2.84, Cm_p_alpha -5.0), kept as
+// tests/data/short_damping_magnus_angularity_vary23.csv. The body yaw
+// asymmetry leads the Magnus moment by 33.6 at the first round, past the
+// near tie's 20 of BIC then; with it in, the tunnel damping and the Magnus
+// moment tie and neither is added: `ambiguous`, the asymmetry added, the
+// true model's BIC 39 lower. A near tie is now anything within 40
+// (DiagnoseOptions::near_tie_bic): searched without the asymmetry, the
+// three are named.
+TEST(Diagnose, AFirstStepLeadingBy34IsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_damping_magnus_angularity_vary23.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(d,
+                     {"flow_angularity", "magnus", "tunnel_damping"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"tunnel_Cm_thetadot", -2.0901},
+                      {"tunnel_Cn_psidot", 2.8374},
+                      {"Cm_p_alpha", -5.0},
+                      {"theta_T", 0.017358},
+                      {"psi_T", 0.019690}},
+                     text);
+  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
+}
+
 // tools/diagnose_suite --vary's `pair` tunnel stiffness (t1 1.01e-3, t3
 // -3.53e-4) + roll reading error + flow angularity, draw 20, kept as
 // tests/data/pair_stiffness_roll_angularity_vary20.yaml. The search names
