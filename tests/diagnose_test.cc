@@ -2213,22 +2213,40 @@ TEST(Diagnose, AJointSetDrawsOnTheRoundsLesserRefits) {
 // asymmetry, leaving the residuals structured, is not adopted: the record
 // was `not_explained`, nothing added, Cm_q 55 of its errors off. The
 // search without that first step (DeadEndBranch) names the three.
-TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
-  const Diagnosis d =
-      DiagnoseRecord("short_damping_magnus_angularity_vary18.csv");
+// The kept `short` tunnel damping + Magnus + angularity record `file`
+// (tests/data) diagnosed: the three named with their true terms (t2, t4,
+// Cm_p_alpha, theta_T, psi_T), the body yaw asymmetry that led the first
+// round among the rejected.
+void ExpectDampingMagnusAngularityNamed(const std::string& file,
+                                        double t2,
+                                        double t4,
+                                        double magnus,
+                                        double theta_t,
+                                        double psi_t) {
+  const Diagnosis d = DiagnoseRecord(file);
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ExpectNamedExactly(d,
                      {"flow_angularity", "magnus", "tunnel_damping"},
                      {{"Cm_alpha", -0.23},
                       {"Cm_q", -5.5},
-                      {"tunnel_Cm_thetadot", -2.558},
-                      {"tunnel_Cn_psidot", 3.300},
-                      {"Cm_p_alpha", 5.078},
-                      {"theta_T", 0.01952},
-                      {"psi_T", 0.02214}},
+                      {"tunnel_Cm_thetadot", t2},
+                      {"tunnel_Cn_psidot", t4},
+                      {"Cm_p_alpha", magnus},
+                      {"theta_T", theta_t},
+                      {"psi_T", psi_t}},
                      text);
   EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
+}
+
+TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  ExpectDampingMagnusAngularityNamed(
+      "short_damping_magnus_angularity_vary18.csv",
+      -2.558,
+      3.300,
+      5.078,
+      0.01952,
+      0.02214);
 }
 
 // The same case on draw 23 (t2 -2.09, t4 2.84, Cm_p_alpha -5.0), kept as
@@ -2241,20 +2259,13 @@ TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
 // three are named.
 TEST(Diagnose, AFirstStepLeadingBy34IsSearchedWithout) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
-  const Diagnosis d =
-      DiagnoseRecord("short_damping_magnus_angularity_vary23.csv");
-  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  ExpectNamedExactly(d,
-                     {"flow_angularity", "magnus", "tunnel_damping"},
-                     {{"Cm_alpha", -0.23},
-                      {"Cm_q", -5.5},
-                      {"tunnel_Cm_thetadot", -2.0901},
-                      {"tunnel_Cn_psidot", 2.8374},
-                      {"Cm_p_alpha", -5.0},
-                      {"theta_T", 0.017358},
-                      {"psi_T", 0.019690}},
-                     text);
-  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
+  ExpectDampingMagnusAngularityNamed(
+      "short_damping_magnus_angularity_vary23.csv",
+      -2.0901,
+      2.8374,
+      -5.0,
+      0.017358,
+      0.019690);
 }
 
 // tools/diagnose_suite --vary's `pair` tunnel stiffness (t1 1.01e-3, t3
