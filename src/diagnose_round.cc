@@ -547,9 +547,10 @@ bool TakeSet(int i,
 // on a 3-s Table 6 record with a tunnel stiffness, a nonlinear damping and
 // a body yaw asymmetry, the stiffness dragged Cm_alpha at three rounds,
 // its six sets fitted each time (12 with the damping's at the first),
-// while the asymmetry was missing from its pool (unions at 1.9 and 1.8
-// times the noise, against a limit of 1.1): 4.5 -> 4.1 s. True too when
-// the union cannot be fitted, and with fewer than three sets.
+// while the asymmetry was missing from its pool (its unions at 1.9 times
+// the noise twice, the damping's at 3.0, against a limit of 1.1): 4.5 ->
+// 3.8 s alone. True too when the union cannot be fitted, and with fewer
+// than three sets.
 bool UnionMayReachTheNoise(int lead,
                            const Case& at,
                            const FitResult& fit,

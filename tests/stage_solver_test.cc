@@ -125,9 +125,10 @@ TEST(StageSolver, ARefitThatStartsFarFromTheNoiseTakesTheWindows) {
 }
 
 // A fit asked only whether it reaches the noise (SolverOptions::stop_below;
-// diagnose's union of a joint set's members) stops there: the far start
-// above, stopped below 1.1 times the noise, ends there in fewer iterations
-// than the whole descent takes, and above the minimum.
+// diagnose's union of a joint set's members) stops there: the short run's
+// nominal fit from its guesses, stopped below 1.1 times the noise, ends
+// there in fewer iterations than the whole descent takes, and no lower
+// than its minimum.
 TEST(StageSolver, AFitStopsOnceBelowTheProbableErrorAsked) {
   const std::string dir = testing::ScratchDirectory("stage_stop_below");
   Case c = testing::ShortRun(dir, "", 2);
