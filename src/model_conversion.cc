@@ -107,6 +107,47 @@ std::array<ParameterSetting, 6> ToBodyRates(
   return out;
 }
 
+// The inverse of ToBodyRates: the asymmetric program's (phi, theta, psi,
+// p, q, r) in the symmetric order with Euler rates, each with the flags
+// of the asymmetric entry it comes from.
+std::array<ParameterSetting, 6> ToEulerRates(
+    const std::array<ParameterSetting, 6>& in) {
+  const double phi = in[0].value, theta = in[1].value, psi = in[2].value;
+  double values[6] = {phi, 0.0, theta, 0.0, psi, 0.0};
+  BodyToEulerRates(std::sin(phi * kDegree),
+                   std::cos(phi * kDegree),
+                   std::sin(theta * kDegree),
+                   std::cos(theta * kDegree),
+                   in[3].value,
+                   in[4].value,
+                   in[5].value,
+                   &values[1],
+                   &values[3],
+                   &values[5]);
+  const int order[6] = {0, 2, 4, 1, 3, 5};
+  std::array<ParameterSetting, 6> out;
+  for (int j = 0; j < 6; ++j) {
+    out[order[j]] = in[j];
+    out[order[j]].value = values[order[j]];
+  }
+  return out;
+}
+
+// Throws unless the asymmetric case `a`'s coefficient at `position` is
+// what ToAsymmetric makes of an axisymmetric body's: `expected` (Tied to
+// the first image, the first image's own setting, or zero and fixed), as
+// `what` says.
+void CheckAxisymmetric(const Case& a,
+                       int position,
+                       bool expected,
+                       const std::string& what) {
+  if (expected) return;
+  throw InputError(a.source + ": " +
+                   ParameterTable(ModelKind::kAsymmetric)[position].name +
+                   " is not an axisymmetric body's (expected " + what +
+                   "): no case of the symmetric program");
+}
+
 }  // namespace
 
 const CoefficientImage* FirstImage(const std::string& symmetric) {
@@ -165,6 +206,58 @@ Case ToAsymmetric(const Case& c) {
   for (int j = 0; j < 6; ++j) a.parameters[asym_first + j] = converted[j];
   for (Segment& s : a.segments) s.initial = ToBodyRates(s.initial);
   return a;
+}
+
+Case ToSymmetric(const Case& a) {
+  if (a.model == ModelKind::kSymmetric) return a;
+  if (a.body.Iz != a.body.Iy) {
+    throw InputError(a.source +
+                     ": I_z differs from I_y: not an axisymmetric "
+                     "body, no case of the symmetric program");
+  }
+  Case s = a;
+  s.model = ModelKind::kSymmetric;
+  s.parameters.assign(NumParameters(ModelKind::kSymmetric), ParameterSetting{});
+  const int asym_first = Layout(ModelKind::kAsymmetric).first_initial;
+  std::vector<bool> imaged(a.parameters.size(), false);
+  for (const CoefficientImage& image : SymmetricImages()) {
+    const int position =
+        FindParameter(ModelKind::kAsymmetric, image.asymmetric);
+    const ParameterSetting& p = a.parameters[position];
+    imaged[position] = true;
+    ParameterTie tie;
+    if (SymmetricTie(image.asymmetric, &tie)) {
+      CheckAxisymmetric(
+          a,
+          position,
+          p.tied_to == tie.source && p.tie_factor == tie.factor,
+          "tied to " + ParameterTable(ModelKind::kAsymmetric)[tie.source].name);
+      continue;
+    }
+    CheckAxisymmetric(a, position, !p.tied(), "untied, as a first image");
+    ParameterSetting q = p;
+    q.value = p.value / image.sign;
+    s.parameters[FindParameter(ModelKind::kSymmetric, image.symmetric)] = q;
+  }
+  for (int i = 0; i < static_cast<int>(a.parameters.size()); ++i) {
+    const ParameterSetting& p = a.parameters[i];
+    const bool initial = i >= asym_first && i < asym_first + 6;
+    CheckAxisymmetric(
+        a,
+        i,
+        initial || imaged[i] || (!p.free && !p.tied() && p.value == 0.0),
+        "zero and fixed");
+  }
+  const int sym_first = Layout(ModelKind::kSymmetric).first_initial;
+  std::array<ParameterSetting, 6> defaults;
+  for (int j = 0; j < 6; ++j) defaults[j] = a.parameters[asym_first + j];
+  const auto converted = ToEulerRates(defaults);
+  for (int j = 0; j < 6; ++j) s.parameters[sym_first + j] = converted[j];
+  for (Segment& segment : s.segments) {
+    segment.initial = ToEulerRates(segment.initial);
+  }
+  s.SettleTies();
+  return s;
 }
 
 }  // namespace fit3dof

@@ -11,11 +11,13 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "fit3dof/input_error.h"
 #include "fit3dof/model_conversion.h"
 #include "fit3dof/motion_model.h"
+#include "fit3dof/parameters.h"
 #include "gtest/gtest.h"
 
 namespace fit3dof {
@@ -170,6 +172,63 @@ TEST(ModelEquivalence, ATermWithoutAnImageIsRefused) {
     c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.1;
     EXPECT_THROW(ToAsymmetric(c), InputError) << name;
   }
+}
+
+// ToSymmetric undoes ToAsymmetric: every term's value and flags, the
+// initial Euler rates of the defaults and of a segment (through body
+// rates and back).
+TEST(ModelEquivalence, ToSymmetricUndoesToAsymmetric) {
+  Case c = SymmetricCase(Incidence::kVelocityRatio, 0.001);
+  c.parameters[FindParameter(ModelKind::kSymmetric, "Cm_p_alpha")].free = true;
+  c.parameters[FindParameter(ModelKind::kSymmetric, "Cm_q")].free = true;
+  Segment segment;
+  segment.name = "run1";
+  for (int j = 0; j < 6; ++j) {
+    segment.initial[j] = {10.0 * (j + 1), j % 2 == 0, false};
+  }
+  c.segments = {segment};
+  const Case back = ToSymmetric(ToAsymmetric(c));
+  ASSERT_EQ(back.model, ModelKind::kSymmetric);
+  ASSERT_EQ(back.parameters.size(), c.parameters.size());
+  const auto& table = ParameterTable(ModelKind::kSymmetric);
+  for (size_t i = 0; i < c.parameters.size(); ++i) {
+    EXPECT_NEAR(back.parameters[i].value, c.parameters[i].value, 1e-9)
+        << table[i].name;
+    EXPECT_EQ(back.parameters[i].free, c.parameters[i].free) << table[i].name;
+  }
+  for (int j = 0; j < 6; ++j) {
+    EXPECT_NEAR(
+        back.segments[0].initial[j].value, segment.initial[j].value, 1e-9)
+        << j;
+    EXPECT_EQ(back.segments[0].initial[j].free, segment.initial[j].free) << j;
+  }
+}
+
+// A body asymmetry, a product of inertia or I_z apart from I_y has no
+// place in the symmetric program: refused, each naming what it found.
+TEST(ModelEquivalence, ToSymmetricRefusesAnAsymmetricBody) {
+  const Case a = ToAsymmetric(SymmetricCase(Incidence::kVelocityRatio, 0.001));
+  auto message = [](const Case& c) {
+    try {
+      ToSymmetric(c);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  Case untied = a;
+  ParameterSetting& cn_beta =
+      untied.parameters[FindParameter(ModelKind::kAsymmetric, "Cn_beta")];
+  cn_beta = {0.25, true, false};
+  EXPECT_NE(message(untied).find("Cn_beta"), std::string::npos)
+      << message(untied);
+  Case inertia = a;
+  inertia.parameters[FindParameter(ModelKind::kAsymmetric, "Izx")].value = 1e-3;
+  EXPECT_NE(message(inertia).find("Izx"), std::string::npos)
+      << message(inertia);
+  Case yaw = a;
+  yaw.body.Iz = 1.1 * a.body.Iy;
+  EXPECT_NE(message(yaw).find("I_z"), std::string::npos) << message(yaw);
 }
 
 // With angle of attack and sideslip the arctangent definitions do not rotate

@@ -57,6 +57,18 @@ bool SymmetricTie(const std::string& name, ParameterTie* tie);
 // conditions are converted from Euler rates to body rates.
 Case ToAsymmetric(const Case& c);
 
+// The asymmetric case `a` back in the symmetric program when it describes
+// an axisymmetric body as ToAsymmetric leaves one: I_z = I_y, each
+// symmetric term's other images tied to its first as ToAsymmetric ties
+// them, and every term without a symmetric counterpart (I_zx, Cn_beta
+// apart from -Cm_alpha, ...) zero and fixed. The first image gives the
+// symmetric term its value and flags; initial conditions are converted
+// from body rates to Euler rates. Throws InputError naming the first term
+// that is not so. diagnose uses it when the body asymmetry a step brought
+// in is pruned again (the final model then reports Cm_p_alpha, not
+// Cm_p_beta and Cn_p_alpha).
+Case ToSymmetric(const Case& a);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_MODEL_CONVERSION_H_
