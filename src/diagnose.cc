@@ -23,6 +23,7 @@
 
 #include "diagnose_search.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/model_conversion.h"
 #include "noise_relaxation.h"
 
 namespace fit3dof {
@@ -294,22 +295,6 @@ bool NearTie(const std::vector<Contender>& contenders,
   return false;
 }
 
-// Whether a round past the noise level (DiagnoseOptions::noise_held) may
-// add one of `candidates`, scored at `fit`: some score, the predicted
-// drop of the residual sum of squares in units of its variance, less the
-// candidate's ln(n) per parameter, reaches min_bic_drop. Past the noise
-// the effects left are small and the score predicts their fits well; the
-// refits it spares had taken the Table 6 triples past 5 s.
-bool ScoreMayEarn(const std::vector<Candidate>& candidates,
-                  const FitResult& fit,
-                  const DiagnoseOptions& options) {
-  const double log_n = std::log(3.0 * std::max(1, fit.points));
-  return std::any_of(
-      candidates.begin(), candidates.end(), [&](const Candidate& k) {
-        return k.score.score - k.score.dof * log_n >= options.min_bic_drop;
-      });
-}
-
 // Whether `k` (scored at `fit`) is a near twin of its free parameters
 // (IsNearTwin) whose score may earn a place (ScoreMayEarn's rule). At the
 // noise level, with sigma given, the search stops; but a twin's signature
@@ -352,6 +337,38 @@ std::vector<Candidate> AtNoiseLevel(std::vector<Candidate> candidates,
     }
   }
   return kept;
+}
+
+// The final model *current (fitted as d->FinalFit()) back in the user's
+// symmetric program (`user`) when the steps that took it to the
+// asymmetric one were pruned and nothing is tied (ToSymmetric): the
+// same motion, reported with the symmetric program's terms. On a 3-s run
+// with a tunnel damping, a Magnus moment and a flow angularity, the body
+// asymmetry taken first was dropped once the Magnus moment was in, and
+// the final model had reported the Magnus moment as Cm_p_beta and
+// Cn_p_alpha. Left as it is when the conversion or the refit fails.
+void BackToSymmetric(const Case& user,
+                     const std::vector<TimeHistory>& data,
+                     Diagnosis* d,
+                     Case* current) {
+  if (user.model != ModelKind::kSymmetric ||
+      current->model != ModelKind::kAsymmetric || !d->ambiguous.empty() ||
+      !d->final.at_noise_level) {
+    return;
+  }
+  Case symmetric;
+  try {
+    symmetric = ToSymmetric(CaseAtSolution(*current, d->FinalFit()));
+  } catch (const InputError&) {
+    return;  // an asymmetry stays in the model
+  }
+  FitResult fit;
+  if (!FitFrom(
+          symmetric, d->FinalFit(), data, "in the symmetric program", &fit)) {
+    return;
+  }
+  *current = symmetric;
+  d->fits[d->final_fit] = std::move(fit);
 }
 
 }  // namespace
@@ -517,6 +534,7 @@ Diagnosis Search(const Case& c,
   d.partial_fit = d.fits.size() - 1;
   d.final = SettleFinalModel(
       quiet, data, options, models, tie, rivals, check, &d, &current);
+  BackToSymmetric(quiet, data, &d, &current);
   Reported(current, data, &d.fits[d.final_fit]);
   if (!d.partial.empty() && d.partial_fit != d.final_fit) {
     Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);

@@ -38,6 +38,10 @@ void RankByScore(const std::vector<TimeHistory>& data,
             [](const Candidate& a, const Candidate& b) {
               return a.score.score > b.score.score;
             });
+  for (const Candidate& k : *candidates) {
+    VLOG(2) << "scored " << k.effect->id << ": " << k.score.score << " ("
+            << k.score.dof << " dof, novelty " << k.score.novelty << ")";
+  }
 }
 
 // Candidate k refitted in full from the solution `fit` into *c; false
@@ -398,6 +402,16 @@ bool FitFrom(const Case& c,
     LOG(WARNING) << from.name << ": refit " << what << " failed: " << e.what();
     return false;
   }
+}
+
+bool ScoreMayEarn(const std::vector<Candidate>& candidates,
+                  const FitResult& fit,
+                  const DiagnoseOptions& options) {
+  const double log_n = std::log(3.0 * std::max(1, fit.points));
+  return std::any_of(
+      candidates.begin(), candidates.end(), [&](const Candidate& k) {
+        return k.score.score - k.score.dof * log_n >= options.min_bic_drop;
+      });
 }
 
 std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,

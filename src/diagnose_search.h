@@ -80,6 +80,27 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
                                         const FitResult& fit,
                                         const DiagnoseOptions& options);
 
+// Whether a round past the noise level (DiagnoseOptions::noise_held) may
+// add one of `candidates`, scored at `fit`: some score, the predicted
+// drop of the residual sum of squares in units of its variance, less the
+// candidate's ln(n) per parameter, reaches min_bic_drop. Past the noise
+// the effects left are small and the score predicts their fits well; the
+// refits it spares had taken the Table 6 triples past 5 s.
+bool ScoreMayEarn(const std::vector<Candidate>& candidates,
+                  const FitResult& fit,
+                  const DiagnoseOptions& options);
+
+// Each model (`cases`, fitted as `fits`) refitted from its solution
+// without each of `steps` in turn, all in parallel: (*without)[k], for
+// k = m * steps.size() + i, is model m without steps[i], and (*fitted)[k]
+// whether that fit ran.
+void FitWithoutEach(const std::vector<TimeHistory>& data,
+                    const std::vector<const Case*>& cases,
+                    const std::vector<const FitResult*>& fits,
+                    const std::vector<DiagnosisStep>& steps,
+                    std::vector<FitResult>* without,
+                    std::vector<char>* fitted);
+
 // The estimates of `names` in `fit`.
 std::vector<ParameterEstimate> Own(const FitResult& fit,
                                    const std::vector<std::string>& names);

@@ -97,10 +97,8 @@ int AddedTermPosition(ModelKind model, const std::string& name) {
   return first == nullptr ? -1 : FindParameter(model, first->asymmetric);
 }
 
-// Each model (`cases`, fitted as `fits`) refitted from its solution
-// without each of `steps` in turn, all in parallel: (*without)[k], for
-// k = m * steps.size() + i, is model m without steps[i], and (*fitted)[k]
-// whether that fit ran.
+}  // namespace
+
 void FitWithoutEach(const std::vector<TimeHistory>& data,
                     const std::vector<const Case*>& cases,
                     const std::vector<const FitResult*>& fits,
@@ -120,6 +118,8 @@ void FitWithoutEach(const std::vector<TimeHistory>& data,
                            &(*without)[k]);
   });
 }
+
+namespace {
 
 // Backward elimination (diagnose.h): while the record is explained by two
 // or more effects, the one whose removal costs least is dropped if the

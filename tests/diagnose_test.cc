@@ -1978,6 +1978,26 @@ TEST(Diagnose, ASwapOnTheRidgeIsJudgedWithinItsErrors) {
       d, {"tunnel_stiffness", "nonlinear_damping", "asymmetric_body"});
 }
 
+// The same case on draw 24 (t1 1.02e-3, t3 -3.6e-4, Cm_q_delta2 930, body
+// yaw -0.32%), kept as tests/data/short_stiffness_damping_asymmetry_vary24
+// .csv. A Magnus moment leads the first round by 1.7 over the asymmetry
+// and is adopted; the asymmetry comes in with the damping, and the
+// stiffness's roll signature ties with a roll torque and a tunnel damping.
+// Every complete model holds the Magnus moment within 1.6 of its errors of
+// zero, but an open tie leaves the steps as taken: the false Magnus
+// moment was named beside the right tie. Needed in none of the complete
+// models (RedundantInEach), it is searched without (RedundantStepBranch).
+TEST(Diagnose, AStepNoCompleteModelOfATieNeedsIsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_vary24.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("magnus")) << text;
+  EXPECT_TRUE(EffectIds(d.rejected).count("magnus")) << text;
+  ExpectTruthAddedOrTied(
+      d, {"tunnel_stiffness", "nonlinear_damping", "asymmetric_body"});
+}
+
 // tools/diagnose_suite's `short` roll reading error + nonlinear damping at
 // 0.003-deg noise (draw 0), kept as tests/data/short_roll_error_nonlinear_
 // damping_noise3.csv. The damping drags Cm_q alone; its joint set with a
@@ -2216,7 +2236,7 @@ TEST(Diagnose, AJointSetDrawsOnTheRoundsLesserRefits) {
 // The kept `short` tunnel damping + Magnus + angularity record `file`
 // (tests/data) diagnosed: the three named with their true terms (t2, t4,
 // Cm_p_alpha, theta_T, psi_T), the body yaw asymmetry that led the first
-// round among the rejected.
+// round among the rejected or dropped again (Diagnosis::pruned).
 void ExpectDampingMagnusAngularityNamed(const std::string& file,
                                         double t2,
                                         double t4,
@@ -2235,7 +2255,13 @@ void ExpectDampingMagnusAngularityNamed(const std::string& file,
                       {"theta_T", theta_t},
                       {"psi_T", psi_t}},
                      text);
-  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
+  // The false lead, refused or taken and dropped again, is on record.
+  const bool dropped =
+      std::any_of(d.pruned.begin(), d.pruned.end(), [](const auto& s) {
+        return s.effect == "asymmetric_body";
+      });
+  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body") || dropped)
+      << text;
 }
 
 TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
@@ -2266,6 +2292,26 @@ TEST(Diagnose, AFirstStepLeadingBy34IsSearchedWithout) {
       -5.0,
       0.017358,
       0.019690);
+}
+
+// The same case on draw 24 (t2 2.69, t4 -3.65, Cm_p_alpha 4.38), kept as
+// tests/data/short_damping_magnus_angularity_vary24.csv. The body yaw
+// asymmetry leads (BIC drop 80.7), drags Cm_q and leads a joint set with
+// the tunnel damping and the angularity that reaches the noise: explained,
+// Cm_alpha 8.3 of its errors off. The Magnus moment, sixth by score, was
+// refitted at no round; scored beside the set's model (31.9 on its one
+// parameter) it is tried there (Unrefitted, FindNotExcluded), searched
+// past the noise (PastNoise), and the asymmetry is pruned: the three
+// named, BIC 45 lower.
+TEST(Diagnose, AnEffectNoRoundRefittedIsTriedBesideTheFinalModel) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  ExpectDampingMagnusAngularityNamed(
+      "short_damping_magnus_angularity_vary24.csv",
+      2.6863,
+      -3.6469,
+      4.3844,
+      0.016541,
+      0.018763);
 }
 
 // tools/diagnose_suite --vary's `pair` tunnel stiffness (t1 1.01e-3, t3

@@ -158,6 +158,11 @@
 // first step's effect, whose answer is taken when it explains the record:
 // a body yaw asymmetry that led the first round of a 3-s run by 26 of BIC
 // had left every true effect failing alone to predict the held-out part.
+// An `ambiguous` answer's step that none of its complete models needs
+// (without it each stays at the noise level, BIC rising by less than
+// `min_bic_drop`) is searched without too, and that answer is taken when
+// it explains the record with no effect the first did not add or tie and
+// a complete model no more than `min_bic_drop` above.
 // A roll-locked effect (Effect::roll_locked) on records that span less
 // than a revolution of roll ties with a drift in time (`drift_in_time`,
 // outside the catalog): the record is then `ambiguous` at best, and a
