@@ -542,6 +542,9 @@ Diagnosis Search(const Case& c,
   WidenForTie(&d);
   FindNotExcluded(contended, models, current, data, options, &d);
   notes->outdone = FindSetReplacements(models, current, data, options, &d);
+  if (notes->outdone.empty() && d.ambiguous.empty()) {
+    notes->outdone = FindSingleReplacement(models, current, data, options, &d);
+  }
   WidenForNotExcluded(&d);
   WidenAlternatives(data, options, &d);
   if (!d.ambiguous.empty()) {

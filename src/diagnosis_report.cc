@@ -285,7 +285,8 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
     }
     out += "  the final model holds " + d.stood_in[i].effect +
            " in the place of " + set +
-           " together (not claimed); its error bars cover that model\n";
+           (d.stood_in_for[i].size() > 1 ? " together" : "") +
+           " (not claimed); its error bars cover that model\n";
   }
   for (const AlternativeModel& a : d.alternatives) {
     out += "  complete model with " + a.effect + ": probable error " +

@@ -42,7 +42,8 @@ void TieWords(const Diagnosis& d,
       d.stood_in.begin(), d.stood_in.end(), [&](const DiagnosisStep& s) {
         return s.effect == tie[0].effect;
       });
-  if (!set) {
+  // A set of one (FindSingleReplacement) ties as a swap's rival does.
+  if (!set || names.size() < 3) {
     *effects = Joined(names, " or ");
     return;
   }
