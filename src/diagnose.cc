@@ -399,8 +399,11 @@ Diagnosis Search(const Case& c,
   int tie = -1;
   std::vector<std::vector<CandidateFit>> rivals;
   // Every round's contenders, each once: the effects tried beside the
-  // complete model (FindNotExcluded).
+  // complete model (FindNotExcluded); and the lesser refits (those that
+  // lowered BIC by less than min_bic_drop), tried there when their score
+  // calls for it.
   std::vector<const Effect*> contended;
+  std::vector<const Effect*> lesser;
   // At the noise level with sigma given, one round for the near twins alone
   // (HiddenTwins), scored here once.
   std::vector<Candidate> twins;
@@ -450,10 +453,14 @@ Diagnosis Search(const Case& c,
     std::vector<Contender> minor;
     std::vector<Contender> contenders =
         Contenders(candidates, fit, data, options, &minor);
-    for (const Contender& k : contenders) {
-      const Effect* e = k.candidate->effect;
-      if (std::find(contended.begin(), contended.end(), e) == contended.end()) {
-        contended.push_back(e);
+    for (const std::vector<Contender>* refits : {&contenders, &minor}) {
+      for (const Contender& k : *refits) {
+        const Effect* e = k.candidate->effect;
+        std::vector<const Effect*>* list =
+            refits == &contenders ? &contended : &lesser;
+        if (std::find(list->begin(), list->end(), e) == list->end()) {
+          list->push_back(e);
+        }
       }
     }
     OutOfSample out_of_sample(current, fit, options);
@@ -540,7 +547,7 @@ Diagnosis Search(const Case& c,
     Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
   }
   WidenForTie(&d);
-  FindNotExcluded(contended, models, current, data, options, &d);
+  FindNotExcluded(contended, lesser, models, current, data, options, &d);
   notes->outdone = FindSetReplacements(models, current, data, options, &d);
   if (notes->outdone.empty() && d.ambiguous.empty()) {
     notes->outdone = FindSingleReplacement(models, current, data, options, &d);

@@ -375,7 +375,15 @@ void WidenForTie(Diagnosis* d);
 // Beside the first complete model, the effects its effects made near twins
 // of its free parameters are tried too, though never contended (their
 // score stays low however far they drag; diagnose_error_bars.cc
-// NearTwins): into d->near_twins as well when not excluded.
+// NearTwins): into d->near_twins as well when not excluded. So are the
+// `lesser` refits (an effect that lowered BIC by less than min_bic_drop
+// at its round) that are twins there or whose score may earn a place
+// (Lesser): on a coning run with a tunnel stiffness, a nonlinear damping
+// and a body asymmetry (draw 25) the stiffness lowered BIC by 4 beside
+// the asymmetry alone and by 35 beside it and the damping; never tried
+// there, the effects not excluded outdid the asymmetry and the search
+// without it named a tunnel damping and a Magnus moment, 16 above the
+// true model.
 //
 // On a 3-s coning run with a tunnel damping, a Magnus moment and a flow
 // angularity, the tunnel damping and Cm_q absorbed the Magnus moment (one
@@ -387,6 +395,7 @@ void WidenForTie(Diagnosis* d);
 // the steps' rivals were tried here, never tried: Cm_q ended 129 of its
 // errors off.
 void FindNotExcluded(const std::vector<const Effect*>& contended,
+                     const std::vector<const Effect*>& lesser,
                      const std::vector<Case>& models,
                      const Case& current,
                      const std::vector<TimeHistory>& data,

@@ -215,19 +215,27 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   // Where a tie or an effect not excluded widened an error bar, the final
   // model's own error too: the one to quote if that effect is known absent
   // (a tunnel calibration, say).
-  for (const auto& [name, error] : d.model_standard_errors) {
-    auto e = out["final_parameters"].find(name);
-    if (e != out["final_parameters"].end()) {
-      (*e)["model_standard_error"] = JsonNumber(error);
+  // A step's parameters are the final model's values of its terms: the
+  // same widened errors, the same own error beside them.
+  auto own_errors = [&](json* estimates) {
+    for (const auto& [name, error] : d.model_standard_errors) {
+      auto e = estimates->find(name);
+      if (e != estimates->end()) {
+        (*e)["model_standard_error"] = JsonNumber(error);
+      }
     }
-  }
+  };
+  own_errors(&out["final_parameters"]);
   out["initial_rms_residual_deg"] = JsonChannels(d.initial.rms_deg);
   out["final_rms_residual_deg"] = JsonChannels(d.final.rms_deg);
   out["noise_sigma_deg"] = JsonChannels(c.sigma);
   out["initial"] = Check(d.initial);
   out["final"] = Check(d.final);
   out["steps"] = json::array();
-  for (const DiagnosisStep& s : d.steps) out["steps"].push_back(Step(s));
+  for (const DiagnosisStep& s : d.steps) {
+    out["steps"].push_back(Step(s));
+    own_errors(&out["steps"].back()["parameters"]);
+  }
   out["partial"] = json::array();
   for (const DiagnosisStep& s : d.partial) out["partial"].push_back(Step(s));
   out["pruned"] = json::array();
