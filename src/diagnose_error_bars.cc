@@ -588,6 +588,7 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
       continue;
     }
     effects.push_back(k.effect);
+    d->lesser_refits.push_back(k.effect->id);
     if (IsNearTwin(k.score)) lesser_twins.push_back(k.effect);
   }
   std::vector<Beside> trials = FitBeside(complete, effects, data);
@@ -693,6 +694,17 @@ void WidenAlternatives(const std::vector<TimeHistory>& data,
 
 namespace {
 
+// Whether the effect not excluded `id` may stand in for a step: neither
+// a near twin nor a lesser refit (Diagnosis::near_twins, lesser_refits).
+bool MayStandIn(const Diagnosis& d, const std::string& id) {
+  for (const auto* list : {&d.near_twins, &d.lesser_refits}) {
+    if (std::find(list->begin(), list->end(), id) != list->end()) {
+      return false;
+    }
+  }
+  return true;
+}
+
 // The step `best` of *d replaced by `set` (its model *c, fitted as *fit,
 // least BIC above the complete model's): better by ambiguity_bic or more,
 // the step's effect is returned (the search took a wrong turn; DiagnoseFrom
@@ -743,10 +755,7 @@ std::string FindSetReplacements(const std::vector<Case>& models,
   if (!CheckResiduals(*m.fit, options).at_noise_level) return "";
   std::vector<const Effect*> set;
   for (const CandidateFit& k : d->not_excluded) {
-    if (std::find(d->near_twins.begin(), d->near_twins.end(), k.effect) ==
-        d->near_twins.end()) {
-      set.push_back(FindEffect(k.effect));
-    }
+    if (MayStandIn(*d, k.effect)) set.push_back(FindEffect(k.effect));
   }
   if (set.size() < 2) return "";
   const int n = static_cast<int>(d->steps.size());
@@ -837,9 +846,7 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
   if (d->steps.empty() || !d->ambiguous.empty()) return "";
   std::vector<const Effect*> singles;
   for (const CandidateFit& k : d->not_excluded) {
-    if (k.bic_drop > 0.0 &&
-        std::find(d->near_twins.begin(), d->near_twins.end(), k.effect) ==
-            d->near_twins.end()) {
+    if (k.bic_drop > 0.0 && MayStandIn(*d, k.effect)) {
       singles.push_back(FindEffect(k.effect));
     }
   }

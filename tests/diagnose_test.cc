@@ -2271,6 +2271,25 @@ TEST(Diagnose, ALesserRefitIsTriedBesideTheCompleteModel) {
   ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
+// tools/diagnose_suite's `short` body yaw asymmetry (Cn_beta 0.19% off
+// -Cm_alpha, draw 0), kept as tests/data/short_asymmetric_body_draw0.csv.
+// With every lesser refit its score test calls for tried beside the
+// model, a bearing moment whose angle the record leaves open (+- 29 deg)
+// was not excluded, and with a Magnus moment it stood in for the
+// asymmetry (BIC +5.0): a named answer became a tie. A lesser refit
+// widens the error bars but never stands in for a step
+// (Diagnosis::lesser_refits): the asymmetry is named.
+TEST(Diagnose, ALesserRefitDoesNotStandInForAStep) {
+  const Diagnosis d = DiagnoseRecord("short_asymmetric_body_draw0.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(d,
+                     {"asymmetric_body"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"Cn_beta", 0.23 * (1.0 + 0.0018779)}},
+                     text);
+}
+
 // tools/diagnose_suite --vary's `short` tunnel damping (t2 -2.56, t4 3.30)
 // + Magnus moment (Cm_p_alpha 5.08) + flow angularity, draw 18, kept as
 // tests/data/short_damping_magnus_angularity_vary18.csv. A body yaw

@@ -566,6 +566,14 @@ struct Diagnosis {
   // it for that alone (diagnose_error_bars.cc NearTwins). Their error bars
   // count; they do not stand in for a step (FindSetReplacements).
   std::vector<std::string> near_twins;
+  // The effects tried beside the complete model that were only lesser
+  // refits (each round that refitted them, they lowered BIC by less than
+  // min_bic_drop), because its score test called for it: when not
+  // excluded, their BIC and error bars count, but like the near twins
+  // they do not stand in for a step (a bearing moment whose angle the
+  // record leaves open had tied with a body asymmetry, together with a
+  // Magnus moment, on a 3-s run whose asymmetry was named before).
+  std::vector<std::string> lesser_refits;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
   std::vector<double> not_excluded_weights;  // each model's Akaike weight
   // The least BIC of a complete model with one of not_excluded or
