@@ -205,7 +205,7 @@ std::vector<Beside> FitBeside(const std::vector<CompleteModel>& models,
 
 // The complete model `m` with `set` in `step`'s place: *c and *fit; the
 // terms each of `set` added in *added. The term `held`, when one of them,
-// stays at zero (HeldOnRidge). False when it was not fitted.
+// stays at zero (FindSingleReplacement). False when it was not fitted.
 bool SetInPlace(const CompleteModel& m,
                 const DiagnosisStep& step,
                 const std::vector<const Effect*>& set,
@@ -485,7 +485,7 @@ std::vector<const Effect*> NearTwins(
   return twins;
 }
 
-// The effects neither in `contended` nor tied nor near twins whose score
+// The effects neither in `contended` nor tied nor twins (IsTwin) whose score
 // at the complete model's solution (`scored`, at `fit`) may earn a place
 // (ScoreMayEarn): no round refitted them, the search having stopped at
 // the noise level. Tried beside the complete model, they are searched
@@ -503,7 +503,7 @@ std::vector<const Effect*> Unrefitted(
     const DiagnoseOptions& options) {
   std::vector<const Effect*> strong;
   for (const Candidate& k : scored) {
-    if (k.score.novelty >= 0.01 && !InTie(d, k.effect->id) &&
+    if (!IsTwin(k.score) && !InTie(d, k.effect->id) &&
         ScoreMayEarn({k}, fit, options) &&
         std::find(contended.begin(), contended.end(), k.effect) ==
             contended.end()) {
@@ -514,9 +514,9 @@ std::vector<const Effect*> Unrefitted(
 }
 
 // Of the `lesser` refits, those `scored` (at the complete model's
-// solution, fitted as `fit`) as twins of its free parameters, exact or
-// near (novelty under 0.01: their scores say nothing of what a refit
-// does), or whose score may earn a place (ScoreMayEarn). Each lesser
+// solution, fitted as `fit`) as twins of its free parameters (IsTwin:
+// their scores say nothing of what a refit does), or whose score may earn
+// a place (ScoreMayEarn). Each lesser
 // refit tried beside every complete model had cost 9% more time over
 // nine draws (a Table 6 triple 4.9 -> 5.2 s).
 std::vector<Candidate> Lesser(const std::vector<Candidate>& scored,
@@ -526,7 +526,7 @@ std::vector<Candidate> Lesser(const std::vector<Candidate>& scored,
   std::vector<Candidate> chosen;
   for (const Candidate& k : scored) {
     if (std::find(lesser.begin(), lesser.end(), k.effect) != lesser.end() &&
-        (k.score.novelty < 0.01 || ScoreMayEarn({k}, fit, options))) {
+        (IsTwin(k.score) || ScoreMayEarn({k}, fit, options))) {
       chosen.push_back(k);
     }
   }
@@ -705,6 +705,33 @@ bool MayStandIn(const Diagnosis& d, const std::string& id) {
   return true;
 }
 
+// How far the complete model `m` with `members` in `step`'s place (the
+// model `c`, fitted as `fit`, `what` in the log) lies above it in BIC,
+// `held` terms held at zero counted as fitted; infinity when its residuals
+// leave the noise level or an effect of it leaves its bounds.
+double RiseInPlace(const CompleteModel& m,
+                   const DiagnosisStep& step,
+                   const std::vector<const Effect*>& members,
+                   const Case& c,
+                   const FitResult& fit,
+                   int held,
+                   const std::string& what,
+                   const DiagnoseOptions& options) {
+  if (!CheckResiduals(fit, options).at_noise_level) {
+    return std::numeric_limits<double>::infinity();
+  }
+  std::vector<const Effect*> effects = members;
+  for (const Effect* e : m.effects) {
+    if (e->id != step.effect) effects.push_back(e);
+  }
+  const double rise = Bic(fit) - Bic(*m.fit) +
+                      held * std::log(3.0 * std::max(1, m.fit->points));
+  const std::string why = ImplausibleAmong(effects, c, fit);
+  VLOG(1) << what << " for " << step.effect << ": BIC "
+          << FormatNumber("%+.1f", rise) << " " << why;
+  return why.empty() ? rise : std::numeric_limits<double>::infinity();
+}
+
 // The step `best` of *d replaced by `set` (its model *c, fitted as *fit,
 // least BIC above the complete model's): better by ambiguity_bic or more,
 // the step's effect is returned (the search took a wrong turn; DiagnoseFrom
@@ -769,18 +796,8 @@ std::string FindSetReplacements(const std::vector<Case>& models,
   });
   // Judged with `members` in step i's place.
   auto rise_of = [&](int i, const std::vector<const Effect*>& members) {
-    if (!CheckResiduals(fits[i], options).at_noise_level) {
-      return std::numeric_limits<double>::infinity();
-    }
-    std::vector<const Effect*> effects = members;
-    for (const Effect* e : m.effects) {
-      if (e->id != d->steps[i].effect) effects.push_back(e);
-    }
-    const double rise = Bic(fits[i]) - Bic(*m.fit);
-    const std::string why = ImplausibleAmong(effects, cases[i], fits[i]);
-    VLOG(1) << "the effects not excluded for " << d->steps[i].effect << ": BIC "
-            << (rise >= 0.0 ? "+" : "") << rise << " " << why;
-    return why.empty() ? rise : std::numeric_limits<double>::infinity();
+    return RiseInPlace(
+        m, d->steps[i], members, cases[i], fits[i], 0, "the set", options);
   };
   int best = -1;
   double least = std::numeric_limits<double>::infinity();
@@ -894,24 +911,18 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
     }
   }
   fit_all(&held);
-  // Judged as SetInPlace's sets are, a held term counted as fitted.
-  const double log_n = std::log(3.0 * std::max(1, m.fit->points));
+  // Judged as the sets are, a held term counted as fitted.
   auto rise_of = [&](const InPlace& t) {
-    const double never = std::numeric_limits<double>::infinity();
-    if (!t.fitted || !CheckResiduals(t.fit, options).at_noise_level) {
-      return never;
-    }
-    std::vector<const Effect*> effects = {t.effect};
-    for (const Effect* e : m.effects) {
-      if (e->id != d->steps[t.step].effect) effects.push_back(e);
-    }
-    const double rise =
-        Bic(t.fit) - Bic(*m.fit) + (t.held.empty() ? 0.0 : log_n);
-    const std::string why = ImplausibleAmong(effects, t.c, t.fit);
-    VLOG(1) << t.effect->id << " for " << d->steps[t.step].effect
-            << (t.held.empty() ? "" : ", " + t.held + " held at zero")
-            << ": BIC " << FormatNumber("%+.1f", rise) << " " << why;
-    return why.empty() ? rise : never;
+    if (!t.fitted) return std::numeric_limits<double>::infinity();
+    return RiseInPlace(
+        m,
+        d->steps[t.step],
+        {t.effect},
+        t.c,
+        t.fit,
+        t.held.empty() ? 0 : 1,
+        t.effect->id + (t.held.empty() ? "" : ", " + t.held + " held at zero"),
+        options);
   };
   InPlace* best = nullptr;
   double least = options.ambiguity_bic;

@@ -65,9 +65,13 @@ CandidateScore Score(const Case& candidate,
                      const std::string& id,
                      const std::vector<TimeHistory>& data);
 
-// Whether a candidate so scored is a near twin of the parameters free at
-// the solution (CandidateScore::novelty under 0.01), though not an exact
-// one (under Score's rank drop, 1e-6).
+// Whether a candidate so scored is a twin of the parameters free at the
+// solution, near or exact (CandidateScore::novelty under 0.01): its score
+// says little of what a refit with it does.
+bool IsTwin(const CandidateScore& score);
+
+// Whether it is a near twin (IsTwin), though not an exact one (under
+// Score's rank drop, 1e-6).
 bool IsNearTwin(const CandidateScore& score);
 
 // Why the effect's parameters, as `fit` (of case `c`) has them, lie

@@ -113,12 +113,17 @@ CandidateScore Score(const Case& candidate,
   return score;
 }
 
+bool IsTwin(const CandidateScore& score) {
+  // Less than 1% of its information left once the free parameters have
+  // theirs.
+  return score.novelty < 0.01;
+}
+
 bool IsNearTwin(const CandidateScore& score) {
-  // Less than 1% left: a near twin. Below the rank drop: an exact one, its
-  // terms and the free parameters one combination to the record (Eq. 43's
-  // tunnel terms, 1e-9), which no fit tells apart; the nominal fit's
-  // convention holds it absent.
-  return score.novelty < 0.01 && score.novelty >= kRankDrop;
+  // Below the rank drop: an exact twin, its terms and the free parameters
+  // one combination to the record (Eq. 43's tunnel terms, 1e-9), which no
+  // fit tells apart; the nominal fit's convention holds it absent.
+  return IsTwin(score) && score.novelty >= kRankDrop;
 }
 
 }  // namespace fit3dof
