@@ -622,15 +622,18 @@ Diagnosis WithNoiseHeld(const Case& c, const DiagnoseOptions& options) {
 
 namespace {
 
-// Effects declared absent must be the catalog's: a misspelt id would
-// silently leave the effect in.
+// Effects declared absent must be the catalog's or its probes': a
+// misspelt id would silently leave the effect in.
 void CheckAbsent(const DiagnoseOptions& options) {
   for (const std::string& id : options.absent) {
-    if (FindEffect(id) != nullptr) continue;
+    if (FindEffect(id) != nullptr || FindProbe(id) != nullptr) continue;
     std::string ids;
     for (const Effect& e : EffectCatalog()) ids += " " + e.id;
+    std::string probes;
+    for (const Effect& e : Probes()) probes += " " + e.id;
     throw InputError("effects known absent (--absent): '" + id +
-                     "' is not an effect of the catalog (one of:" + ids + ")");
+                     "' is not an effect of the catalog (one of:" + ids +
+                     ") nor a probe (one of:" + probes + ")");
   }
 }
 

@@ -68,11 +68,13 @@ bool Refit(const Candidate& k,
 bool FitProbes(const Case& current,
                const FitResult& fit,
                const std::vector<TimeHistory>& data,
+               const DiagnoseOptions& options,
                std::vector<Candidate>* candidates,
                Contender* probe) {
   const Case at = CaseAtSolution(current, fit);
   candidates->clear();
   for (const Effect& e : Probes()) {
+    if (KnownAbsent(options, e.id)) continue;
     Candidate k{&e, Case(), {}, {}};
     if (CandidateCase(at, e, &k.c, &k.added)) {
       candidates->push_back(std::move(k));
@@ -280,11 +282,13 @@ double Aic(const FitResult& r) {
   return Bic(r) - r.free_parameters * (std::log(n) - 2.0);
 }
 
+bool KnownAbsent(const DiagnoseOptions& options, const std::string& id) {
+  return std::find(options.absent.begin(), options.absent.end(), id) !=
+         options.absent.end();
+}
+
 bool Wanted(const DiagnoseOptions& options, const Effect& e) {
-  if (std::find(options.absent.begin(), options.absent.end(), e.id) !=
-      options.absent.end()) {
-    return false;
-  }
+  if (KnownAbsent(options, e.id)) return false;
   return options.effects.empty() ||
          std::find(options.effects.begin(), options.effects.end(), e.id) !=
              options.effects.end();
@@ -745,7 +749,7 @@ bool WeighProbes(const Case& current,
                  std::vector<Contender>* contenders,
                  Diagnosis* d) {
   const bool probed = options.probes &&
-                      FitProbes(current, fit, data, probes, probe) &&
+                      FitProbes(current, fit, data, options, probes, probe) &&
                       probe->record.bic_drop >= options.min_bic_drop &&
                       probe->bic < BestBic(*contenders);
   if (!probed) return false;

@@ -55,7 +55,12 @@ struct Contender {
   bool minor = false;  // lowered BIC by less than min_bic_drop (Contenders)
 };
 
-// Whether the options' catalog (DiagnoseOptions::effects) holds `e`.
+// Whether the engineer declared the effect or probe `id` absent
+// (DiagnoseOptions::absent).
+bool KnownAbsent(const DiagnoseOptions& options, const std::string& id);
+
+// Whether the options' catalog (DiagnoseOptions::effects) holds `e`, not
+// declared absent.
 bool Wanted(const DiagnoseOptions& options, const Effect& e);
 
 // The samples `fit` used, one record per segment.

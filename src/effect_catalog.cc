@@ -175,7 +175,10 @@ const std::vector<Effect>& EffectCatalog() {
 // 3-s run had been called that); a second amplitude tells them apart. Dry
 // friction about each axis alone damps the small yaw rate of a run
 // pitching in one plane hard, as a tunnel damping in yaw does (3-s runs
-// had been called that, the pitch term a tenth of the yaw one).
+// had been called that, the pitch term a tenth of the yaw one); about the
+// pitch axis alone, on a circular cone, it is a damping of that axis alone,
+// which Eq. 39's tunnel damping gives with Cm_q moved (a coning run had
+// been called that on every draw of the suite).
 const std::vector<Effect>& Probes() {
   static const std::vector<Effect> probes = {
       {"reading_drift",
@@ -243,6 +246,27 @@ const std::vector<Effect>& Probes() {
        "outside the catalog)",
        {"Cm_axis_friction"},
        {"Cm_axis_friction"},
+       false,
+       {},
+       "a run at another amplitude (dry friction damps a small motion more "
+       "than a large one, a viscous damping does not)",
+       ""},
+      {"pitch_friction",
+       "dry (Coulomb) friction about the pitch axis alone (a gimbal's pitch "
+       "pivot, lead wires rubbing as the model pitches; outside the "
+       "catalog)",
+       {"Cm_pitch_friction"},
+       {"Cm_pitch_friction"},
+       false,
+       {},
+       "a run at another amplitude (dry friction damps a small motion more "
+       "than a large one, a viscous damping does not)",
+       ""},
+      {"yaw_friction",
+       "dry (Coulomb) friction about the yaw axis alone (a gimbal's yaw "
+       "pivot; outside the catalog)",
+       {"Cn_yaw_friction"},
+       {"Cn_yaw_friction"},
        false,
        {},
        "a run at another amplitude (dry friction damps a small motion more "

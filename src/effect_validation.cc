@@ -292,8 +292,12 @@ std::string Implausible(const Effect& effect,
 }
 
 std::string WrongSign(const Effect& probe, const FitResult& fit) {
-  static const char* const kPositive[] = {
-      "theta_lag", "psi_lag", "Cm_friction", "Cm_axis_friction"};
+  static const char* const kPositive[] = {"theta_lag",
+                                          "psi_lag",
+                                          "Cm_friction",
+                                          "Cm_axis_friction",
+                                          "Cm_pitch_friction",
+                                          "Cn_yaw_friction"};
   const auto& own =
       fit.model == ModelKind::kSymmetric ? probe.symmetric : probe.asymmetric;
   for (const ParameterEstimate& e : fit.parameters) {

@@ -297,8 +297,9 @@ void AddNamelistBasinAndDiagnose(CLI::App* app, Handlers* handlers) {
   diagnose
       ->add_option("--absent",
                    FLAGS.absent,
-                   "catalog effects known absent (ids, comma-separated): "
-                   "never tried, never widen the error bars")
+                   "catalog effects or probes known absent (ids, "
+                   "comma-separated): never tried, never widen the error "
+                   "bars")
       ->delimiter(',');
   AddData(diagnose);
   (*handlers)[diagnose] = &DiagnoseCommand;

@@ -63,6 +63,8 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"theta_gain", "theta_gain", 1.0},
       {"Cm_friction", "Cm_friction", 1.0},
       {"Cm_axis_friction", "Cm_axis_friction", 1.0},
+      {"Cm_pitch_friction", "Cm_pitch_friction", 1.0},
+      {"Cn_yaw_friction", "Cn_yaw_friction", 1.0},
   };
   return images;
 }

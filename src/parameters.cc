@@ -157,6 +157,22 @@ std::vector<ParameterInfo> BearingAndFaults(int first) {
            S::kPitchStatic,
            "axis friction: a moment of this size about each of the pitch "
            "and yaw axes against that axis's rate"},
+          // Dry friction about the pitch axis alone, and the yaw axis
+          // alone (outside diagnose's catalog).
+          {0,
+           "Cm_pitch_friction",
+           "",
+           "-",
+           S::kPitchStatic,
+           "pitch friction: a moment of this size about the pitch axis "
+           "alone against its rate"},
+          {0,
+           "Cn_yaw_friction",
+           "",
+           "-",
+           S::kPitchStatic,
+           "yaw friction: a moment of this size about the yaw axis alone "
+           "against its rate"},
       });
 }
 

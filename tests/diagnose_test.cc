@@ -933,21 +933,23 @@ TEST(Diagnose, DryFrictionAboutEachAxisIsNotATunnelDamping) {
 }
 
 // tools/diagnose_suite's `short` dry friction about the pitch axis alone
-// (draw 4), kept as tests/data/short_pitch_friction_seed4.csv: neither
-// friction probe models it. The ball's friction lowers BIC most at the
-// first round (115.9), but a nonlinear damping and a body yaw asymmetry
-// together explain the record 31.9 below it, and they had been adopted
-// (Cm_q -9.9 +- 0.29, truth -5.5; the nominal fit's -8.8). The probe is
-// weighed with what the catalog adds beside it as well: with a tunnel
-// damping or a body asymmetry beside it the record is explained 38 below
-// them. Not explained; nothing added.
+// (draw 4), kept as tests/data/short_pitch_friction_seed4.csv, with the
+// probe that models it declared absent: a fault no probe models. The
+// ball's friction lowers BIC most at the first round (115.9), but a
+// nonlinear damping and a body yaw asymmetry together explain the record
+// 31.9 below it, and they had been adopted (Cm_q -9.9 +- 0.29, truth -5.5;
+// the nominal fit's -8.8). The probe is weighed with what the catalog adds
+// beside it as well: with a tunnel damping or a body asymmetry beside it
+// the record is explained 38 below them. Not explained; nothing added.
 TEST(Diagnose, AProbeIsWeighedWithWhatTheCatalogAddsBesideIt) {
   if (testing::kSanitized) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Case c = ShortConfig(
       {testing::SourcePath("tests/data/short_pitch_friction_seed4.csv")});
-  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  DiagnoseOptions options;
+  options.absent = {"pitch_friction"};
+  const Diagnosis d = Diagnose(c, options);
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
   EXPECT_TRUE(d.steps.empty()) << text;
@@ -959,20 +961,23 @@ TEST(Diagnose, AProbeIsWeighedWithWhatTheCatalogAddsBesideIt) {
             nlohmann::json(d.outside_catalog_beside));
 }
 
-// The same case on draw 7 (tests/data/short_pitch_friction_seed7.csv):
-// with a tunnel damping beside it the ball's friction explains the record
-// only 2.4 below the nonlinear damping and body yaw asymmetry the catalog
-// answers with, short of the 10 that would make it the answer. The
-// catalog's answer is taken, and the verdict says that the probe's model
-// explains the record alike and what would separate them
-// (outside_catalog_alike): it had said nothing of it.
+// The same case on draw 7 (tests/data/short_pitch_friction_seed7.csv),
+// the pitch axis's friction probe again absent: with a tunnel damping
+// beside it the ball's friction explains the record only 2.4 below the
+// nonlinear damping and body yaw asymmetry the catalog answers with, short
+// of the 10 that would make it the answer. The catalog's answer is taken,
+// and the verdict says that the probe's model explains the record alike
+// and what would separate them (outside_catalog_alike): it had said
+// nothing of it.
 TEST(Diagnose, AProbesModelThatExplainsTheRecordAlikeIsNamed) {
   if (testing::kSanitized) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Case c = ShortConfig(
       {testing::SourcePath("tests/data/short_pitch_friction_seed7.csv")});
-  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  DiagnoseOptions options;
+  options.absent = {"pitch_friction"};
+  const Diagnosis d = Diagnose(c, options);
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_TRUE(d.outside_catalog.effect.empty()) << text;
   ASSERT_GE(d.outside_catalog_alike.size(), 2u) << text;
@@ -985,6 +990,38 @@ TEST(Diagnose, AProbesModelThatExplainsTheRecordAlikeIsNamed) {
   const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(d, c));
   EXPECT_EQ(j["outside_catalog_alike"],
             nlohmann::json(d.outside_catalog_alike));
+}
+
+// Dry friction about the pitch axis alone, which the ball's friction and
+// the friction of both axes did not model: on the 3-s runs of draws 4 and
+// 7 it had got a nonlinear damping and a body asymmetry (the two tests
+// above), and on the circular cone of draw 23 (tests/data/coning_pitch_
+// friction_draw23.yaml) a tunnel damping, `explained` with Cm_q moved from
+// 3.5 to 12.2 of its errors off the truth: there the friction's describing
+// function is a damping of the pitch axis alone, which Eq. 39's t2 and t4
+// give with Cm_q shifted by half of it. The eighth probe fits it: not
+// explained, nothing added, the friction within 3 errors of the truth;
+// with that probe declared absent the tunnel damping is named again.
+TEST(Diagnose, AFrictionAboutThePitchAxisAloneIsNamed) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Diagnosis d = DiagnoseConfig("coning_pitch_friction_draw23.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "pitch_friction", "Cm_pitch_friction", 6.31e-5);
+  const Diagnosis short_run = DiagnoseRecord("short_pitch_friction_seed4.csv");
+  EXPECT_EQ(short_run.outside_catalog.effect, "pitch_friction")
+      << FormatDiagnosis(short_run, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(short_run.steps.empty())
+      << FormatDiagnosis(short_run, {0.01, 0.01, 0.01});
+  DiagnoseOptions options;
+  options.absent = {"pitch_friction"};
+  const Diagnosis without = Diagnose(
+      LoadConfig(
+          testing::SourcePath("tests/data/coning_pitch_friction_draw23.yaml")),
+      options);
+  EXPECT_EQ(EffectIds(without.steps), std::set<std::string>({"tunnel_damping"}))
+      << FormatDiagnosis(without, {0.01, 0.01, 0.01});
 }
 
 // A pitch reading drifting 0.015 deg/s on one 3-s run: over its 90 deg of

@@ -231,6 +231,9 @@ TEST(WrongSign, LagsAndFrictionsArePositive) {
   EXPECT_EQ(judged("reading_lag", "psi_lag", 0.017, 0.0067), "");
   EXPECT_NE(judged("bearing_friction", "Cm_friction", -3e-4, 2e-5), "");
   EXPECT_NE(judged("axis_friction", "Cm_axis_friction", -1e-4, 1e-5), "");
+  EXPECT_NE(judged("pitch_friction", "Cm_pitch_friction", -1e-4, 1e-5), "");
+  EXPECT_NE(judged("yaw_friction", "Cn_yaw_friction", -1e-4, 1e-5), "");
+  EXPECT_EQ(judged("yaw_friction", "Cn_yaw_friction", 1e-4, 1e-5), "");
   EXPECT_EQ(judged("reading_gain", "theta_gain", -0.05, 0.001), "");
   EXPECT_EQ(judged("bearing_friction", "theta_lag", -0.017, 0.0067), "");
 }

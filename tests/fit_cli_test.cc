@@ -187,16 +187,19 @@ TEST(FitCli, AllFrozenIsBadInput) {
       << result.output;
 }
 
-// diagnose --absent names catalog effects; anything else is bad input,
-// refused before any fit and before any output is written.
-TEST(FitCli, DiagnoseAbsentTakesCatalogEffectsOnly) {
+// diagnose --absent names catalog effects or probes; anything else is bad
+// input, refused before any fit and before any output is written.
+TEST(FitCli, DiagnoseAbsentTakesCatalogEffectsAndProbesOnly) {
   const std::string dir = testing::ScratchDirectory("fit_cli_absent");
-  const auto result = testing::RunFit3dof("diagnose " + Table6Config(dir) +
-                                          " --out_dir=" + dir +
-                                          "/out --absent=magnus,tunnel_buzz");
+  const auto result = testing::RunFit3dof(
+      "diagnose " + Table6Config(dir) + " --out_dir=" + dir +
+      "/out --absent=magnus,pitch_friction,tunnel_buzz");
   EXPECT_EQ(result.exit_status, 2) << result.output;
   EXPECT_NE(result.output.find("(--absent): 'tunnel_buzz' is not an effect "
                                "of the catalog"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("nor a probe (one of: reading_drift"),
             std::string::npos)
       << result.output;
   EXPECT_FALSE(fs::exists(dir + "/out/diagnosis.json"));

@@ -69,7 +69,9 @@ Case SymmetricCase(Incidence incidence, double step) {
       {"psi_lag", -0.003},
       {"theta_gain", 0.02},
       {"Cm_friction", 0.0005},
-      {"Cm_axis_friction", 0.0004}};
+      {"Cm_axis_friction", 0.0004},
+      {"Cm_pitch_friction", 0.0003},
+      {"Cn_yaw_friction", 0.0002}};
   for (const auto& [name, value] : values) {
     c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = value;
   }
@@ -154,7 +156,9 @@ TEST(ModelEquivalence, TheExtensionTermsMoveTheMotion) {
                            "psi_lag",
                            "theta_gain",
                            "Cm_friction",
-                           "Cm_axis_friction"}) {
+                           "Cm_axis_friction",
+                           "Cm_pitch_friction",
+                           "Cn_yaw_friction"}) {
     Case without = all;
     without.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.0;
     const std::vector<double> other = motion(without);

@@ -36,11 +36,13 @@ TEST(Parameters, TablesHaveTheReportsSizeAndOrder) {
   // (4), the symmetric trim moment (2), the bearing moment (2) and the
   // calibration nonlinearity (2), the reading drift (2), the dynamic
   // pressure's drift (1), the flow's yaw-plane stiffness (1), the
-  // readings' lag (2) and the pitch reading's gain (1).
+  // readings' lag (2), the pitch reading's gain (1) and the bearing's dry
+  // friction: against the rate vector, about each axis, about the pitch
+  // axis alone and the yaw axis alone (4).
   EXPECT_EQ(kReportParameters[0], 30);
   EXPECT_EQ(kReportParameters[1], 72);
-  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 49);
-  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 89);
+  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 51);
+  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 91);
   for (ModelKind model : {ModelKind::kSymmetric, ModelKind::kAsymmetric}) {
     const auto& table = ParameterTable(model);
     std::set<std::string> names;

@@ -197,9 +197,17 @@ void AsymmetricMoments(const CoefficientView<Tk>& k,
   // Dry friction about each of the non-rolling frame's pitch and yaw axes
   // (89; bearing_friction.h): the body rates turned into that frame by the
   // roll angle, the moments turned back, as for Cn_beta_flow above.
-  if (k.on(89)) {
-    const T fy = AxisFriction(k(89), q * cf - r * sf);
-    const T fz = AxisFriction(k(89), r * cf + q * sf);
+  if (k.on(89) || k.on(90) || k.on(91)) {
+    // The friction about each axis alone (90, 91) joins it there.
+    const auto wy = q * cf - r * sf;
+    const auto wz = r * cf + q * sf;
+    T fy(0.0), fz(0.0);
+    if (k.on(89)) {
+      fy += AxisFriction(k(89), wy);
+      fz += AxisFriction(k(89), wz);
+    }
+    if (k.on(90)) fy += AxisFriction(k(90), wy);
+    if (k.on(91)) fz += AxisFriction(k(91), wz);
     *my += fy * cf + fz * sf;
     *mz += (fz * cf - fy * sf) * (constants.Iy / constants.Iz);
   }

@@ -39,7 +39,12 @@
 // each, the probe (diagnose.h) explained to the noise a 3-s coning run
 // that a Magnus moment, a nonlinear damping and a calibration error had
 // made (its constant-amplitude rates leave a friction per axis little to
-// tell it from a damping). Templated on the scalar for ceres::Jet.
+// tell it from a damping). A friction of one axis alone is its own
+// parameter (Cm_pitch_friction, Cn_yaw_friction: symmetric 50-51,
+// asymmetric 90-91), AxisFriction on that axis only: on a circular cone a
+// pitch pivot's friction had been taken for Eq. 39's tunnel damping, and
+// one parameter cannot follow what two catalog effects damp on both axes.
+// Templated on the scalar for ceres::Jet.
 
 #ifndef FIT3DOF_BEARING_FRICTION_H_
 #define FIT3DOF_BEARING_FRICTION_H_

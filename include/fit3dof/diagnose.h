@@ -168,15 +168,17 @@
 // outside the catalog): the record is then `ambiguous` at best, and a
 // record spanning a revolution, or a second run at another spin rate,
 // separates them.
-// Each round also scores seven probes outside the catalog: a drift of the
+// Each round also scores nine probes outside the catalog: a drift of the
 // pitch and yaw readings in time (theta_drift, psi_drift), a dynamic
 // pressure drifting during the run (q_drift), a lag of the readings (a
 // filter's: theta_lag, psi_lag), a pitch reading's gain off the yaw
 // reading's (theta_gain), a flow whose stiffness differs between the
 // tunnel's pitch and yaw planes without Eq. 39's roll torque (Cn_beta_flow)
 // and dry friction, in the bearing against the pitch-yaw rate
-// (Cm_friction) or about each axis alone (Cm_axis_friction;
-// docs/parameters.md), and refits the two with the largest scores. The best of
+// (Cm_friction), about each axis alone (Cm_axis_friction) or about the pitch
+// or the yaw axis alone (Cm_pitch_friction, Cn_yaw_friction;
+// docs/parameters.md; a probe declared absent is not scored), and refits
+// the two with the largest scores. The best of
 // those (lowest BIC) whose lag or friction has its physical sign (a lead,
 // or a friction that drives the motion, beyond two errors is no fault of
 // those kinds: a negative axis friction had tied with a 3-s run's tunnel
@@ -347,6 +349,8 @@ struct DiagnoseOptions {
   // gradients, a bearing calibrated for the run): never tried, so never
   // tied, never a near twin and never in the final error bars, which are
   // then the final model's own where only those effects widened them.
+  // Probes may be named too (a ball bearing without gimbal pivots has no
+  // pitch_friction or yaw_friction): never fitted.
   std::vector<std::string> absent;
   bool probes = true;  // fit the probes outside the catalog
   // Fit a contender refused for its drag with the next ones (a joint set).

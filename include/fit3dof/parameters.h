@@ -44,7 +44,10 @@
 //     (bearing_friction.h; outside diagnose's catalog);
 //   - dry friction about each of the pitch and yaw axes alone (symmetric
 //     49, asymmetric 89): Cm_axis_friction q S d against each axis's own
-//     rate (bearing_friction.h; outside diagnose's catalog).
+//     rate (bearing_friction.h; outside diagnose's catalog);
+//   - dry friction about the pitch axis alone and about the yaw axis alone
+//     (symmetric 50-51, asymmetric 90-91): Cm_pitch_friction,
+//     Cn_yaw_friction (bearing_friction.h; outside diagnose's catalog).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -61,7 +64,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 89;
+inline constexpr int kMaxParameters = 91;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};

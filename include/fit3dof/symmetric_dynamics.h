@@ -189,6 +189,10 @@ void SymmetricMoments(const CoefficientView<Tk>& k,
     *my += AxisFriction(k(49), q);
     *mz += AxisFriction(k(49), r);
   }
+  // Dry friction about the pitch axis alone and the yaw axis alone (50,
+  // 51; bearing_friction.h).
+  if (k.on(50)) *my += AxisFriction(k(50), q);
+  if (k.on(51)) *mz += AxisFriction(k(51), r);
 
   // Roll: Cl_0 + p (Cl_p + Cl_p_delta delta + Cl_p_delta2 delta^2).
   T roll_damping(0.0);
