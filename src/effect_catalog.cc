@@ -178,7 +178,11 @@ const std::vector<Effect>& EffectCatalog() {
 // had been called that, the pitch term a tenth of the yaw one); about the
 // pitch axis alone, on a circular cone, it is a damping of that axis alone,
 // which Eq. 39's tunnel damping gives with Cm_q moved (a coning run had
-// been called that on every draw of the suite).
+// been called that on every draw of the suite). Section 5.2 found the
+// reading error varying with roll "with no apparent symmetry"; the
+// catalog's roll interaction keeps its first harmonics, and a reading
+// error twice a revolution had been named that with a flow angularity
+// beside it (two runs at 30 and 60 deg/s, on every draw of the suite).
 const std::vector<Effect>& Probes() {
   static const std::vector<Effect> probes = {
       {"reading_drift",
@@ -271,6 +275,17 @@ const std::vector<Effect>& Probes() {
        {},
        "a run at another amplitude (dry friction damps a small motion more "
        "than a large one, a viscous damping does not)",
+       ""},
+      {"second_roll_harmonic",
+       "a pitch and yaw reading error at the second harmonic of roll (twice "
+       "a revolution; outside the catalog, whose roll interaction keeps the "
+       "first harmonics)",
+       {"theta_cos_2phi", "theta_sin_2phi", "psi_cos_2phi", "psi_sin_2phi"},
+       {"theta_cos_2phi", "theta_sin_2phi", "psi_cos_2phi", "psi_sin_2phi"},
+       false,
+       {},
+       "a bench test of the readings against roll (the model turned "
+       "through a revolution at fixed pitch and yaw)",
        ""},
   };
   return probes;

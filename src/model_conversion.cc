@@ -65,6 +65,10 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"Cm_axis_friction", "Cm_axis_friction", 1.0},
       {"Cm_pitch_friction", "Cm_pitch_friction", 1.0},
       {"Cn_yaw_friction", "Cn_yaw_friction", 1.0},
+      {"theta_cos_2phi", "theta_cos_2phi", 1.0},
+      {"theta_sin_2phi", "theta_sin_2phi", 1.0},
+      {"psi_cos_2phi", "psi_cos_2phi", 1.0},
+      {"psi_sin_2phi", "psi_sin_2phi", 1.0},
   };
   return images;
 }

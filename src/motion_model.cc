@@ -70,6 +70,9 @@ MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
   const int ri = layout_.roll_interaction;
   roll_interaction_ =
       active_[ri] || active_[ri + 1] || active_[ri + 2] || active_[ri + 3];
+  const int r2 = layout_.roll_harmonic2;
+  roll_harmonic2_ =
+      active_[r2] || active_[r2 + 1] || active_[r2 + 2] || active_[r2 + 3];
   calibration_ =
       active_[layout_.calibration] || active_[layout_.calibration + 1];
   drift_ = active_[layout_.drift] || active_[layout_.drift + 1];

@@ -58,7 +58,8 @@ std::vector<ParameterInfo> RollInteraction(int first) {
 // the faults diagnose probes for outside its catalog: a drift of the
 // readings and of the dynamic pressure, a flow stiffer in one plane, a lag
 // and a gain error of the readings, dry friction in the bearing (against
-// the pitch-yaw rate, and about each axis alone).
+// the pitch-yaw rate, about each axis, about one axis alone), a reading
+// error at the second harmonic of roll.
 std::vector<ParameterInfo> BearingAndFaults(int first) {
   return Numbered(
       first,
@@ -173,6 +174,33 @@ std::vector<ParameterInfo> BearingAndFaults(int first) {
            S::kPitchStatic,
            "yaw friction: a moment of this size about the yaw axis alone "
            "against its rate"},
+          // A reading error at the second harmonic of roll (outside
+          // diagnose's catalog): Section 5.2 found the reading error varying
+          // with roll "with no apparent symmetry".
+          {0,
+           "theta_cos_2phi",
+           "",
+           "deg",
+           S::kAngle,
+           "second roll harmonic: pitch reading error, cos(2 phi)"},
+          {0,
+           "theta_sin_2phi",
+           "",
+           "deg",
+           S::kAngle,
+           "second roll harmonic: pitch reading error, sin(2 phi)"},
+          {0,
+           "psi_cos_2phi",
+           "",
+           "deg",
+           S::kAngle,
+           "second roll harmonic: yaw reading error, cos(2 phi)"},
+          {0,
+           "psi_sin_2phi",
+           "",
+           "deg",
+           S::kAngle,
+           "second roll harmonic: yaw reading error, sin(2 phi)"},
       });
 }
 
@@ -607,9 +635,9 @@ std::string SuggestParameter(ModelKind model, std::string_view name) {
 
 const ParameterLayout& Layout(ModelKind model) {
   static const ParameterLayout symmetric{
-      22, 23, 24, -1, 30, 36, 38, 40, 42, 43, 44, 46};
+      22, 23, 24, -1, 30, 36, 38, 40, 42, 43, 44, 46, 51};
   static const ParameterLayout asymmetric{
-      64, 65, 66, 59, 72, 76, 78, 80, 82, 83, 84, 86};
+      64, 65, 66, 59, 72, 76, 78, 80, 82, 83, 84, 86, 91};
   return model == ModelKind::kSymmetric ? symmetric : asymmetric;
 }
 

@@ -71,7 +71,11 @@ Case SymmetricCase(Incidence incidence, double step) {
       {"Cm_friction", 0.0005},
       {"Cm_axis_friction", 0.0004},
       {"Cm_pitch_friction", 0.0003},
-      {"Cn_yaw_friction", 0.0002}};
+      {"Cn_yaw_friction", 0.0002},
+      {"theta_cos_2phi", 0.03},
+      {"theta_sin_2phi", -0.02},
+      {"psi_cos_2phi", 0.01},
+      {"psi_sin_2phi", 0.025}};
   for (const auto& [name, value] : values) {
     c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = value;
   }
@@ -158,7 +162,11 @@ TEST(ModelEquivalence, TheExtensionTermsMoveTheMotion) {
                            "Cm_friction",
                            "Cm_axis_friction",
                            "Cm_pitch_friction",
-                           "Cn_yaw_friction"}) {
+                           "Cn_yaw_friction",
+                           "theta_cos_2phi",
+                           "theta_sin_2phi",
+                           "psi_cos_2phi",
+                           "psi_sin_2phi"}) {
     Case without = all;
     without.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.0;
     const std::vector<double> other = motion(without);

@@ -168,7 +168,7 @@
 // outside the catalog): the record is then `ambiguous` at best, and a
 // record spanning a revolution, or a second run at another spin rate,
 // separates them.
-// Each round also scores nine probes outside the catalog: a drift of the
+// Each round also scores ten probes outside the catalog: a drift of the
 // pitch and yaw readings in time (theta_drift, psi_drift), a dynamic
 // pressure drifting during the run (q_drift), a lag of the readings (a
 // filter's: theta_lag, psi_lag), a pitch reading's gain off the yaw
@@ -176,7 +176,8 @@
 // tunnel's pitch and yaw planes without Eq. 39's roll torque (Cn_beta_flow)
 // and dry friction, in the bearing against the pitch-yaw rate
 // (Cm_friction), about each axis alone (Cm_axis_friction) or about the pitch
-// or the yaw axis alone (Cm_pitch_friction, Cn_yaw_friction;
+// or the yaw axis alone (Cm_pitch_friction, Cn_yaw_friction), and a
+// reading error at the second harmonic of roll (theta_cos_2phi, ...;
 // docs/parameters.md; a probe declared absent is not scored), and refits
 // the two with the largest scores. The best of
 // those (lowest BIC) whose lag or friction has its physical sign (a lead,

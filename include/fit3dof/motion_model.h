@@ -263,6 +263,7 @@ class MotionModel {
   // Whether any roll-interaction or calibration parameter is active
   // (Measure).
   bool roll_interaction_ = false;
+  bool roll_harmonic2_ = false;  // the second roll harmonic's
   bool calibration_ = false;
   bool drift_ = false;
   bool lag_ = false;
@@ -314,6 +315,14 @@ void MotionModel::Measure(const Tx* x,
     const Tx s = sin(phi);
     theta += internal[ri] * c + internal[ri + 1] * s;
     psi += internal[ri + 2] * c + internal[ri + 3] * s;
+  }
+  // The same at the second harmonic (outside diagnose's catalog).
+  if (roll_harmonic2_) {
+    const int r2 = layout_.roll_harmonic2;
+    const Tx c = cos(2.0 * phi);
+    const Tx s = sin(2.0 * phi);
+    theta += internal[r2] * c + internal[r2 + 1] * s;
+    psi += internal[r2 + 2] * c + internal[r2 + 3] * s;
   }
   // The calibration nonlinearity of Section 5.2: a reading error that grows
   // as the cube of the angle the bearing sits at, its size given at 5 deg.

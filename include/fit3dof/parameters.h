@@ -47,7 +47,13 @@
 //     rate (bearing_friction.h; outside diagnose's catalog);
 //   - dry friction about the pitch axis alone and about the yaw axis alone
 //     (symmetric 50-51, asymmetric 90-91): Cm_pitch_friction,
-//     Cn_yaw_friction (bearing_friction.h; outside diagnose's catalog).
+//     Cn_yaw_friction (bearing_friction.h; outside diagnose's catalog);
+//   - a reading error at the second harmonic of roll (symmetric 52-55,
+//     asymmetric 92-95): theta_m += theta_cos_2phi cos(2 phi) +
+//     theta_sin_2phi sin(2 phi), the same for psi (degrees; Section 5.2's
+//     reading error varies with roll "with no apparent symmetry", the
+//     roll interaction above keeps its first harmonics; outside
+//     diagnose's catalog).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -64,7 +70,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 91;
+inline constexpr int kMaxParameters = 95;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};
@@ -142,6 +148,8 @@ struct ParameterLayout {
   int flow_yaw_stiffness;  // Cn_beta_flow
   int lag;                 // theta_lag, then psi_lag (s)
   int gain;                // theta_gain
+  int roll_harmonic2;      // first of theta_cos_2phi, theta_sin_2phi,
+                           // psi_cos_2phi, psi_sin_2phi
 };
 const ParameterLayout& Layout(ModelKind model);
 
