@@ -199,7 +199,8 @@
 // run a bearing moment (a stiffness that grows as the amplitude decays) and a
 // drifting dynamic pressure do; a drifting pressure had been named a bearing
 // moment. A probe is weighed against one catalog effect at a time: when it wins
-// without reaching the noise, the diagnosis without probes is run too;
+// (at the noise level too, where its chi-square leaves room for a catalog
+// model to beat it by the margin), the diagnosis without probes is run too;
 // when that explains the record (or ties with every branch explained) with
 // a BIC lower than the probe's model's by more than `ambiguity_bic`, it is
 // the answer (a reading lag had beaten a Magnus moment at the first step
