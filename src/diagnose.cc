@@ -512,6 +512,9 @@ Diagnosis Search(const Case& c,
     }
     if (earned.empty() || !d.outside_catalog.effect.empty()) {
       for (const Contender& k : contenders) d.rejected.push_back(k.record);
+      if (!d.outside_catalog.effect.empty()) {
+        KeepOutdoneByProbe(probe, contenders, earned, &d);
+      }
       break;
     }
     const Contender& best = contenders[earned[0]];

@@ -629,6 +629,19 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   FindOpenTerms(complete, data, options, d);
 }
 
+void KeepOutdoneByProbe(const Contender& probe,
+                        const std::vector<Contender>& contenders,
+                        const std::vector<int>& earned,
+                        Diagnosis* d) {
+  for (int i : earned) {
+    const Contender& k = contenders[i];
+    d->outdone_by_probe.push_back(k.record.effect);
+    d->not_excluded_models.push_back(k.fit.parameters);
+    d->not_excluded_weights.push_back(
+        AkaikeWeight(Aic(k.fit) - Aic(probe.fit)));
+  }
+}
+
 void WidenForNotExcluded(Diagnosis* d) {
   std::vector<const std::vector<ParameterEstimate>*> models;
   for (const auto& m : d->not_excluded_models) models.push_back(&m);
@@ -637,6 +650,9 @@ void WidenForNotExcluded(Diagnosis* d) {
     for (const CandidateFit& k : *fits) {
       which += (which.empty() ? "" : ", ") + k.effect;
     }
+  }
+  for (const std::string& id : d->outdone_by_probe) {
+    which += (which.empty() ? "" : ", ") + id + " (outdone by a probe)";
   }
   WidenErrorBars(models,
                  d->not_excluded_weights,

@@ -580,6 +580,11 @@ struct Diagnosis {
   // record leaves open had tied with a body asymmetry, together with a
   // Magnus moment, on a 3-s run whose asymmetry was named before).
   std::vector<std::string> lesser_refits;
+  // The catalog effects that earned their place at the round a probe
+  // outdid them (`not_explained`): the final error bars cover their
+  // models too, each with its Akaike weight against the probe's model
+  // (among not_excluded_models).
+  std::vector<std::string> outdone_by_probe;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
   std::vector<double> not_excluded_weights;  // each model's Akaike weight
   // The least BIC of a complete model with one of not_excluded or
