@@ -335,8 +335,13 @@ void FindOpenTerms(const std::vector<CompleteModel>& complete,
   for (const CompleteModel& m : complete) {
     std::vector<const Effect*> probes;
     for (const Effect* e : m.effects) {
-      const Effect* probe = e == nullptr ? nullptr : FindProbe(e->leaves_open);
-      if (probe != nullptr) probes.push_back(probe);
+      if (e == nullptr) continue;
+      for (const std::string& id : e->leaves_open) {
+        const Effect* probe = FindProbe(id);
+        if (probe == nullptr) probe = FindOpenForm(id);
+        CHECK(probe != nullptr) << e->id << " leaves open " << id;
+        probes.push_back(probe);
+      }
     }
     if (probes.empty()) continue;
     holding.push_back(m);

@@ -46,6 +46,12 @@ void RefitFromSolution(Case* c, double probable_error);
 const std::vector<Effect>& Probes();
 const Effect* FindProbe(const std::string& id);
 
+// Other forms of catalog effects that an effect's form leaves open
+// (Effect::leaves_open), never tried alone, and the one called `id`
+// (nullptr if none).
+const std::vector<Effect>& OpenForms();
+const Effect* FindOpenForm(const std::string& id);
+
 // The case `at` with the effect's parameters free at zero (converted to the
 // asymmetric program when the effect needs it), their names in `added`;
 // false when the effect does not apply or is already in the model.

@@ -4,6 +4,8 @@
 // what the search found (diagnose.cc) told as `ambiguous`, `explained`,
 // `noise_level` or `not_explained`, with the effects' descriptions.
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -216,8 +218,11 @@ std::string Describe(const std::string& id) {
     return "a slow drift of the readings or of the flow in time (outside "
            "the catalog)";
   }
-  const Effect* probe = FindProbe(id);
-  return probe != nullptr ? probe->description : FindEffect(id)->description;
+  const Effect* e = FindProbe(id);
+  if (e == nullptr) e = FindOpenForm(id);
+  if (e == nullptr) e = FindEffect(id);
+  CHECK(e != nullptr) << "no effect " << id;
+  return e->description;
 }
 
 void Conclude(Diagnosis* d) {

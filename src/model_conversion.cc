@@ -69,6 +69,8 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"theta_sin_2phi", "theta_sin_2phi", 1.0},
       {"psi_cos_2phi", "psi_cos_2phi", 1.0},
       {"psi_sin_2phi", "psi_sin_2phi", 1.0},
+      {"theta_cal2", "theta_cal2", 1.0},
+      {"psi_cal2", "psi_cal2", 1.0},
   };
   return images;
 }

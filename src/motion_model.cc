@@ -75,6 +75,8 @@ MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
       active_[r2] || active_[r2 + 1] || active_[r2 + 2] || active_[r2 + 3];
   calibration_ =
       active_[layout_.calibration] || active_[layout_.calibration + 1];
+  calibration_square_ = active_[layout_.calibration_square] ||
+                        active_[layout_.calibration_square + 1];
   drift_ = active_[layout_.drift] || active_[layout_.drift + 1];
   lag_ = active_[layout_.lag] || active_[layout_.lag + 1];
   gain_ = active_[layout_.gain];

@@ -59,7 +59,8 @@ std::vector<ParameterInfo> RollInteraction(int first) {
 // readings and of the dynamic pressure, a flow stiffer in one plane, a lag
 // and a gain error of the readings, dry friction in the bearing (against
 // the pitch-yaw rate, about each axis, about one axis alone), a reading
-// error at the second harmonic of roll.
+// error at the second harmonic of roll, the calibration error's signed
+// square.
 std::vector<ParameterInfo> BearingAndFaults(int first) {
   return Numbered(
       first,
@@ -201,6 +202,22 @@ std::vector<ParameterInfo> BearingAndFaults(int first) {
            "deg",
            S::kAngle,
            "second roll harmonic: yaw reading error, sin(2 phi)"},
+          // The calibration nonlinearity's signed square (diagnose frees it
+          // beside the cube: another form of Section 5.2's error).
+          {0,
+           "theta_cal2",
+           "",
+           "deg",
+           S::kAngle,
+           "calibration nonlinearity: pitch reading error at 5 deg, signed "
+           "square"},
+          {0,
+           "psi_cal2",
+           "",
+           "deg",
+           S::kAngle,
+           "calibration nonlinearity: yaw reading error at 5 deg, signed "
+           "square"},
       });
 }
 
@@ -635,9 +652,9 @@ std::string SuggestParameter(ModelKind model, std::string_view name) {
 
 const ParameterLayout& Layout(ModelKind model) {
   static const ParameterLayout symmetric{
-      22, 23, 24, -1, 30, 36, 38, 40, 42, 43, 44, 46, 51};
+      22, 23, 24, -1, 30, 36, 38, 40, 42, 43, 44, 46, 51, 55};
   static const ParameterLayout asymmetric{
-      64, 65, 66, 59, 72, 76, 78, 80, 82, 83, 84, 86, 91};
+      64, 65, 66, 59, 72, 76, 78, 80, 82, 83, 84, 86, 91, 95};
   return model == ModelKind::kSymmetric ? symmetric : asymmetric;
 }
 

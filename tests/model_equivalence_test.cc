@@ -75,7 +75,9 @@ Case SymmetricCase(Incidence incidence, double step) {
       {"theta_cos_2phi", 0.03},
       {"theta_sin_2phi", -0.02},
       {"psi_cos_2phi", 0.01},
-      {"psi_sin_2phi", 0.025}};
+      {"psi_sin_2phi", 0.025},
+      {"theta_cal2", 0.02},
+      {"psi_cal2", -0.015}};
   for (const auto& [name, value] : values) {
     c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = value;
   }
@@ -166,7 +168,9 @@ TEST(ModelEquivalence, TheExtensionTermsMoveTheMotion) {
                            "theta_cos_2phi",
                            "theta_sin_2phi",
                            "psi_cos_2phi",
-                           "psi_sin_2phi"}) {
+                           "psi_sin_2phi",
+                           "theta_cal2",
+                           "psi_cal2"}) {
     Case without = all;
     without.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.0;
     const std::vector<double> other = motion(without);

@@ -297,14 +297,16 @@ struct Effect {
   // judges its bounds within two of its errors
   // (DiagnoseOptions::bounds_within_errors).
   bool on_ridge = false;
-  // A probe (Probes()) whose terms the effect's form leaves open: a
-  // calibration nonlinearity written as a cube takes none of the linear
-  // part a real one has, which the report's linear calibration fit took an
-  // unknown share of (as much as its range made it); what is left is a
-  // gain error, the reading_gain probe's. Not fitted with the effect; freed
-  // beside each complete model that holds it, and where the record cannot
-  // exclude it, the final error bars cover that fit (Diagnosis::open_terms).
-  std::string leaves_open = {};
+  // Probes (Probes()) or other forms (OpenForms()) whose terms the
+  // effect's form leaves open: a calibration nonlinearity written as a
+  // cube takes none of the linear part a real one has, which the report's
+  // linear calibration fit took an unknown share of (as much as its range
+  // made it); what is left is a gain error, the reading_gain probe's. Nor
+  // does a cube grow as a signed square does (calibration_square). Not
+  // fitted with the effect; each freed beside each complete model that
+  // holds it, and where the record cannot exclude it, the final error
+  // bars cover that fit (Diagnosis::open_terms).
+  std::vector<std::string> leaves_open = {};
 };
 
 const std::vector<Effect>& EffectCatalog();

@@ -265,6 +265,7 @@ class MotionModel {
   bool roll_interaction_ = false;
   bool roll_harmonic2_ = false;  // the second roll harmonic's
   bool calibration_ = false;
+  bool calibration_square_ = false;
   bool drift_ = false;
   bool lag_ = false;
   bool gain_ = false;
@@ -332,6 +333,15 @@ void MotionModel::Measure(const Tx* x,
     const Tx v = x[state_index_[2]] / kCalibrationAngle;
     theta += internal[cal] * (u * u * u);
     psi += internal[cal + 1] * (v * v * v);
+  }
+  // The same error as the angle's signed square (another form of it).
+  if (calibration_square_) {
+    using std::abs;
+    const int cal = layout_.calibration_square;
+    const Tx u = x[state_index_[1]] / kCalibrationAngle;
+    const Tx v = x[state_index_[2]] / kCalibrationAngle;
+    theta += internal[cal] * (u * abs(u));
+    psi += internal[cal + 1] * (v * abs(v));
   }
   // A reading that drifts in time (a zero creeping with temperature).
   if (drift_) {

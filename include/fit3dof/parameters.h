@@ -53,7 +53,11 @@
 //     theta_sin_2phi sin(2 phi), the same for psi (degrees; Section 5.2's
 //     reading error varies with roll "with no apparent symmetry", the
 //     roll interaction above keeps its first harmonics; outside
-//     diagnose's catalog).
+//     diagnose's catalog);
+//   - the calibration nonlinearity's signed square (symmetric 56-57,
+//     asymmetric 96-97): theta_m += theta_cal2 (theta / 5 deg) |theta /
+//     5 deg|, the same for psi (another form of Section 5.2's error,
+//     which diagnose frees beside the cube).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -70,7 +74,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 95;
+inline constexpr int kMaxParameters = 97;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};
@@ -150,6 +154,7 @@ struct ParameterLayout {
   int gain;                // theta_gain
   int roll_harmonic2;      // first of theta_cos_2phi, theta_sin_2phi,
                            // psi_cos_2phi, psi_sin_2phi
+  int calibration_square;  // theta_cal2, then psi_cal2
 };
 const ParameterLayout& Layout(ModelKind model);
 
