@@ -630,13 +630,15 @@ namespace {
 void CheckAbsent(const DiagnoseOptions& options) {
   for (const std::string& id : options.absent) {
     if (FindEffect(id) != nullptr || FindProbe(id) != nullptr) continue;
-    std::string ids;
-    for (const Effect& e : EffectCatalog()) ids += " " + e.id;
-    std::string probes;
-    for (const Effect& e : Probes()) probes += " " + e.id;
-    throw InputError("effects known absent (--absent): '" + id +
-                     "' is not an effect of the catalog (one of:" + ids +
-                     ") nor a probe (one of:" + probes + ")");
+    auto ids = [](const std::vector<Effect>& effects) {
+      std::string text;
+      for (const Effect& e : effects) text += " " + e.id;
+      return text;
+    };
+    throw InputError(
+        "effects known absent (--absent): '" + id +
+        "' is not an effect of the catalog (one of:" + ids(EffectCatalog()) +
+        ") nor a probe (one of:" + ids(Probes()) + ")");
   }
 }
 

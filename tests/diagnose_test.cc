@@ -733,29 +733,40 @@ TEST(Diagnose, ANearTwinHiddenAtTheNoiseLevelGetsARound) {
 }
 
 // `d` (printed as `text`) adds nothing, ends not_explained and names the
-// probe `probe` outside the catalog, its parameter `name` within 3
-// standard errors of `truth`.
+// probe `probe` outside the catalog, each of its parameters in `truths`
+// (name -> true value) within 3 standard errors of its truth.
 void ExpectOutsideCatalog(const Diagnosis& d,
                           const std::string& text,
                           const std::string& probe,
-                          const std::string& name,
-                          double truth) {
+                          const std::map<std::string, double>& truths) {
   EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
   EXPECT_TRUE(d.steps.empty()) << text;
   ASSERT_EQ(d.outside_catalog.effect, probe) << text;
   const std::vector<ParameterEstimate>& fitted = d.outside_catalog.parameters;
-  const auto it = std::find_if(
-      fitted.begin(), fitted.end(), [&](const ParameterEstimate& e) {
-        return e.name == name;
-      });
-  ASSERT_NE(it, fitted.end()) << text;
-  EXPECT_NEAR(it->value, truth, 3.0 * it->standard_error) << text;
+  for (const auto& [name, truth] : truths) {
+    const auto it = std::find_if(
+        fitted.begin(), fitted.end(), [&](const ParameterEstimate& e) {
+          return e.name == name;
+        });
+    ASSERT_NE(it, fitted.end()) << name << "\n" << text;
+    EXPECT_NEAR(it->value, truth, 3.0 * it->standard_error) << name << "\n"
+                                                            << text;
+  }
   // The probe is the hidden fault's own model: with it the residuals
   // reach the noise, and the report says so.
   EXPECT_TRUE(d.outside_at_noise_level) << text;
   EXPECT_NE(text.find("residuals at the noise level with it"),
             std::string::npos)
       << text;
+}
+
+// The same, for a probe's one parameter `name`.
+void ExpectOutsideCatalog(const Diagnosis& d,
+                          const std::string& text,
+                          const std::string& probe,
+                          const std::string& name,
+                          double truth) {
+  ExpectOutsideCatalog(d, text, probe, {{name, truth}});
 }
 
 // The same drift in two runs (30 deg/s and 8 deg, 60 deg/s and 4 deg): a
@@ -1039,22 +1050,14 @@ TEST(Diagnose, AReadingErrorAtTheSecondRollHarmonicIsNamed) {
   }
   const Diagnosis d = DiagnoseRecord("short_second_roll_harmonic_draw22.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
-  EXPECT_TRUE(d.steps.empty()) << text;
-  ASSERT_EQ(d.outside_catalog.effect, "second_roll_harmonic") << text;
-  EXPECT_TRUE(d.outside_at_noise_level) << text;
   const double a = -0.028074;
-  const std::map<std::string, double> truths = {
-      {"theta_cos_2phi", a * std::cos(0.7)},
-      {"theta_sin_2phi", -a * std::sin(0.7)},
-      {"psi_cos_2phi", 0.8 * a * std::sin(0.2)},
-      {"psi_sin_2phi", 0.8 * a * std::cos(0.2)}};
-  for (const ParameterEstimate& e : d.outside_catalog.parameters) {
-    ASSERT_EQ(truths.count(e.name), 1u) << e.name << "\n" << text;
-    EXPECT_NEAR(e.value, truths.at(e.name), 3.0 * e.standard_error)
-        << e.name << "\n"
-        << text;
-  }
+  ExpectOutsideCatalog(d,
+                       text,
+                       "second_roll_harmonic",
+                       {{"theta_cos_2phi", a * std::cos(0.7)},
+                        {"theta_sin_2phi", -a * std::sin(0.7)},
+                        {"psi_cos_2phi", 0.8 * a * std::sin(0.2)},
+                        {"psi_sin_2phi", 0.8 * a * std::cos(0.2)}});
   EXPECT_EQ(d.outside_catalog.parameters.size(), 4u) << text;
 }
 

@@ -327,21 +327,21 @@ void MotionModel::Measure(const Tx* x,
   }
   // The calibration nonlinearity of Section 5.2: a reading error that grows
   // as the cube of the angle the bearing sits at, its size given at 5 deg.
-  if (calibration_) {
-    const int cal = layout_.calibration;
-    const Tx u = x[state_index_[1]] / kCalibrationAngle;
-    const Tx v = x[state_index_[2]] / kCalibrationAngle;
-    theta += internal[cal] * (u * u * u);
-    psi += internal[cal + 1] * (v * v * v);
-  }
-  // The same error as the angle's signed square (another form of it).
-  if (calibration_square_) {
+  // Or as the angle's signed square (another form of it).
+  if (calibration_ || calibration_square_) {
     using std::abs;
-    const int cal = layout_.calibration_square;
     const Tx u = x[state_index_[1]] / kCalibrationAngle;
     const Tx v = x[state_index_[2]] / kCalibrationAngle;
-    theta += internal[cal] * (u * abs(u));
-    psi += internal[cal + 1] * (v * abs(v));
+    if (calibration_) {
+      const int cal = layout_.calibration;
+      theta += internal[cal] * (u * u * u);
+      psi += internal[cal + 1] * (v * v * v);
+    }
+    if (calibration_square_) {
+      const int cal = layout_.calibration_square;
+      theta += internal[cal] * (u * abs(u));
+      psi += internal[cal + 1] * (v * abs(v));
+    }
   }
   // A reading that drifts in time (a zero creeping with temperature).
   if (drift_) {
