@@ -219,12 +219,7 @@ bool SetInPlace(const CompleteModel& m,
   for (size_t j = 0; j < set.size(); ++j) {
     if (!CandidateCase(*c, *set[j], c, &(*added)[j])) return false;
   }
-  if (!held.empty()) {
-    const int position = FindParameter(c->model, held);
-    if (position < 0) return false;
-    c->parameters[position].value = 0.0;
-    c->parameters[position].free = false;
-  }
+  if (!held.empty() && !HoldAtZero(held, c)) return false;
   return FitFrom(
       *c, *m.fit, data, "the effects not excluded for " + step.effect, fit);
 }
@@ -693,8 +688,7 @@ void WidenAlternatives(const std::vector<TimeHistory>& data,
   std::vector<CompleteModel> models;
   std::vector<AlternativeModel*> of;  // the alternative of each model
   for (AlternativeModel& a : d->alternatives) {
-    // The final model's own error bars are widened already.
-    if (a.fit < 0 || a.fit == static_cast<int>(d->final_fit)) continue;
+    if (a.fit < 0) continue;
     models.push_back({a.model, &d->fits[a.fit], {}});
     // The tied effect may be a probe outside the catalog (a flow stiffer
     // in one plane), whose bounds are its own.
@@ -722,7 +716,16 @@ void WidenAlternatives(const std::vector<TimeHistory>& data,
       which += (which.empty() ? "" : ", ") + t.effect->id;
     }
     if (beside.empty()) continue;
-    FitResult& own = d->fits[of[m]->fit];
+    // The final model's own error bars are widened already, by the tie's
+    // other models too; as an alternative (the tied effect it holds in the
+    // tie's place) it is widened as the others are, on its own copy: its
+    // values had gone out with its own error bars alone (a roll reading
+    // error beside a flow angularity not excluded, 0.026 +- 0.0023 deg
+    // against a truth of 0.039, and +- 0.010 in the final model).
+    const bool final = of[m]->fit == static_cast<int>(d->final_fit);
+    FitResult copy;
+    if (final) copy.parameters = of[m]->parameters;
+    FitResult& own = final ? copy : d->fits[of[m]->fit];
     std::map<std::string, double> unused;
     WidenErrorBars(
         beside,
@@ -874,14 +877,19 @@ std::string FindSetReplacements(const std::vector<Case>& models,
   return StandIn(data, options, best, set, least, &cases[best], &fits[best], d);
 }
 
-namespace {
-
-// Eq. 43's tunnel terms: effects whose pitch and yaw terms each lie on a
-// ridge with a body coefficient (Cm_alpha + t1, Cm_q + t2), so that with
-// one held at zero the other carries what the record sees of them.
 bool OnTunnelRidge(const Effect& e) {
   return e.id == "tunnel_stiffness" || e.id == "tunnel_damping";
 }
+
+bool HoldAtZero(const std::string& name, Case* c) {
+  const int position = FindParameter(c->model, name);
+  if (position < 0) return false;
+  c->parameters[position].value = 0.0;
+  c->parameters[position].free = false;
+  return true;
+}
+
+namespace {
 
 // One effect fitted in a step's place (SetInPlace), a term held at zero
 // or none.

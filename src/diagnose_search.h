@@ -348,6 +348,15 @@ std::string ImplausibleWithin(const Effect& effect,
                               const std::vector<std::string>& added,
                               double k);
 
+// Eq. 43's tunnel terms: effects whose pitch and yaw terms each lie on a
+// ridge with a body coefficient (Cm_alpha + t1, Cm_q + t2), so that with
+// one held at zero the other carries what the record sees of them.
+bool OnTunnelRidge(const Effect& e);
+
+// `c` with its parameter `name` held at zero (not free); false when its
+// model has no such parameter.
+bool HoldAtZero(const std::string& name, Case* c);
+
 // The final model of a record that an open tie leaves ambiguous holds
 // none of the tied effects, and what one of them would change in it the
 // record cannot say: a calibration error fitted without the bearing moment

@@ -2207,6 +2207,63 @@ TEST(Diagnose, AStepNoCompleteModelOfATieNeedsIsSearchedWithout) {
       d, {"tunnel_stiffness", "nonlinear_damping", "asymmetric_body"});
 }
 
+// The same case on draw 27 (t1 8.1e-4, t3 -2.8e-4, Cm_q_delta2 670, body
+// yaw -0.20%), kept as tests/data/short_stiffness_damping_asymmetry_vary27
+// .csv. A Magnus moment comes in with the damping, and the roll torque
+// that follows ties with a tunnel damping; the stiffness, swapped in for
+// the torque, ran along Eq. 43's ridge to t1 = 0.5 (bound 0.11) and lost,
+// and the final Cm_alpha, -0.22899 +- 2e-5, was 47 of its errors off the
+// truth (-0.23: the stiffness's part). A tunnel term out of its bounds in
+// a swap is now held at zero in turn (Unresolved): 7 above the torque
+// with the held term counted, the stiffness joins the tie and the final
+// error bars cover its model. (The Magnus moment stays: the asymmetry,
+// scored seventh at the first round on two terms, was never refitted;
+// refitting seven changed six other kept records' answers.)
+TEST(Diagnose, ASwapRunningAlongTheRidgeIsHeldAtZeroInTurn) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_vary27.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("roll_torque") && tied.count("tunnel_stiffness"))
+      << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// tools/diagnose_suite's `short` tunnel stiffness + roll reading error +
+// flow angularity (draw 27), kept as tests/data/short_stiffness_roll_error_
+// angularity_vary27.csv: the stiffness is added, the reading error ties
+// with a trim moment (and a drift in time) and the final model holds it in
+// the tie's place; the flow angularity is not excluded beside it. Each
+// alternative's error bars cover the effects not excluded beside it; the
+// one the final model is had kept its own (theta_cos_phi 0.0257 +- 0.0023
+// deg, truth 0.0394: 6 of those errors).
+TEST(Diagnose, TheFinalModelsAlternativeCoversWhatIsNotExcludedBesideIt) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_roll_error_angularity_vary27.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  const auto roll = std::find_if(
+      d.alternatives.begin(),
+      d.alternatives.end(),
+      [](const AlternativeModel& a) { return a.effect == "roll_interaction"; });
+  ASSERT_NE(roll, d.alternatives.end()) << text;
+  ASSERT_EQ(roll->fit, static_cast<int>(d.final_fit)) << text;
+  const std::map<std::string, double> truth = {{"theta_cos_phi", 0.0394},
+                                               {"theta_sin_phi", -0.0236},
+                                               {"psi_cos_phi", 0.0315},
+                                               {"psi_sin_phi", -0.0158}};
+  for (const auto& [name, value] : truth) {
+    const ParameterEstimate* e = SharedEstimate(roll->parameters, name);
+    ASSERT_NE(e, nullptr) << name << "\n" << text;
+    EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
+        << name << " = " << e->value << " +- " << e->standard_error << "\n"
+        << text;
+  }
+}
+
 // tools/diagnose_suite's `short` roll reading error + nonlinear damping at
 // 0.003-deg noise (draw 0), kept as tests/data/short_roll_error_nonlinear_
 // damping_noise3.csv. The damping drags Cm_q alone; its joint set with a
