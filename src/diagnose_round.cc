@@ -133,10 +133,11 @@ void Judge(const FitResult& current,
            OutOfSample* out_of_sample,
            Contender* c) {
   const Candidate& k = *c->candidate;
+  const bool within = options.bounds_within_errors &&
+                      (k.effect->on_ridge || options.every_bound_within_errors);
   std::string why =
-      options.bounds_within_errors && k.effect->on_ridge
-          ? ImplausibleWithin(*k.effect, k.c, c->fit, k.added, kBoundErrors)
-          : Implausible(*k.effect, k.c, c->fit);
+      within ? ImplausibleWithin(*k.effect, k.c, c->fit, k.added, kBoundErrors)
+             : Implausible(*k.effect, k.c, c->fit);
   c->out_of_bounds = !why.empty();
   // The newcomer may push an earlier effect out of its bounds (a
   // roll-synchronous reading error of 0.15 deg to 0.23 once a trim moment

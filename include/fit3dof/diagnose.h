@@ -374,6 +374,10 @@ struct DiagnoseOptions {
   // the effects not excluded are judged, rather than at the point fit.
   // Set with joint_sets_from_bounds for the second search.
   bool bounds_within_errors = false;
+  // With bounds_within_errors, judge every contender's bounds so, on a
+  // ridge or not: the third search, where the second leaves the record
+  // unexplained too.
+  bool every_bound_within_errors = false;
 };
 
 struct ResidualCheck {
