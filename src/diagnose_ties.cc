@@ -196,6 +196,50 @@ bool SpinSeparatesRollLocked(const Case& c,
   return false;
 }
 
+// A rival swapped in for a step (Unresolved).
+struct Swap {
+  const CandidateFit* rival = nullptr;
+  const Effect* effect = nullptr;
+  bool unfitted_as_good = false;
+  Case c;
+  std::vector<std::string> terms;
+  bool fitted = false;
+  FitResult fit;
+  std::string held;  // a tunnel term held at zero, or none
+};
+
+// Whether the swap `w`, fitted, keeps its effect within its bounds, judged
+// within two of its errors.
+bool SwapWithin(const Swap& w) {
+  return w.effect == nullptr ||
+         ImplausibleWithin(*w.effect, w.c, w.fit, w.terms, kBoundErrors)
+             .empty();
+}
+
+// Out of its bounds on Eq. 43's ridge, a tunnel term runs along it as far
+// as the record lets it: the swaps of `swaps` that did so, with each of
+// the pair held at zero in turn (FindSingleReplacement's rule), unfitted.
+// On draw 27's 3-s run with a tunnel stiffness, a nonlinear damping and a
+// body asymmetry, the stiffness swapped in for a roll torque ran to t1 =
+// 0.5 (bound 0.11, truth 8e-4) and lost; with t1 held at zero (t3
+// -0.00095 +- 0.00006) it is 7 above the torque in BIC, the held term
+// counted: a tie.
+std::vector<Swap> HeldOnRidge(const std::vector<Swap>& swaps) {
+  std::vector<Swap> held;
+  for (const Swap& w : swaps) {
+    if (!w.fitted || w.effect == nullptr || !OnTunnelRidge(*w.effect) ||
+        SwapWithin(w)) {
+      continue;
+    }
+    for (const std::string& name : w.terms) {
+      Swap h = w;
+      h.held = name;
+      if (HoldAtZero(name, &h.c)) held.push_back(std::move(h));
+    }
+  }
+  return held;
+}
+
 // The rivals of `step` (recorded when the search added it) that still
 // explain the record as well in the explained model `fit` (of case `at`,
 // whose effects are `steps`): swapped in for it, BIC within ambiguity_bic
@@ -226,16 +270,6 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
   // for a drift in time and an inseparable twin (a roll-locked rival of a
   // roll-locked step that tied with it at the step: one that lost there by
   // more, WiderRivals, must win the swap), or where it does not apply.
-  struct Swap {
-    const CandidateFit* rival = nullptr;
-    const Effect* effect = nullptr;
-    bool unfitted_as_good = false;
-    Case c;
-    std::vector<std::string> terms;
-    bool fitted = false;
-    FitResult fit;
-    std::string held;  // a tunnel term held at zero, or none
-  };
   std::vector<Swap> swaps;
   for (const CandidateFit& rival : rivals) {
     if (std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
@@ -273,38 +307,14 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
   auto rise = [&](const Swap& w) {
     return Bic(w.fit) - Bic(fit) + (w.held.empty() ? 0.0 : log_n);
   };
-  auto within = [&](const Swap& w) {
-    return w.effect == nullptr ||
-           ImplausibleWithin(*w.effect, w.c, w.fit, w.terms, kBoundErrors)
-               .empty();
-  };
-  // Out of its bounds on Eq. 43's ridge, a tunnel term runs along it as
-  // far as the record lets it: each of the pair held at zero in turn
-  // (FindSingleReplacement's rule). On draw 27's 3-s run with a tunnel
-  // stiffness, a nonlinear damping and a body asymmetry, the stiffness
-  // swapped in for a roll torque ran to t1 = 0.5 (bound 0.11, truth 8e-4)
-  // and lost the tie it holds with t1 held at zero (t3 -0.00095 +-
-  // 0.00006, BIC 7 above the torque's with the held term counted).
-  std::vector<Swap> held;
-  for (const Swap& w : swaps) {
-    if (!w.fitted || w.effect == nullptr || !OnTunnelRidge(*w.effect) ||
-        within(w)) {
-      continue;
-    }
-    for (const std::string& name : w.terms) {
-      Swap h = w;
-      h.held = name;
-      h.fitted = HoldAtZero(name, &h.c);
-      if (h.fitted) held.push_back(std::move(h));
-    }
-  }
+  std::vector<Swap> held = HeldOnRidge(swaps);
   fit_all(&held);
   std::vector<CandidateFit> open;
   for (std::vector<Swap>* all : {&swaps, &held}) {
     for (Swap& w : *all) {
       const bool as_good =
           w.unfitted_as_good || (w.held.empty() && !w.fitted) ||
-          (w.fitted && rise(w) < options.ambiguity_bic && within(w));
+          (w.fitted && rise(w) < options.ambiguity_bic && SwapWithin(w));
       VLOG(1) << step.effect << " swapped for " << w.rival->effect
               << (w.held.empty() ? "" : ", " + w.held + " held at zero") << ": "
               << (as_good ? "as good" : "worse")
