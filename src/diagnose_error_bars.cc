@@ -671,6 +671,17 @@ void KeepOutdoneByProbe(const Contender& probe,
   }
 }
 
+void KeepRefusedForDrag(const std::vector<Contender>& contenders,
+                        const FitResult& fit,
+                        Diagnosis* d) {
+  for (const Contender& k : contenders) {
+    if (!k.dragged) continue;
+    d->refused_for_drag.push_back(k.record.effect);
+    d->not_excluded_models.push_back(k.fit.parameters);
+    d->not_excluded_weights.push_back(AkaikeWeight(Aic(k.fit) - Aic(fit)));
+  }
+}
+
 void WidenForNotExcluded(Diagnosis* d) {
   std::vector<const std::vector<ParameterEstimate>*> models;
   for (const auto& m : d->not_excluded_models) models.push_back(&m);
@@ -682,6 +693,9 @@ void WidenForNotExcluded(Diagnosis* d) {
   }
   for (const std::string& id : d->outdone_by_probe) {
     which += (which.empty() ? "" : ", ") + id + " (outdone by a probe)";
+  }
+  for (const std::string& id : d->refused_for_drag) {
+    which += (which.empty() ? "" : ", ") + id + " (refused for its drag)";
   }
   WidenErrorBars(models,
                  d->not_excluded_weights,

@@ -201,6 +201,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["not_excluded"] = Contenders(d.not_excluded);
   out["near_twins"] = d.near_twins;
   out["outdone_by_probe"] = d.outdone_by_probe;
+  out["refused_for_drag"] = d.refused_for_drag;
   out["open_terms"] = Contenders(d.open_terms);
   if (!d.residual_description.empty()) {
     out["residual_description"] = d.residual_description;

@@ -2445,6 +2445,32 @@ TEST(Diagnose, AThirdSearchJudgesEveryBoundWithinItsErrors) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
 }
 
+// tools/diagnose_suite's `coning` bearing moment + calibration error + roll
+// torque (draw 29), kept as tests/data/coning_bearing_calibration_roll_
+// torque_draw29.yaml: no set of the catalog reaches the noise, and the
+// bearing moment, 72 lower in BIC, is refused for moving Cm_alpha by 148
+// of its errors (-0.2322 -> -0.2288; truth -0.23). The record ends
+// `not_explained` with the nominal fit, whose Cm_alpha stood 97 of its
+// errors off; its error bars now cover the dragged contender's model at
+// its Akaike weight (refused_for_drag).
+TEST(Diagnose, AContenderRefusedForItsDragWidensAnUnexplainedRecordsErrorBars) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_bearing_calibration_roll_torque_draw29.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(std::count(
+      d.refused_for_drag.begin(), d.refused_for_drag.end(), "bearing_moment"))
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}}, text);
+  ASSERT_EQ(d.model_standard_errors.count("Cm_alpha"), 1u) << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(
+      d,
+      LoadConfig(testing::SourcePath(
+          "tests/data/coning_bearing_calibration_roll_torque_draw29.yaml"))));
+  EXPECT_EQ(j["refused_for_drag"], nlohmann::json(d.refused_for_drag));
+}
+
 // tools/diagnose_suite's `pair` tunnel damping + Magnus moment + flow
 // angularity (draw 15, --vary; tests/data/pair_damping_magnus_angularity_
 // vary15.yaml). Alone, the Magnus moment and the angularity predicted the

@@ -591,6 +591,11 @@ struct Diagnosis {
   // models too, each with its Akaike weight against the probe's model
   // (among not_excluded_models).
   std::vector<std::string> outdone_by_probe;
+  // The catalog effects refused for their drag at the round the search
+  // ended without adding any: the final error bars cover their models
+  // too, each with its Akaike weight against the final model (among
+  // not_excluded_models).
+  std::vector<std::string> refused_for_drag;
   std::vector<std::vector<ParameterEstimate>> not_excluded_models;
   std::vector<double> not_excluded_weights;  // each model's Akaike weight
   // The least BIC of a complete model with one of not_excluded or
