@@ -75,9 +75,7 @@ void FinalValues(Diagnosis* d) {
       }
       const Effect* effect = FindEffect(step.effect);
       if (effect != nullptr) {
-        const std::vector<std::string>& own = fit.model == ModelKind::kSymmetric
-                                                  ? effect->symmetric
-                                                  : effect->asymmetric;
+        const std::vector<std::string>& own = effect->Terms(fit.model);
         names.insert(names.end(), own.begin(), own.end());
       }
       step.parameters = Own(fit, names);

@@ -330,10 +330,8 @@ std::string ImplausibleOpen(const Beside& t) {
             e->leaves_open.end()) {
       continue;
     }
-    const std::vector<std::string>& terms =
-        t.c.model == ModelKind::kSymmetric ? e->symmetric : e->asymmetric;
     const std::string why =
-        ImplausibleWithin(*e, t.c, t.fit, terms, kBoundErrors);
+        ImplausibleWithin(*e, t.c, t.fit, e->Terms(t.c.model), kBoundErrors);
     if (!why.empty()) return e->id + " (added before): " + why;
   }
   return ImplausibleWithin(*t.effect, t.c, t.fit, t.added, kBoundErrors);
@@ -451,8 +449,7 @@ std::string BesideWords(const std::string& model, bool at_noise, double rise) {
 Case EffectsHeld(const CompleteModel& m) {
   Case held = CaseAtSolution(m.c, *m.fit);
   for (const Effect* e : m.effects) {
-    const bool symmetric = held.model == ModelKind::kSymmetric;
-    for (const std::string& name : symmetric ? e->symmetric : e->asymmetric) {
+    for (const std::string& name : e->Terms(held.model)) {
       const int position = FindParameter(held.model, name);
       if (position >= 0 && !held.parameters[position].tied()) {
         held.parameters[position].free = false;
@@ -691,11 +688,12 @@ void WidenForNotExcluded(Diagnosis* d) {
       which += (which.empty() ? "" : ", ") + k.effect;
     }
   }
-  for (const std::string& id : d->outdone_by_probe) {
-    which += (which.empty() ? "" : ", ") + id + " (outdone by a probe)";
-  }
-  for (const std::string& id : d->refused_for_drag) {
-    which += (which.empty() ? "" : ", ") + id + " (refused for its drag)";
+  for (const auto& [ids, why] :
+       {std::pair(&d->outdone_by_probe, " (outdone by a probe)"),
+        std::pair(&d->refused_for_drag, " (refused for its drag)")}) {
+    for (const std::string& id : *ids) {
+      which += (which.empty() ? "" : ", ") + id + why;
+    }
   }
   WidenErrorBars(models,
                  d->not_excluded_weights,

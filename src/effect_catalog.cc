@@ -365,9 +365,7 @@ bool CandidateCase(const Case& at,
       return false;
     }
   }
-  const auto& names = candidate.model == ModelKind::kSymmetric
-                          ? effect.symmetric
-                          : effect.asymmetric;
+  const auto& names = effect.Terms(candidate.model);
   const auto& table = ParameterTable(candidate.model);
   added->clear();
   for (const std::string& name : names) {

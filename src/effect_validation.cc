@@ -298,8 +298,7 @@ std::string WrongSign(const Effect& probe, const FitResult& fit) {
                                           "Cm_axis_friction",
                                           "Cm_pitch_friction",
                                           "Cn_yaw_friction"};
-  const auto& own =
-      fit.model == ModelKind::kSymmetric ? probe.symmetric : probe.asymmetric;
+  const auto& own = probe.Terms(fit.model);
   for (const ParameterEstimate& e : fit.parameters) {
     if (!e.free || !e.segment.empty() ||
         std::find(own.begin(), own.end(), e.name) == own.end() ||

@@ -519,18 +519,25 @@ Diagnosis DiagnoseConfig(const std::string& file) {
                   DiagnoseOptions());
 }
 
-// `d`'s final model holds each of `truths` (name -> true value) within 3
+// `parameters` hold each of `truths` (name -> true value) within 3
 // standard errors; `context` follows a failure's message.
-void ExpectFinalCovers(const Diagnosis& d,
-                       const std::map<std::string, double>& truths,
-                       const std::string& context) {
+void ExpectCovers(const std::vector<ParameterEstimate>& parameters,
+                  const std::map<std::string, double>& truths,
+                  const std::string& context) {
   for (const auto& [name, value] : truths) {
-    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
+    const ParameterEstimate* e = SharedEstimate(parameters, name);
     ASSERT_NE(e, nullptr) << name << "\n" << context;
     EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
         << name << " = " << e->value << " +- " << e->standard_error << "\n"
         << context;
   }
+}
+
+// `d`'s final model holds each of `truths` within 3 standard errors.
+void ExpectFinalCovers(const Diagnosis& d,
+                       const std::map<std::string, double>& truths,
+                       const std::string& context) {
+  ExpectCovers(d.FinalFit().parameters, truths, context);
 }
 
 // `d` names exactly `effects` (`explained`) and its final model holds each
@@ -2257,17 +2264,12 @@ TEST(Diagnose, TheFinalModelsAlternativeCoversWhatIsNotExcludedBesideIt) {
       [](const AlternativeModel& a) { return a.effect == "roll_interaction"; });
   ASSERT_NE(roll, d.alternatives.end()) << text;
   ASSERT_EQ(roll->fit, static_cast<int>(d.final_fit)) << text;
-  const std::map<std::string, double> truth = {{"theta_cos_phi", 0.0394},
-                                               {"theta_sin_phi", -0.0236},
-                                               {"psi_cos_phi", 0.0315},
-                                               {"psi_sin_phi", -0.0158}};
-  for (const auto& [name, value] : truth) {
-    const ParameterEstimate* e = SharedEstimate(roll->parameters, name);
-    ASSERT_NE(e, nullptr) << name << "\n" << text;
-    EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
-        << name << " = " << e->value << " +- " << e->standard_error << "\n"
-        << text;
-  }
+  ExpectCovers(roll->parameters,
+               {{"theta_cos_phi", 0.0394},
+                {"theta_sin_phi", -0.0236},
+                {"psi_cos_phi", 0.0315},
+                {"psi_sin_phi", -0.0158}},
+               text);
 }
 
 // tools/diagnose_suite's `short` roll reading error + nonlinear damping at

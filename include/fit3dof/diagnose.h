@@ -307,6 +307,11 @@ struct Effect {
   // holds it, and where the record cannot exclude it, the final error
   // bars cover that fit (Diagnosis::open_terms).
   std::vector<std::string> leaves_open = {};
+
+  // Its parameters in the program `model` (symmetric or asymmetric).
+  const std::vector<std::string>& Terms(ModelKind model) const {
+    return model == ModelKind::kSymmetric ? symmetric : asymmetric;
+  }
 };
 
 const std::vector<Effect>& EffectCatalog();
