@@ -187,16 +187,46 @@ constexpr int kJointPool = 4;
 // errors; drawn on after it first, its pool filled with the three ranked
 // below it, and the record ended `not_explained`, Cm_q 75 of its errors
 // off.
+bool MayJoin(int a, int lead, const std::vector<Contender>& contenders) {
+  return a != lead &&
+         (a > lead || std::isfinite(contenders[a].record.prediction_gain));
+}
+
 std::vector<int> JointPool(int lead, const std::vector<Contender>& contenders) {
   std::vector<int> pool;
   const int count = static_cast<int>(contenders.size());
   for (int a = 0; a < count && pool.size() + 1 < kJointPool; ++a) {
-    if (a == lead) continue;
-    if (a > lead || std::isfinite(contenders[a].record.prediction_gain)) {
-      pool.push_back(a);
-    }
+    if (MayJoin(a, lead, contenders)) pool.push_back(a);
   }
   return pool;
+}
+
+// The others for the contender at `lead` as JointPool draws them, but
+// ranked by their score at the round (Candidate::score) instead of their
+// BIC alone; empty when that draws the same three. An effect that only
+// shows beside the others can lower BIC by nothing alone and still score
+// well: on a 3-s coning run with a Magnus moment, a nonlinear damping and
+// a pitch/yaw calibration nonlinearity (suite draw 29), the damping
+// dragged Cm_q and led; its pool by BIC (Magnus 9.0, a body yaw
+// asymmetry 4.8, a tunnel damping 3.3) reached a probable error of 1.44
+// at best (limit 1.18), while the calibration (fourth by score, -1.5 in
+// BIC alone) with the damping and the Magnus moment reached 1.01.
+std::vector<int> ScorePool(int lead, const std::vector<Contender>& contenders) {
+  std::vector<int> others;
+  for (int a = 0; a < static_cast<int>(contenders.size()); ++a) {
+    if (MayJoin(a, lead, contenders)) others.push_back(a);
+  }
+  std::stable_sort(others.begin(), others.end(), [&](int a, int b) {
+    return contenders[a].candidate->score.score >
+           contenders[b].candidate->score.score;
+  });
+  if (others.size() + 1 > kJointPool) others.resize(kJointPool - 1);
+  std::vector<int> by_bic = JointPool(lead, contenders);
+  std::vector<int> sorted = others;
+  std::sort(by_bic.begin(), by_bic.end());
+  std::sort(sorted.begin(), sorted.end());
+  if (sorted == by_bic) return {};
+  return others;
 }
 
 // `at` with the effects of `members` (indices into `contenders`) added in
@@ -473,17 +503,21 @@ std::vector<int> Earned(const FitResult& current,
 namespace {
 
 // The sets Jointly tries with the contender at `lead` leading: it with one
-// or two of its pool (JointPool), a lesser refit (Contender::minor) only
-// with it alone: with one in every triple, the sets of a Table 6 record
-// with a pitch-axis friction cost 40% more time (1.9 to 2.6 s).
+// or two of its `pool` (JointPool), a lesser refit (Contender::minor) only
+// with it alone unless `minor_in_triples`: with one in every triple, the
+// sets of a Table 6 record with a pitch-axis friction cost 40% more time
+// (1.9 to 2.6 s). A pool by score (ScorePool) is drawn on only when the
+// pool by BIC failed, and its lesser refits are there for their score.
 std::vector<std::vector<int>> JointSets(
-    int lead, const std::vector<Contender>& contenders) {
-  const std::vector<int> pool = JointPool(lead, contenders);
+    int lead,
+    const std::vector<int>& pool,
+    bool minor_in_triples,
+    const std::vector<Contender>& contenders) {
   std::vector<std::vector<int>> sets;
   for (size_t a = 0; a < pool.size(); ++a) {
     sets.push_back({lead, pool[a]});
     for (size_t b = a + 1; b < pool.size(); ++b) {
-      if (contenders[pool[b]].minor) continue;
+      if (contenders[pool[b]].minor && !minor_in_triples) continue;
       sets.push_back({lead, pool[a], pool[b]});
     }
   }
@@ -557,7 +591,7 @@ bool TakeSet(int i,
   return true;
 }
 
-// Whether the lead with its whole pool (JointPool) fitted as one model,
+// Whether the lead with its whole `pool` fitted as one model,
 // the largest of its sets (JointSets), reaches the noise level as far as
 // its sum of squares tells: no set of its members fits lower than they all
 // do, so none of its sets can earn its place (EarnedTogether: residuals
@@ -571,13 +605,14 @@ bool TakeSet(int i,
 // 3.8 s alone. True too when the union cannot be fitted, and with fewer
 // than three sets.
 bool UnionMayReachTheNoise(int lead,
+                           const std::vector<int>& pool,
                            const Case& at,
                            const FitResult& fit,
                            const std::vector<TimeHistory>& data,
                            const DiagnoseOptions& options,
                            const std::vector<Contender>& contenders) {
   std::vector<int> all = {lead};
-  for (int m : JointPool(lead, contenders)) all.push_back(m);
+  all.insert(all.end(), pool.begin(), pool.end());
   if (all.size() < 3) return true;
   Candidate model;
   int terms = 0;
@@ -601,28 +636,25 @@ bool UnionMayReachTheNoise(int lead,
   return least < check.noise_limit;
 }
 
-// Jointly for one lead: its pairs fitted side by side, the lowest-BIC one
-// that earns its place into *joint; then, when none does, its triples so.
+// The lead's `sets` (JointSets) fitted from `fit` (of the model `at`):
+// its pairs side by side, the lowest-BIC one that earns its place
+// (EarnedTogether) into *joint; then, when none does, its triples so.
 // A pair that earns leaves a third effect to the next round, where it
 // must earn its place with the pair in. Weighed together by BIC, a
 // triple had won where a pair earned: on a 3-s coning run with a tunnel
 // stiffness, a nonlinear damping and a body yaw asymmetry, {damping,
 // Magnus, tunnel damping} over {damping, asymmetry}, a false tunnel
 // damping added.
-bool JointlyLedBy(int lead,
-                  const Case& current,
-                  const FitResult& fit,
-                  const std::vector<TimeHistory>& data,
-                  const DiagnoseOptions& options,
-                  const std::vector<const Effect*>& added,
-                  OutOfSample* out_of_sample,
-                  const std::vector<Contender>& contenders,
-                  JointSet* joint) {
-  const std::vector<std::vector<int>> sets = JointSets(lead, contenders);
-  const Case at = CaseAtSolution(current, fit);
-  if (!UnionMayReachTheNoise(lead, at, fit, data, options, contenders)) {
-    return false;
-  }
+bool SetEarns(int lead,
+              const std::vector<std::vector<int>>& sets,
+              const Case& at,
+              const FitResult& fit,
+              const std::vector<TimeHistory>& data,
+              const DiagnoseOptions& options,
+              const std::vector<const Effect*>& added,
+              OutOfSample* out_of_sample,
+              const std::vector<Contender>& contenders,
+              JointSet* joint) {
   const size_t n = sets.size();
   SetFits f{std::vector<Candidate>(n),
             std::vector<int>(n, 0),
@@ -646,6 +678,44 @@ bool JointlyLedBy(int lead,
               << contenders[lead].record.effect << " earns its place, BIC "
               << Bic(f.fits[i]) << ", gain " << gain;
       if (TakeSet(i, lead, sets, f, contenders, gain, joint)) return true;
+    }
+  }
+  return false;
+}
+
+// Jointly for one lead: its sets from its pool by BIC (JointPool), then,
+// when none earns, from its pool by score (ScorePool), each tried only
+// when the union of the pool may reach the noise.
+bool JointlyLedBy(int lead,
+                  const Case& current,
+                  const FitResult& fit,
+                  const std::vector<TimeHistory>& data,
+                  const DiagnoseOptions& options,
+                  const std::vector<const Effect*>& added,
+                  OutOfSample* out_of_sample,
+                  const std::vector<Contender>& contenders,
+                  JointSet* joint) {
+  const Case at = CaseAtSolution(current, fit);
+  for (const bool by_score : {false, true}) {
+    const std::vector<int> pool =
+        by_score ? ScorePool(lead, contenders) : JointPool(lead, contenders);
+    if (pool.empty() || !UnionMayReachTheNoise(
+                            lead, pool, at, fit, data, options, contenders)) {
+      continue;
+    }
+    const std::vector<std::vector<int>> sets =
+        JointSets(lead, pool, by_score, contenders);
+    if (SetEarns(lead,
+                 sets,
+                 at,
+                 fit,
+                 data,
+                 options,
+                 added,
+                 out_of_sample,
+                 contenders,
+                 joint)) {
+      return true;
     }
   }
   return false;
