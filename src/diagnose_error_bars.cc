@@ -798,10 +798,11 @@ double RiseInPlace(const CompleteModel& m,
 }
 
 // The step `best` of *d replaced by `set` (its model *c, fitted as *fit,
-// least BIC above the complete model's): better by ambiguity_bic or more,
-// the step's effect is returned (the search took a wrong turn; DiagnoseFrom
-// searches again without it); otherwise the step joins a tie with them,
-// the final error bars cover their model's values, and "" is returned.
+// least BIC above the complete model's): the step joins a tie with them
+// and the final error bars cover their model's values. Better by
+// ambiguity_bic or more, the step's effect is returned too (the search
+// took a wrong turn: DiagnoseFrom searches again without it, and keeps
+// the tie when that search does not explain the record), else "".
 std::string StandIn(const std::vector<TimeHistory>& data,
                     const DiagnoseOptions& options,
                     int best,
@@ -810,9 +811,8 @@ std::string StandIn(const std::vector<TimeHistory>& data,
                     Case* c,
                     FitResult* fit,
                     Diagnosis* d) {
-  // Better by ambiguity_bic or more: the search took the wrong turn, and
-  // DiagnoseFrom searches again without the step's effect.
-  if (!(least > -options.ambiguity_bic)) return d->steps[best].effect;
+  const std::string outdone =
+      least > -options.ambiguity_bic ? "" : d->steps[best].effect;
   Reported(*c, data, fit);
   WidenErrorBars(
       {&fit->parameters},
@@ -832,7 +832,7 @@ std::string StandIn(const std::vector<TimeHistory>& data,
   d->stood_in.push_back(d->steps[best]);
   d->stood_in_for.push_back(ids);
   d->steps.erase(d->steps.begin() + best);
-  return "";
+  return outdone;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -521,7 +522,11 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
 struct SearchNotes {
   std::string tied_first;
   std::string near_first;
+  // A step that effects not excluded beat in its place by ambiguity_bic or
+  // more, and, when one effect did, the answer with the step in a tie with
+  // it instead.
   std::string outdone;
+  std::optional<Diagnosis> outdone_tie;
   bool bounded_lead = false;
   Case probe_case;
   FitResult probe_fit;
