@@ -57,11 +57,8 @@ Case FinalCase(const Case& user, const Case& current, const FitResult& fit) {
   return final_case;
 }
 
-// Each step's parameters as the final model has them (a partial step's as
-// the last partial model has them). A later step may have switched the
-// model to the asymmetric program, where the effect's terms have other
-// names (a Magnus moment's Cm_p_alpha is Cm_p_beta and Cn_p_alpha there):
-// the effect's own list for that program finds them.
+}  // namespace
+
 void FinalValues(Diagnosis* d) {
   d->final_parameters = d->FinalFit().parameters;
   for (std::vector<DiagnosisStep>* steps :
@@ -82,6 +79,8 @@ void FinalValues(Diagnosis* d) {
     }
   }
 }
+
+namespace {
 
 // Adds `best` to the search's record *d as its next step (its fit, the
 // round's contenders and score ranking) and returns the residual check of

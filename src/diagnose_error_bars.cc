@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -836,6 +837,42 @@ std::string StandIn(const std::vector<TimeHistory>& data,
 }
 
 }  // namespace
+
+bool StandInForSearch(const Diagnosis& other,
+                      const std::string& effect,
+                      Diagnosis* d) {
+  const auto step = std::find_if(
+      d->steps.begin(), d->steps.end(), [&](const DiagnosisStep& s) {
+        return s.effect == effect;
+      });
+  CHECK(step != d->steps.end()) << effect;
+  std::set<std::string> held;
+  for (const DiagnosisStep& s : d->steps) held.insert(s.effect);
+  for (const CandidateFit& k : d->ambiguous) held.insert(k.effect);
+  for (const std::vector<CandidateFit>& tie : d->later_ties) {
+    for (const CandidateFit& k : tie) held.insert(k.effect);
+  }
+  std::vector<CandidateFit> tie = {AsContender(*step)};
+  std::vector<std::string> ids;
+  for (const DiagnosisStep& s : other.steps) {
+    if (held.count(s.effect)) continue;
+    tie.push_back(AsContender(s));
+    ids.push_back(s.effect);
+  }
+  if (ids.empty()) return false;
+  WidenErrorBars({&other.FinalFit().parameters},
+                 {},
+                 "the effects found without " + effect,
+                 &d->fits[d->final_fit],
+                 &d->model_standard_errors);
+  (d->ambiguous.empty() ? d->ambiguous : d->later_ties.emplace_back()) = tie;
+  d->stood_in.push_back(*step);
+  d->stood_in_for.push_back(ids);
+  d->steps.erase(step);
+  FinalValues(d);
+  Conclude(d);
+  return true;
+}
 
 std::string FindSetReplacements(const std::vector<Case>& models,
                                 const Case& current,

@@ -307,6 +307,23 @@ Case WithoutStep(const Case& at, const DiagnosisStep& step);
 // The step's effect as the contender it was.
 CandidateFit AsContender(const DiagnosisStep& step);
 
+// Each step's parameters as the final model has them (a partial step's as
+// the last partial model has them). A later step may have switched the
+// model to the asymmetric program, where the effect's terms have other
+// names (a Magnus moment's Cm_p_alpha is Cm_p_beta and Cn_p_alpha there):
+// the effect's own list for that program finds them. Sets
+// final_parameters from the final fit.
+void FinalValues(Diagnosis* d);
+
+// *d's step that claims `effect` stands in a tie with the effects that
+// `other` (the search without `effect`, explaining the record about as
+// well) holds as steps and *d does not: *d's final error bars cover
+// `other`'s final model, and its verdict is concluded again. False (*d
+// unchanged) when `other` holds no such effect.
+bool StandInForSearch(const Diagnosis& other,
+                      const std::string& effect,
+                      Diagnosis* d);
+
 // What a second run would change to separate the tied `ambiguous` (the
 // first and its rivals), for the model fitted as `fit`.
 std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
