@@ -560,9 +560,8 @@ Diagnosis Search(const Case& c,
       for (const Contender& k : contenders) d.rejected.push_back(k.record);
       if (!d.outside_catalog.effect.empty()) {
         KeepOutdoneByProbe(probe, contenders, earned, &d);
-      } else if (!check.at_noise_level) {
-        KeepRefusedForDrag(contenders, fit, &d);
       }
+      if (!check.at_noise_level) KeepRefusedForDrag(contenders, fit, &d);
       break;
     }
     const Contender& best = contenders[earned[0]];

@@ -461,7 +461,8 @@ void KeepOutdoneByProbe(const Contender& probe,
                         Diagnosis* d);
 
 // The contenders refused for their drag (Contender::dragged) at the
-// round the search ended without adding any, their fits' parameters
+// round the search ended without adding any (a probe outdoing the
+// catalog there or not), their fits' parameters
 // among d->not_excluded_models with their Akaike weights against the
 // model `fit` the search stopped at (Diagnosis::refused_for_drag). The
 // drag rule keeps an effect out that moves the coefficients while the

@@ -2609,6 +2609,27 @@ TEST(Diagnose, AContenderRefusedForItsDragWidensAnUnexplainedRecordsErrorBars) {
   EXPECT_EQ(j["refused_for_drag"], nlohmann::json(d.refused_for_drag));
 }
 
+// The same case on draw 32 (tests/data/pair_bearing_calibration_roll_
+// torque_draw32.yaml): a roll torque and a false body yaw asymmetry leave
+// the record structured, a reading lag (a probe) outdoes every catalog
+// effect, and the bearing moment, 205 lower in BIC at that round, is
+// refused for moving Cm_alpha toward the truth (-0.2306 -> -0.2294). The
+// final model is the nominal fit, Cm_alpha 6.8 of its errors off; the
+// contenders refused for their drag now widen its error bars where a
+// probe outdoes the catalog too.
+TEST(Diagnose, AContenderRefusedForItsDragWidensTheErrorBarsBesideAProbe) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_bearing_calibration_roll_torque_draw32.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_FALSE(d.outside_catalog.effect.empty()) << text;
+  EXPECT_TRUE(std::count(
+      d.refused_for_drag.begin(), d.refused_for_drag.end(), "bearing_moment"))
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
 // tools/diagnose_suite's `pair` tunnel damping + Magnus moment + flow
 // angularity (draw 15, --vary; tests/data/pair_damping_magnus_angularity_
 // vary15.yaml). Alone, the Magnus moment and the angularity predicted the
