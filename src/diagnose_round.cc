@@ -663,7 +663,21 @@ bool UnionMayReachTheNoise(int lead,
   return least < check.noise_limit;
 }
 
-// The lead's `sets` (JointSets) fitted from `fit` (of the model `at`):
+// What a round's joint sets are drawn and judged from (Jointly): the
+// model as it stands at its solution `at` (fitted as `fit` to `data`), the
+// effects added before, the held-out part, and the round's contenders
+// (with its lesser refits last).
+struct JointRound {
+  Case at;
+  const FitResult& fit;
+  const std::vector<TimeHistory>& data;
+  const DiagnoseOptions& options;
+  const std::vector<const Effect*>& added;
+  OutOfSample* out_of_sample;
+  const std::vector<Contender>& contenders;
+};
+
+// The lead's `sets` (JointSets) fitted from `r.fit` (of the model `r.at`):
 // its pairs side by side, the lowest-BIC one that earns its place
 // (EarnedTogether) into *joint; then, when none does, its triples so.
 // A pair that earns leaves a third effect to the next round, where it
@@ -674,30 +688,26 @@ bool UnionMayReachTheNoise(int lead,
 // damping added.
 bool SetEarns(int lead,
               const std::vector<std::vector<int>>& sets,
-              const Case& at,
-              const FitResult& fit,
-              const std::vector<TimeHistory>& data,
-              const DiagnoseOptions& options,
-              const std::vector<const Effect*>& added,
-              OutOfSample* out_of_sample,
-              const std::vector<Contender>& contenders,
+              const JointRound& r,
               JointSet* joint) {
+  const std::vector<Contender>& contenders = r.contenders;
+  const FitResult& fit = r.fit;
   const size_t n = sets.size();
   SetFits f{std::vector<Candidate>(n),
             std::vector<int>(n, 0),
             std::vector<FitResult>(n),
             std::vector<char>(n, false)};
   for (size_t size : {2, 3}) {
-    for (int i : FitSets(size, sets, at, fit, data, contenders, &f)) {
+    for (int i : FitSets(size, sets, r.at, fit, r.data, contenders, &f)) {
       double gain = 0.0;
       if (!EarnedTogether(f.models[i].c,
                           f.fits[i],
                           sets[i],
                           contenders,
-                          added,
+                          r.added,
                           f.terms[i],
-                          options,
-                          out_of_sample,
+                          r.options,
+                          r.out_of_sample,
                           &gain)) {
         continue;
       }
@@ -713,35 +723,17 @@ bool SetEarns(int lead,
 // Jointly for one lead: its sets from its pool by BIC (JointPool), then,
 // when none earns, from its pool by score (ScorePool), each tried only
 // when the union of the pool may reach the noise.
-bool JointlyLedBy(int lead,
-                  const Case& current,
-                  const FitResult& fit,
-                  const std::vector<TimeHistory>& data,
-                  const DiagnoseOptions& options,
-                  const std::vector<const Effect*>& added,
-                  OutOfSample* out_of_sample,
-                  const std::vector<Contender>& contenders,
-                  JointSet* joint) {
-  const Case at = CaseAtSolution(current, fit);
+bool JointlyLedBy(int lead, const JointRound& r, JointSet* joint) {
   for (const bool by_score : {false, true}) {
-    const std::vector<int> pool =
-        by_score ? ScorePool(lead, contenders) : JointPool(lead, contenders);
-    if (pool.empty() || !UnionMayReachTheNoise(
-                            lead, pool, at, fit, data, options, contenders)) {
+    const std::vector<int> pool = by_score ? ScorePool(lead, r.contenders)
+                                           : JointPool(lead, r.contenders);
+    if (pool.empty() ||
+        !UnionMayReachTheNoise(
+            lead, pool, r.at, r.fit, r.data, r.options, r.contenders)) {
       continue;
     }
-    const std::vector<std::vector<int>> sets =
-        JointSets(lead, pool, by_score, contenders);
-    if (SetEarns(lead,
-                 sets,
-                 at,
-                 fit,
-                 data,
-                 options,
-                 added,
-                 out_of_sample,
-                 contenders,
-                 joint)) {
+    if (SetEarns(
+            lead, JointSets(lead, pool, by_score, r.contenders), r, joint)) {
       return true;
     }
   }
@@ -765,16 +757,15 @@ bool Jointly(const Case& current,
   const auto leads = [&](const Contender& k) {
     return k.dragged || (options.joint_sets_from_bounds && k.out_of_bounds);
   };
+  const JointRound round{CaseAtSolution(current, fit),
+                         fit,
+                         data,
+                         options,
+                         added,
+                         out_of_sample,
+                         contenders};
   for (int lead = 0; lead < judged; ++lead) {
-    if (leads(contenders[lead]) && JointlyLedBy(lead,
-                                                current,
-                                                fit,
-                                                data,
-                                                options,
-                                                added,
-                                                out_of_sample,
-                                                contenders,
-                                                joint)) {
+    if (leads(contenders[lead]) && JointlyLedBy(lead, round, joint)) {
       return true;
     }
   }
