@@ -187,6 +187,16 @@ constexpr int kJointPool = 4;
 // errors; drawn on after it first, its pool filled with the three ranked
 // below it, and the record ended `not_explained`, Cm_q 75 of its errors
 // off.
+// Score twins: scores within this relative part of each other are one
+// direction of the model's linearization (a roll damping and a roll
+// torque at a constant spin, 795.922 each on a Table 6 record).
+constexpr double kScoreTwin = 1e-6;
+
+bool ScoreTwins(const Candidate& a, const Candidate& b) {
+  return std::abs(a.score.score - b.score.score) <=
+         kScoreTwin * std::abs(b.score.score);
+}
+
 bool MayJoin(int a, int lead, const std::vector<Contender>& contenders) {
   return a != lead &&
          (a > lead || std::isfinite(contenders[a].record.prediction_gain));
@@ -210,7 +220,10 @@ std::vector<int> JointPool(int lead, const std::vector<Contender>& contenders) {
 // dragged Cm_q and led; its pool by BIC (Magnus 9.0, a body yaw
 // asymmetry 4.8, a tunnel damping 3.3) reached a probable error of 1.44
 // at best (limit 1.18), while the calibration (fourth by score, -1.5 in
-// BIC alone) with the damping and the Magnus moment reached 1.01.
+// BIC alone) with the damping and the Magnus moment reached 1.01. Of
+// score twins it draws one: on draw 33's Table 6 record with the same
+// three, a roll torque and a roll damping (44.4466 each) had filled the
+// pool beside the Magnus moment, the calibration (14.6) fourth.
 std::vector<int> ScorePool(int lead, const std::vector<Contender>& contenders) {
   std::vector<int> others;
   for (int a = 0; a < static_cast<int>(contenders.size()); ++a) {
@@ -220,7 +233,17 @@ std::vector<int> ScorePool(int lead, const std::vector<Contender>& contenders) {
     return contenders[a].candidate->score.score >
            contenders[b].candidate->score.score;
   });
-  if (others.size() + 1 > kJointPool) others.resize(kJointPool - 1);
+  // One of score twins: the other adds no direction to the pool.
+  std::vector<int> pool;
+  for (int a : others) {
+    if (pool.size() + 1 == kJointPool) break;
+    if (std::none_of(pool.begin(), pool.end(), [&](int b) {
+          return ScoreTwins(*contenders[a].candidate, *contenders[b].candidate);
+        })) {
+      pool.push_back(a);
+    }
+  }
+  others = pool;
   std::vector<int> by_bic = JointPool(lead, contenders);
   std::vector<int> sorted = others;
   std::sort(by_bic.begin(), by_bic.end());
@@ -451,11 +474,6 @@ bool ScoreMayEarn(const std::vector<Candidate>& candidates,
 
 namespace {
 
-// Score twins: scores within this relative part of each other are one
-// direction of the model's linearization (a roll damping and a roll
-// torque at a constant spin, 795.922 each on a Table 6 record).
-constexpr double kScoreTwin = 1e-6;
-
 // How many of `candidates` (in the order of score) Contenders refits: the
 // first options.refit, and past them the twins of the last. With the cut
 // between twins the round had refitted one and never weighed the other:
@@ -466,9 +484,7 @@ int RefitCount(const std::vector<Candidate>& candidates,
                const DiagnoseOptions& options) {
   const int count = static_cast<int>(candidates.size());
   int n = std::min(options.refit, count);
-  while (n > 0 && n < count &&
-         std::abs(candidates[n].score.score - candidates[n - 1].score.score) <=
-             kScoreTwin * std::abs(candidates[n - 1].score.score)) {
+  while (n > 0 && n < count && ScoreTwins(candidates[n], candidates[n - 1])) {
     ++n;
   }
   return n;

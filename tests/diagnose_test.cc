@@ -2578,6 +2578,29 @@ TEST(Diagnose, AJointPoolDrawsOnTheScoresWhenItsBicPoolCannotReachTheNoise) {
       text);
 }
 
+// The Table 6 record of the same three (draw 33; tests/data/table6_magnus_
+// damping_calibration_draw33.yaml): the damping leads a joint set, and a
+// roll torque and a roll damping, score twins (44.4466), filled its pool
+// beside the Magnus moment by BIC and by score alike, the calibration
+// (14.6, -0.9 in BIC alone) fourth: `not_explained`. The pool by score
+// draws one of twins: the three are named.
+TEST(Diagnose, AJointPoolByScoreDrawsOneOfScoreTwins) {
+  if (testing::kSanitized) GTEST_SKIP() << "48-s record; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("table6_magnus_damping_calibration_draw33.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(
+      d,
+      {"magnus", "nonlinear_damping", "calibration_nonlinearity"},
+      {{"Cm_alpha", -0.236},
+       {"Cm_q", -4.0},
+       {"Cm_p_alpha", 0.100},
+       {"Cm_q_delta2", -116.3},
+       {"theta_cal3", 0.0705},
+       {"psi_cal3", 0.0742}},
+      text);
+}
+
 // tools/diagnose_suite's `pair` signed-square calibration error (draw 24;
 // tests/data/pair_calibration_signed_square_draw24.yaml), a form outside
 // the catalog: no effect earns its place, and the calibration nonlinearity
