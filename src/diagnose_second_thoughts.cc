@@ -408,11 +408,12 @@ Diagnosis DeadEndBranch(const Case& c,
 // near tie, SearchNotes::near_first) may have been the greedy search's
 // wrong turn: the search without its effect is the answer when it
 // explains the record with a complete model whose BIC is lower by more
-// than ambiguity_bic. Only the first step, where every effect is still
-// missing and the signatures mix most; only when the answer claims its
-// effect (a step of it); and only for an `ambiguous` answer: an
-// `explained` one has had the runner-up swapped in for its step with the
-// other effects in (rival_bic) and lose by more than ambiguity_bic. The
+// than ambiguity_bic, and within ambiguity_bic either way the step stands
+// in a tie with what that search found (StandInForSearch). Only the first step,
+// where every effect is still missing and the signatures mix most; only when
+// the answer claims its effect (a step of it); and only for an `ambiguous`
+// answer: an `explained` one has had the runner-up swapped in for its step with
+// the other effects in (rival_bic) and lose by more than ambiguity_bic. The
 // search costs as much again: a Table 6 triple explained alike went from
 // 2.3 to 4.3 s, and one ambiguous, its first step's tunnel damping left
 // in the tie, from 3.2 to 5.4 s; neither answer changed. On a 3-s run
@@ -707,11 +708,11 @@ Diagnosis DiagnoseFrom(const Case& c,
       c, nominal, options, &notes, Searched(c, nominal, options, &notes));
   if (!notes.outdone.empty()) {
     if (ReplacedStep(c, nominal, options, notes.outdone, &d)) return d;
-    // Searched again without it the record stays unexplained: a step one
-    // effect beat in its place stands in a tie with it. On a 3-s run with a
-    // tunnel stiffness, a nonlinear damping and a body yaw asymmetry (suite
-    // draw 29), a roll torque took Eq. 39's roll part of the stiffness, which
-    // in its place lowered BIC by 10.3; without the roll torque a Magnus
+    // Searched again without it the record is not explained better: a
+    // step one effect beat in its place stands in a tie with it. On a 3-s run
+    // with a tunnel stiffness, a nonlinear damping and a body yaw asymmetry
+    // (suite draw 29), a roll torque took Eq. 39's roll part of the stiffness,
+    // which in its place lowered BIC by 10.3; without the roll torque a Magnus
     // moment led, the record stayed unexplained, and the roll torque had
     // been named.
     if (notes.outdone_tie) d = *notes.outdone_tie;
