@@ -798,6 +798,19 @@ double RiseInPlace(const CompleteModel& m,
   return why.empty() ? rise : std::numeric_limits<double>::infinity();
 }
 
+// The step `best` of *d out of its steps and into a tie, `tie` (the step
+// as a contender first, then the effects `ids` in its place): the first
+// tie or a later one, the step kept as stood in for them.
+void TieInPlace(int best,
+                const std::vector<CandidateFit>& tie,
+                const std::vector<std::string>& ids,
+                Diagnosis* d) {
+  (d->ambiguous.empty() ? d->ambiguous : d->later_ties.emplace_back()) = tie;
+  d->stood_in.push_back(d->steps[best]);
+  d->stood_in_for.push_back(ids);
+  d->steps.erase(d->steps.begin() + best);
+}
+
 // The step `best` of *d replaced by `set` (its model *c, fitted as *fit,
 // least BIC above the complete model's): the step joins a tie with them
 // and the final error bars cover their model's values. Better by
@@ -829,10 +842,7 @@ std::string StandIn(const std::vector<TimeHistory>& data,
       ids.push_back(k.effect);
     }
   }
-  (d->ambiguous.empty() ? d->ambiguous : d->later_ties.emplace_back()) = tie;
-  d->stood_in.push_back(d->steps[best]);
-  d->stood_in_for.push_back(ids);
-  d->steps.erase(d->steps.begin() + best);
+  TieInPlace(best, tie, ids, d);
   return outdone;
 }
 
@@ -865,10 +875,7 @@ bool StandInForSearch(const Diagnosis& other,
                  "the effects found without " + effect,
                  &d->fits[d->final_fit],
                  &d->model_standard_errors);
-  (d->ambiguous.empty() ? d->ambiguous : d->later_ties.emplace_back()) = tie;
-  d->stood_in.push_back(*step);
-  d->stood_in_for.push_back(ids);
-  d->steps.erase(step);
+  TieInPlace(static_cast<int>(step - d->steps.begin()), tie, ids, d);
   FinalValues(d);
   Conclude(d);
   return true;
