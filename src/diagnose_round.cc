@@ -171,6 +171,23 @@ void Judge(const FitResult& current,
 // three others.
 constexpr int kJointPool = 4;
 
+// Score twins: scores within this relative part of each other are one
+// direction of the model's linearization (a roll damping and a roll
+// torque at a constant spin, 795.922 each on a Table 6 record).
+constexpr double kScoreTwin = 1e-6;
+
+bool ScoreTwins(const Candidate& a, const Candidate& b) {
+  return std::abs(a.score.score - b.score.score) <=
+         kScoreTwin * std::abs(b.score.score);
+}
+
+// Whether contenders[a] may join the set the contender at `lead` leads
+// (JointPool's rule).
+bool MayJoin(int a, int lead, const std::vector<Contender>& contenders) {
+  return a != lead &&
+         (a > lead || std::isfinite(contenders[a].record.prediction_gain));
+}
+
 // The others for the contender at `lead` (indices into `contenders`,
 // ranked by BIC, the round's lesser refits last), in that rank: those
 // before it only when they failed alone for not predicting the held-out
@@ -187,21 +204,6 @@ constexpr int kJointPool = 4;
 // errors; drawn on after it first, its pool filled with the three ranked
 // below it, and the record ended `not_explained`, Cm_q 75 of its errors
 // off.
-// Score twins: scores within this relative part of each other are one
-// direction of the model's linearization (a roll damping and a roll
-// torque at a constant spin, 795.922 each on a Table 6 record).
-constexpr double kScoreTwin = 1e-6;
-
-bool ScoreTwins(const Candidate& a, const Candidate& b) {
-  return std::abs(a.score.score - b.score.score) <=
-         kScoreTwin * std::abs(b.score.score);
-}
-
-bool MayJoin(int a, int lead, const std::vector<Contender>& contenders) {
-  return a != lead &&
-         (a > lead || std::isfinite(contenders[a].record.prediction_gain));
-}
-
 std::vector<int> JointPool(int lead, const std::vector<Contender>& contenders) {
   std::vector<int> pool;
   const int count = static_cast<int>(contenders.size());
@@ -243,13 +245,10 @@ std::vector<int> ScorePool(int lead, const std::vector<Contender>& contenders) {
       pool.push_back(a);
     }
   }
-  others = pool;
-  std::vector<int> by_bic = JointPool(lead, contenders);
-  std::vector<int> sorted = others;
-  std::sort(by_bic.begin(), by_bic.end());
-  std::sort(sorted.begin(), sorted.end());
-  if (sorted == by_bic) return {};
-  return others;
+  const std::vector<int> by_bic = JointPool(lead, contenders);
+  const bool same = std::is_permutation(
+      pool.begin(), pool.end(), by_bic.begin(), by_bic.end());
+  return same ? std::vector<int>() : pool;
 }
 
 // `at` with the effects of `members` (indices into `contenders`) added in
