@@ -600,19 +600,18 @@ Diagnosis Search(const Case& c,
   FindNotExcluded(contended, lesser, models, current, data, options, &d);
   // A step outdone (by ambiguity_bic or more) by one effect in its place
   // stands in a tie with it only where the search without it does not
-  // explain the record (DiagnoseFrom): the answer as the search left it,
-  // and the tie kept aside. Not so for a set in its place: two or three
-  // effects beat a true body yaw asymmetry by 10 or more on draws 22 and
-  // 25's coning runs, and the asymmetry is named.
-  const Diagnosis before = d;
+  // explain the record better (DiagnoseFrom): the answer with the tie is
+  // kept aside. Not so for a set in its place: two or three effects beat
+  // a true body yaw asymmetry by 10 or more on draws 22 and 25's coning
+  // runs, and the asymmetry is named.
   notes->outdone = FindSetReplacements(models, current, data, options, &d);
-  if (!notes->outdone.empty()) {
-    d = before;
-  } else if (d.ambiguous.empty()) {
-    notes->outdone = FindSingleReplacement(models, current, data, options, &d);
+  if (notes->outdone.empty() && d.ambiguous.empty()) {
+    Diagnosis tie;
+    notes->outdone =
+        FindSingleReplacement(models, current, data, options, &d, &tie);
     if (!notes->outdone.empty()) {
-      notes->outdone_tie = Concluded(c, quiet, current, data, options, d);
-      d = before;
+      notes->outdone_tie =
+          Concluded(c, quiet, current, data, options, std::move(tie));
     }
   }
   return Concluded(c, quiet, current, data, options, std::move(d));

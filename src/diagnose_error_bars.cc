@@ -811,22 +811,15 @@ void TieInPlace(int best,
   d->steps.erase(d->steps.begin() + best);
 }
 
-// The step `best` of *d replaced by `set` (its model *c, fitted as *fit,
-// least BIC above the complete model's): the step joins a tie with them
-// and the final error bars cover their model's values. Better by
-// ambiguity_bic or more, the step's effect is returned too (the search
-// took a wrong turn: DiagnoseFrom searches again without it, and keeps
-// the tie when that search does not explain the record), else "".
-std::string StandIn(const std::vector<TimeHistory>& data,
-                    const DiagnoseOptions& options,
-                    int best,
-                    const std::vector<const Effect*>& set,
-                    double least,
-                    Case* c,
-                    FitResult* fit,
-                    Diagnosis* d) {
-  const std::string outdone =
-      least > -options.ambiguity_bic ? "" : d->steps[best].effect;
+// The step `best` of *d in a tie with `set`, the effects not excluded
+// that replace it (their model *c, fitted as *fit): the final error bars
+// cover their model's values.
+void TieWithSet(const std::vector<TimeHistory>& data,
+                int best,
+                const std::vector<const Effect*>& set,
+                Case* c,
+                FitResult* fit,
+                Diagnosis* d) {
   Reported(*c, data, fit);
   WidenErrorBars(
       {&fit->parameters},
@@ -843,7 +836,33 @@ std::string StandIn(const std::vector<TimeHistory>& data,
     }
   }
   TieInPlace(best, tie, ids, d);
-  return outdone;
+}
+
+// The step `best` of *d replaced by `set` (its model *c, fitted as *fit,
+// least BIC above the complete model's): within ambiguity_bic the step
+// joins a tie with them (TieWithSet) and "" is returned. Better by
+// ambiguity_bic or more, *d is left as it is and the step's effect
+// returned (the search took a wrong turn: DiagnoseFrom searches again
+// without it); *outdone_tie, when given, gets *d with the tie, kept for
+// when that search does not explain the record better.
+std::string StandIn(const std::vector<TimeHistory>& data,
+                    const DiagnoseOptions& options,
+                    int best,
+                    const std::vector<const Effect*>& set,
+                    double least,
+                    Case* c,
+                    FitResult* fit,
+                    Diagnosis* d,
+                    Diagnosis* outdone_tie) {
+  if (least > -options.ambiguity_bic) {
+    TieWithSet(data, best, set, c, fit, d);
+    return "";
+  }
+  if (outdone_tie != nullptr) {
+    *outdone_tie = *d;
+    TieWithSet(data, best, set, c, fit, outdone_tie);
+  }
+  return d->steps[best].effect;
 }
 
 }  // namespace
@@ -938,7 +957,8 @@ std::string FindSetReplacements(const std::vector<Case>& models,
     least = rise_of(best, set);
     if (!(least < options.ambiguity_bic)) return "";
   }
-  return StandIn(data, options, best, set, least, &cases[best], &fits[best], d);
+  return StandIn(
+      data, options, best, set, least, &cases[best], &fits[best], d, nullptr);
 }
 
 bool OnTunnelRidge(const Effect& e) {
@@ -973,7 +993,8 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
                                   const Case& current,
                                   const std::vector<TimeHistory>& data,
                                   const DiagnoseOptions& options,
-                                  Diagnosis* d) {
+                                  Diagnosis* d,
+                                  Diagnosis* outdone_tie) {
   if (d->steps.empty() || !d->ambiguous.empty()) return "";
   std::vector<const Effect*> singles;
   for (const CandidateFit& k : d->not_excluded) {
@@ -1057,7 +1078,8 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
                  least,
                  &best->c,
                  &best->fit,
-                 d);
+                 d,
+                 outdone_tie);
 }
 
 }  // namespace fit3dof

@@ -518,11 +518,16 @@ std::string FindSetReplacements(const std::vector<Case>& models,
 // roll torque for the stiffness's roll signature, the stiffness not
 // excluded beside it; in the torque's place it ran to t1 = 1.55 (bound
 // 0.116), and with t1 held at zero its BIC was 4.3 lower: the two tie.
+// Better by ambiguity_bic or more, the step's effect is returned with *d
+// left as it is, and *outdone_tie gets *d with the step in a tie with that
+// effect (DiagnoseFrom keeps it where the search without the step does
+// not explain the record better).
 std::string FindSingleReplacement(const std::vector<Case>& models,
                                   const Case& current,
                                   const std::vector<TimeHistory>& data,
                                   const DiagnoseOptions& options,
-                                  Diagnosis* d);
+                                  Diagnosis* d,
+                                  Diagnosis* outdone_tie);
 
 // The search and its second thoughts (diagnose.cc, diagnose_second_
 // thoughts.cc).
