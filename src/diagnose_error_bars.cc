@@ -877,10 +877,7 @@ bool StandInForSearch(const Diagnosis& other,
   CHECK(step != d->steps.end()) << effect;
   std::set<std::string> held;
   for (const DiagnosisStep& s : d->steps) held.insert(s.effect);
-  for (const CandidateFit& k : d->ambiguous) held.insert(k.effect);
-  for (const std::vector<CandidateFit>& tie : d->later_ties) {
-    for (const CandidateFit& k : tie) held.insert(k.effect);
-  }
+  for (const CandidateFit& k : Tied(*d)) held.insert(k.effect);
   std::vector<CandidateFit> tie = {AsContender(*step)};
   std::vector<std::string> ids;
   for (const DiagnosisStep& s : other.steps) {

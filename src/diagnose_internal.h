@@ -136,6 +136,11 @@ std::string Described(const std::vector<DiagnosisStep>& steps);
 // "a, b <last> c" (last: " and ", " or ").
 std::string Joined(const std::vector<std::string>& items, const char* last);
 
+// The ties the diagnosis leaves open (d.ambiguous, then d.later_ties),
+// and every effect in them in that order (diagnosis_report.cc).
+std::vector<std::vector<CandidateFit>> Ties(const Diagnosis& d);
+std::vector<CandidateFit> Tied(const Diagnosis& d);
+
 // Sets d->verdict and d->verdict_text from what the search left in *d
 // (its ties, steps, partial steps, probe and final residual check), and
 // d->residual_description when the residuals are not explained

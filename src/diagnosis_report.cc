@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "diagnose_internal.h"
 #include "fit3dof/diagnose.h"
 #include "fit3dof/parameters.h"
 #include "format.h"
@@ -100,23 +101,6 @@ std::string Values(const std::vector<ParameterEstimate>& estimates) {
   return values;
 }
 
-// The ties the diagnosis leaves open, the first first.
-std::vector<std::vector<CandidateFit>> Ties(const Diagnosis& d) {
-  std::vector<std::vector<CandidateFit>> ties;
-  if (!d.ambiguous.empty()) ties.push_back(d.ambiguous);
-  ties.insert(ties.end(), d.later_ties.begin(), d.later_ties.end());
-  return ties;
-}
-
-// Every effect in them, in order.
-std::vector<CandidateFit> Tied(const Diagnosis& d) {
-  std::vector<CandidateFit> tied;
-  for (const std::vector<CandidateFit>& tie : Ties(d)) {
-    tied.insert(tied.end(), tie.begin(), tie.end());
-  }
-  return tied;
-}
-
 // The coefficients' error bars the models the record cannot exclude (a
 // tie, an effect not excluded, a term left open) widened at least twice,
 // each with the final model's own: along Eq. 43's ridge a tunnel term not
@@ -147,6 +131,21 @@ std::string Widened(const Diagnosis& d) {
 }
 
 }  // namespace
+
+std::vector<std::vector<CandidateFit>> Ties(const Diagnosis& d) {
+  std::vector<std::vector<CandidateFit>> ties;
+  if (!d.ambiguous.empty()) ties.push_back(d.ambiguous);
+  ties.insert(ties.end(), d.later_ties.begin(), d.later_ties.end());
+  return ties;
+}
+
+std::vector<CandidateFit> Tied(const Diagnosis& d) {
+  std::vector<CandidateFit> tied;
+  for (const std::vector<CandidateFit>& tie : Ties(d)) {
+    tied.insert(tied.end(), tie.begin(), tie.end());
+  }
+  return tied;
+}
 
 std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   json out;
