@@ -90,6 +90,9 @@ std::string Implausible(const Effect& effect,
 // on the other side, or empty (a lead, or a friction that drives the
 // motion, is no fault of those kinds).
 std::string WrongSign(const Effect& probe, const FitResult& fit);
+// The terms WrongSign judges wrong, each (pointers into `fit`).
+std::vector<const ParameterEstimate*> WrongSignTerms(const Effect& probe,
+                                                     const FitResult& fit);
 // The first of `effects` outside its bounds in `fit`: "<id> (added
 // before): <why>", or empty.
 std::string ImplausibleAmong(const std::vector<const Effect*>& effects,

@@ -90,13 +90,15 @@ json Step(const DiagnosisStep& s) {
   return step;
 }
 
-// "name = value +- se units, ...".
+// "name = value +- se units, ...", a term held "name = value units (held)"
+// (a probe's term held at its physical sign's bound).
 std::string Values(const std::vector<ParameterEstimate>& estimates) {
   std::string values;
   for (const ParameterEstimate& e : estimates) {
     values += (values.empty() ? "" : ", ") + e.name + " = " +
-              FormatNumber("%.4g", e.value) + " +- " +
-              FormatNumber("%.2g", e.standard_error) + " " + e.units;
+              FormatNumber("%.4g", e.value) +
+              (e.free ? " +- " + FormatNumber("%.2g", e.standard_error) : "") +
+              " " + e.units + (e.free ? "" : " (held)");
   }
   return values;
 }

@@ -291,13 +291,15 @@ std::string Implausible(const Effect& effect,
   return it->second(context);
 }
 
-std::string WrongSign(const Effect& probe, const FitResult& fit) {
+std::vector<const ParameterEstimate*> WrongSignTerms(const Effect& probe,
+                                                     const FitResult& fit) {
   static const char* const kPositive[] = {"theta_lag",
                                           "psi_lag",
                                           "Cm_friction",
                                           "Cm_axis_friction",
                                           "Cm_pitch_friction",
                                           "Cn_yaw_friction"};
+  std::vector<const ParameterEstimate*> wrong;
   const auto& own = probe.Terms(fit.model);
   for (const ParameterEstimate& e : fit.parameters) {
     if (!e.free || !e.segment.empty() ||
@@ -306,12 +308,17 @@ std::string WrongSign(const Effect& probe, const FitResult& fit) {
             std::end(kPositive)) {
       continue;
     }
-    if (e.value < -2.0 * e.standard_error) {
-      return e.name + " = " + FormatNumber("%.3g", e.value) + " +- " +
-             FormatNumber("%.2g", e.standard_error) + " is negative";
-    }
+    if (e.value < -2.0 * e.standard_error) wrong.push_back(&e);
   }
-  return "";
+  return wrong;
+}
+
+std::string WrongSign(const Effect& probe, const FitResult& fit) {
+  const auto wrong = WrongSignTerms(probe, fit);
+  if (wrong.empty()) return "";
+  const ParameterEstimate& e = *wrong[0];
+  return e.name + " = " + FormatNumber("%.3g", e.value) + " +- " +
+         FormatNumber("%.2g", e.standard_error) + " is negative";
 }
 
 std::string ImplausibleAmong(const std::vector<const Effect*>& effects,

@@ -924,6 +924,24 @@ TEST(Diagnose, AFrictionThatDrivesTheMotionIsNoAnswer) {
   }
 }
 
+// tools/diagnose_suite's `coning` pitch reading lag (6.69 ms, the yaw
+// reading none; draw 34), kept as tests/data/coning_pitch_lag_draw34.yaml.
+// The reading-lag probe fitted both lags, psi_lag -0.00105 +- 0.00051 s,
+// and was refused for it (WrongSign); a tunnel damping, 32 of BIC behind,
+// was named. A term past zero against its sign, the other not, is held
+// at zero (SignHeld): the pitch lag alone reaches the noise.
+TEST(Diagnose, AProbeTermPastItsSignIsHeldAtZero) {
+  const Diagnosis d = DiagnoseConfig("coning_pitch_lag_draw34.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "reading_lag", "theta_lag", 0.00669);
+  const ParameterEstimate* yaw =
+      SharedEstimate(d.outside_catalog.parameters, "psi_lag");
+  ASSERT_NE(yaw, nullptr) << text;
+  EXPECT_FALSE(yaw->free) << text;
+  EXPECT_EQ(yaw->value, 0.0) << text;
+  EXPECT_NE(text.find("psi_lag = 0 s (held)"), std::string::npos) << text;
+}
+
 // Dry friction about each of the pitch and yaw axes alone
 // (Cm_axis_friction = 1e-4, on both axes) on one 3-s run pitching in
 // one plane: the small yaw rate is damped by the friction's full size,

@@ -238,5 +238,23 @@ TEST(WrongSign, LagsAndFrictionsArePositive) {
   EXPECT_EQ(judged("bearing_friction", "theta_lag", -0.017, 0.0067), "");
 }
 
+// Each term past zero is named (the probe's fit holds those at zero when
+// its other terms keep their sign: SignHeld).
+TEST(WrongSign, NamesEachTermPastZero) {
+  FitResult fit = Fitted({{"theta_lag", 0.0066}, {"psi_lag", -0.00105}}, 8, 8);
+  fit.parameters[0].standard_error = 0.00027;
+  fit.parameters[1].standard_error = 0.00051;
+  const Effect& lag = *FindProbe("reading_lag");
+  auto wrong = WrongSignTerms(lag, fit);
+  ASSERT_EQ(wrong.size(), 1u);
+  EXPECT_EQ(wrong[0]->name, "psi_lag");
+  fit.parameters[0].value = -0.0066;
+  wrong = WrongSignTerms(lag, fit);
+  ASSERT_EQ(wrong.size(), 2u);
+  EXPECT_EQ(wrong[0]->name, "theta_lag");
+  fit.parameters[1].value = -0.00095;  // within two errors of zero
+  EXPECT_EQ(WrongSignTerms(lag, fit).size(), 1u);
+}
+
 }  // namespace
 }  // namespace fit3dof
