@@ -573,9 +573,9 @@ Diagnosis Search(const Case& c,
       tie = static_cast<int>(d.steps.size());
       if (earned.size() > 1) notes->tied_first = best.record.effect;
     }
-    if (d.steps.empty() && step_rivals.empty() &&
-        NearTie(contenders, earned, options)) {
-      notes->near_first = best.record.effect;
+    if (d.steps.empty() && NearTie(contenders, earned, options)) {
+      notes->led_first = best.record.effect;
+      if (step_rivals.empty()) notes->near_first = best.record.effect;
     }
     rivals.push_back(
         WiderRivals(std::move(step_rivals), contenders, earned[0], options));
@@ -597,6 +597,12 @@ Diagnosis Search(const Case& c,
     Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
   }
   WidenForTie(&d);
+  for (const std::string& id : options.searched_without) {
+    const Effect* e = FindEffect(id);
+    if (std::find(contended.begin(), contended.end(), e) == contended.end()) {
+      contended.push_back(e);
+    }
+  }
   FindNotExcluded(contended, lesser, models, current, data, options, &d);
   // A step outdone (by ambiguity_bic or more) by one effect in its place
   // stands in a tie with it only where the search without it does not

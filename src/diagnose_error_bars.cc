@@ -291,13 +291,21 @@ FitResult Shrunk(FitResult fit,
 
 // `t`'s fit among d->not_excluded_models, with its Akaike weight, and in
 // *listed (once each effect: the first model it is not excluded beside)
-// as a CandidateFit whose `rejected` says `why`.
+// as a CandidateFit whose `rejected` says `why`. Its BIC counts in
+// d->least_beside_bic unless the effect is one the search was run without
+// (DiagnoseOptions::searched_without): with it back, the model is the
+// other answer's, which the search without it is weighed against.
 void TakeNotExcluded(const Beside& t,
                      const std::string& why,
+                     const DiagnoseOptions& options,
                      std::vector<CandidateFit>* listed,
                      Diagnosis* d) {
   d->not_excluded_models.push_back(t.fit.parameters);
-  d->least_beside_bic = std::min(d->least_beside_bic, Bic(t.fit));
+  const auto& without = options.searched_without;
+  if (std::find(without.begin(), without.end(), t.effect->id) ==
+      without.end()) {
+    d->least_beside_bic = std::min(d->least_beside_bic, Bic(t.fit));
+  }
   d->not_excluded_weights.push_back(AkaikeWeight(t.akaike_rise));
   if (std::any_of(listed->begin(), listed->end(), [&](const CandidateFit& k) {
         return k.effect == t.effect->id;
@@ -383,6 +391,7 @@ void FindOpenTerms(const std::vector<CompleteModel>& complete,
                         std::string(t.rise < 0.0 ? ", lowers BIC beside it"
                                                  : ", not excluded") +
                         " (BIC " + FormatNumber("%+.1f", t.rise) + ")",
+                    options,
                     &d->open_terms,
                     d);
   }
@@ -649,6 +658,7 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
         BesideWords(
             final ? "final" : "search's", at_noise[t.model->fit], rise) +
             (twin ? kTwinWords : ""),
+        options,
         &d->not_excluded,
         d);
     if (twin) d->near_twins.push_back(t.effect->id);

@@ -545,6 +545,9 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
 struct SearchNotes {
   std::string tied_first;
   std::string near_first;
+  // The first step's effect when its next catalog contender came within
+  // near_tie_bic, whether or not a probe tied with it (NearTieUnderProbe).
+  std::string led_first;
   // A step that effects not excluded beat in its place by ambiguity_bic or
   // more, and, when one effect did, the answer with the step in a tie with
   // it instead.

@@ -2311,6 +2311,57 @@ TEST(Diagnose, ANearTiesFirstStepMatchedWithoutItTiesWithWhatWasFound) {
   ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
+// tools/diagnose_suite's `short` tunnel damping + Magnus moment + flow
+// angularity (draw 29: t2 -1.83, t4 2.48, Cm_p_alpha 3.89, theta_T 0.0123,
+// psi_T -0.0140 deg), kept as tests/data/short_damping_magnus_angularity_
+// draw29.csv. A body yaw asymmetry led the first round by 20 and was
+// taken; after the angularity a lag of the readings outdid the damping and
+// the Magnus moment and reached the noise: `not_explained`, Cm_q 36 of its
+// errors off. Without the asymmetry the three explain the record, their
+// complete model below the lag's.
+TEST(Diagnose, AProbeAfterANearTiesFirstStepLosesToTheSearchWithoutIt) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_damping_magnus_angularity_draw29.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"tunnel_damping", "magnus",
+                                   "flow_angularity"}))
+      << text;
+  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
+  EXPECT_TRUE(EffectIds(d.rejected).count("reading_lag")) << text;
+  ExpectFinalCovers(d,
+                    {{"Cm_alpha", -0.23},
+                     {"Cm_q", -5.5},
+                     {"tunnel_Cm_thetadot", -1.83},
+                     {"tunnel_Cn_psidot", 2.48},
+                     {"Cm_p_alpha", 3.89},
+                     {"theta_T", 0.0123},
+                     {"psi_T", -0.0140}},
+                    text);
+}
+
+// tools/diagnose_suite's `coning` tunnel stiffness + roll reading error +
+// flow angularity (draw 33), kept as tests/data/coning_stiffness_roll_
+// error_angularity_draw33.yaml: over 68 deg of roll the angularity is a sum
+// of the reading error's terms. It led the first round by 0.8 and tied;
+// the reading error's side was 29 lower, and the search without the
+// angularity is the answer (the reading error tied with a drift in time).
+// Left out of that search, the angularity was never tried beside its
+// model, where the record cannot exclude it: it is listed there now, and
+// the final error bars cover it.
+TEST(Diagnose, AnEffectASecondSearchLeftOutIsTriedBesideItsModel) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_stiffness_roll_error_angularity_draw33.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(EffectIds(d.rejected).count("flow_angularity")) << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("flow_angularity")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
 // tools/diagnose_suite's `short` tunnel stiffness + roll reading error +
 // flow angularity (draw 27), kept as tests/data/short_stiffness_roll_error_
 // angularity_vary27.csv: the stiffness is added, the reading error ties

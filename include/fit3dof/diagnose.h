@@ -383,6 +383,13 @@ struct DiagnoseOptions {
   // ridge or not: the third search, where the second leaves the record
   // unexplained too.
   bool every_bound_within_errors = false;
+  // Catalog effects a second search leaves out (its effects hold them no
+  // more): the side of a tie or the step another answer outdid. Not
+  // contenders there, but tried beside its complete model like every
+  // contender (not_excluded): on a coning run sweeping 68 deg of roll, a
+  // flow angularity is a sum of the roll interaction's terms, and the
+  // answer found without it cannot exclude it.
+  std::vector<std::string> searched_without;
 };
 
 struct ResidualCheck {
