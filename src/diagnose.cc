@@ -537,8 +537,9 @@ Diagnosis Search(const Case& c,
                                                     options,
                                                     added,
                                                     &out_of_sample,
-                                                    pooled,
+                                                    candidates,
                                                     earned,
+                                                    &pooled,
                                                     &joint)) {
       const std::vector<Contender> with =
           WithMembers(contenders, pooled, &joint);

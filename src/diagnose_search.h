@@ -223,15 +223,19 @@ struct JointSet {
 // earned, and the damping's set of the three did. `earned` (Earned) tells
 // which contenders were judged better than every one that earned its
 // place. The lowest-BIC set of the first lead whose set earns its place
-// goes into *joint; false when none.
+// goes into *joint; false when none. When no lead's pools earn, each
+// lead draws a last pool from the scores at its own fit (LeadPool), the
+// effects of `candidates` (the round's, scored at `fit`) it names that no
+// round refitted appended to *contenders, refitted alone.
 bool Jointly(const Case& current,
              const FitResult& fit,
              const std::vector<TimeHistory>& data,
              const DiagnoseOptions& options,
              const std::vector<const Effect*>& added,
              OutOfSample* out_of_sample,
-             const std::vector<Contender>& contenders,
+             const std::vector<Candidate>& candidates,
              const std::vector<int>& earned,
+             std::vector<Contender>* contenders,
              JointSet* joint);
 
 // The joint set *joint (Jointly, from `current` fitted as `fit`) with its

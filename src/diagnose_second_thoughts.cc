@@ -452,14 +452,15 @@ Diagnosis NearTieUnderProbe(const Case& c,
               "catalog that the effects found without it outdo",
               &other);
   const bool known = std::any_of(
-      other.rejected.begin(), other.rejected.end(),
-      [&](const CandidateFit& k) { return k.effect == d.outside_catalog.effect; });
+      other.rejected.begin(), other.rejected.end(), [&](const CandidateFit& k) {
+        return k.effect == d.outside_catalog.effect;
+      });
   if (!known) {
     CandidateFit outside = d.outside_catalog;
     outside.rejected = "outdid the catalog's effects after " + first +
                        ", but without it the catalog's effects explain the "
-                       "record (BIC " + FormatNumber("%.1f", margin) +
-                       " lower)";
+                       "record (BIC " +
+                       FormatNumber("%.1f", margin) + " lower)";
     other.rejected.push_back(std::move(outside));
   }
   return other;
