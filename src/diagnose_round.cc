@@ -819,7 +819,9 @@ int ContenderFor(const Effect* effect,
                  const std::vector<TimeHistory>& data,
                  std::vector<Contender>* contenders) {
   for (size_t i = 0; i < contenders->size(); ++i) {
-    if ((*contenders)[i].candidate->effect == effect) return i;
+    if ((*contenders)[i].candidate->effect == effect) {
+      return static_cast<int>(i);
+    }
   }
   const auto k = std::find_if(
       candidates.begin(), candidates.end(), [&](const Candidate& c) {
@@ -850,10 +852,10 @@ std::vector<int> LeadPool(int lead,
   // appends is in neither).
   const std::vector<std::vector<int>> tried = {JointPool(lead, *contenders),
                                                ScorePool(lead, *contenders)};
-  const Contender& k = (*contenders)[lead];
-  const Effect* own = k.candidate->effect;
-  const std::vector<Candidate> scored =
-      ScoredCandidates(k.candidate->c, k.fit, r.options);
+  // Scored before ContenderFor appends to *contenders (which moves them).
+  const Effect* own = (*contenders)[lead].candidate->effect;
+  const std::vector<Candidate> scored = ScoredCandidates(
+      (*contenders)[lead].candidate->c, (*contenders)[lead].fit, r.options);
   std::vector<const Candidate*> picked;
   for (const Candidate& s : scored) {
     if (picked.size() == 2) break;
