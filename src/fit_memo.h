@@ -31,8 +31,11 @@ FitResult MemoizedFitSamples(const Case& c,
                              const std::vector<TimeHistory>& data);
 
 // How many fits the memo keeps (the oldest goes first): more than one
-// diagnosis makes, few enough that a batch of diagnoses holds a few MB.
-inline constexpr int kFitMemoCapacity = 64;
+// diagnosis makes, its second searches included (with 64, a pair of runs
+// searched five times over had its repeats pushed out and refitted: 4.1 s,
+// 2.4 s with 256), few enough that a batch of diagnoses holds a few tens of
+// MB.
+inline constexpr int kFitMemoCapacity = 256;
 
 // Calls and hits since the process started (for tests and benchmarks).
 struct FitMemoCounts {
