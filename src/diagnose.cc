@@ -598,8 +598,12 @@ Diagnosis Search(const Case& c,
     Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
   }
   WidenForTie(&d);
+  // What the search was run without is tried beside its model too: the
+  // record may not exclude it there (DiagnoseOptions::searched_without;
+  // catalog effects only, as contenders are).
   for (const std::string& id : options.searched_without) {
     const Effect* e = FindEffect(id);
+    if (e == nullptr) continue;
     if (std::find(contended.begin(), contended.end(), e) == contended.end()) {
       contended.push_back(e);
     }
