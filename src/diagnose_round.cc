@@ -790,24 +790,28 @@ bool SetEarns(int lead,
   return false;
 }
 
+// Whether a set of the lead with its `pool` earns its place (SetEarns,
+// into *joint), tried only when the pool is not empty and its union may
+// reach the noise; lesser refits in triples when `minor_in_triples`.
+bool PoolEarns(int lead,
+               const std::vector<int>& pool,
+               bool minor_in_triples,
+               const JointRound& r,
+               JointSet* joint) {
+  return !pool.empty() &&
+         UnionMayReachTheNoise(
+             lead, pool, r.at, r.fit, r.data, r.options, r.contenders) &&
+         SetEarns(lead,
+                  JointSets(lead, pool, minor_in_triples, r.contenders),
+                  r,
+                  joint);
+}
+
 // Jointly for one lead: its sets from its pool by BIC (JointPool), then,
-// when none earns, from its pool by score (ScorePool), each tried only
-// when the union of the pool may reach the noise.
+// when none earns, from its pool by score (ScorePool).
 bool JointlyLedBy(int lead, const JointRound& r, JointSet* joint) {
-  for (const bool by_score : {false, true}) {
-    const std::vector<int> pool = by_score ? ScorePool(lead, r.contenders)
-                                           : JointPool(lead, r.contenders);
-    if (pool.empty() ||
-        !UnionMayReachTheNoise(
-            lead, pool, r.at, r.fit, r.data, r.options, r.contenders)) {
-      continue;
-    }
-    if (SetEarns(
-            lead, JointSets(lead, pool, by_score, r.contenders), r, joint)) {
-      return true;
-    }
-  }
-  return false;
+  return PoolEarns(lead, JointPool(lead, r.contenders), false, r, joint) ||
+         PoolEarns(lead, ScorePool(lead, r.contenders), true, r, joint);
 }
 
 // The index in *contenders of the contender for `effect`, refitted from
@@ -919,15 +923,12 @@ bool Jointly(const Case& current,
   JointRound shown = round;
   shown.members_shown = true;
   for (int lead = 0; lead < judged; ++lead) {
-    if (!leads((*contenders)[lead])) continue;
-    const std::vector<int> pool = LeadPool(lead, candidates, round, contenders);
-    if (pool.empty() ||
-        !UnionMayReachTheNoise(
-            lead, pool, round.at, fit, data, options, *contenders)) {
-      continue;
-    }
-    if (SetEarns(
-            lead, JointSets(lead, pool, true, *contenders), shown, joint)) {
+    if (leads((*contenders)[lead]) &&
+        PoolEarns(lead,
+                  LeadPool(lead, candidates, round, contenders),
+                  true,
+                  shown,
+                  joint)) {
       return true;
     }
   }
