@@ -412,6 +412,29 @@ std::string ImplausibleWithin(const Effect& effect,
   return why;
 }
 
+std::string ImplausibleAsJudged(const Effect& effect,
+                                const Case& c,
+                                const FitResult& fit,
+                                const std::vector<std::string>& terms,
+                                const DiagnoseOptions& options) {
+  const bool within = options.bounds_within_errors &&
+                      (effect.on_ridge || options.every_bound_within_errors);
+  return within ? ImplausibleWithin(effect, c, fit, terms, kBoundErrors)
+                : Implausible(effect, c, fit);
+}
+
+std::string ImplausibleAmongAsJudged(const std::vector<const Effect*>& effects,
+                                     const Case& c,
+                                     const FitResult& fit,
+                                     const DiagnoseOptions& options) {
+  for (const Effect* e : effects) {
+    const std::string why =
+        ImplausibleAsJudged(*e, c, fit, e->Terms(c.model), options);
+    if (!why.empty()) return e->id + " (added before): " + why;
+  }
+  return "";
+}
+
 void WidenForTie(Diagnosis* d) {
   if (d->ambiguous.empty()) return;
   std::vector<const std::vector<ParameterEstimate>*> models;

@@ -370,6 +370,29 @@ std::string ImplausibleWithin(const Effect& effect,
                               const std::vector<std::string>& added,
                               double k);
 
+// Why `effect`'s terms `terms`, as `fit` (of case `c`) has them, lie
+// outside its bounds as a round judges a newcomer: within kBoundErrors of
+// their errors (ImplausibleWithin) where `options` say so
+// (bounds_within_errors for an effect on a ridge, every_bound_within_errors
+// for any), else at the point fit (Implausible); empty when within them.
+std::string ImplausibleAsJudged(const Effect& effect,
+                                const Case& c,
+                                const FitResult& fit,
+                                const std::vector<std::string>& terms,
+                                const DiagnoseOptions& options);
+
+// ImplausibleAsJudged for each of `effects` (added before; its terms in
+// `c`'s model): the first one's id and why, or empty. An effect admitted
+// within its errors stays judged so once others join it: on draw 32's
+// pair of runs with a bearing moment, a calibration error and a roll
+// torque, the calibration came in within its errors at the third search
+// (0.349 deg at 8.2 deg, bound 0.246) and then refused the bearing moment
+// beside it at its point fit (0.249).
+std::string ImplausibleAmongAsJudged(const std::vector<const Effect*>& effects,
+                                     const Case& c,
+                                     const FitResult& fit,
+                                     const DiagnoseOptions& options);
+
 // Eq. 43's tunnel terms: effects whose pitch and yaw terms each lie on a
 // ridge with a body coefficient (Cm_alpha + t1, Cm_q + t2), so that with
 // one held at zero the other carries what the record sees of them.
