@@ -537,6 +537,26 @@ void CheckRidges(const Case& c,
   }
 }
 
+namespace {
+
+// A bearing moment's fade depends on its angle's square (bearing_moment.h),
+// so a fit may end at either sign of the angle with one model. It is
+// reported as its magnitude, so that fits of one model agree in sign:
+// a diagnosis weighs several models' values together for its error bars,
+// and a tool comparing against a saturation angle reads a negative one as
+// far off (draw 37's Table 6 record: -0.917 +- 0.22 deg, truth 1). Flipped
+// before the error bars are estimated, which then see the Jacobian's column
+// flipped with it.
+void AngleAsMagnitude(const FitProblem& problem, std::vector<double>* values) {
+  const auto it =
+      std::find(problem.names.begin(), problem.names.end(), "bearing_angle");
+  if (it == problem.names.end()) return;
+  double& angle = (*values)[it - problem.names.begin()];
+  angle = std::abs(angle);
+}
+
+}  // namespace
+
 FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
   const auto start_time = std::chrono::steady_clock::now();
   FitProblem problem = PrepareProblem(c, data);
@@ -568,6 +588,7 @@ FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
       result.pipeline.push_back(relaxed.summary);
     }
   }
+  AngleAsMagnitude(problem, &values);
   const Uncertainty u = EstimateUncertainty(problem, values, c.source);
   result.sum_of_residuals = u.sum_of_residuals;
   result.probable_error = u.probable_error;

@@ -280,6 +280,37 @@ TEST(Fit, SaysWhenTheBearingAngleIsNotDetermined) {
   EXPECT_TRUE(warned) << ::testing::PrintToString(r.warnings);
 }
 
+// A bearing moment's fade depends on its angle's square: a fit started at
+// a negative angle may end there, the same model as its magnitude. The
+// angle is reported as its magnitude, with the error bar of the fit
+// started at the positive angle (a diagnosis weighs its models' values
+// together).
+TEST(Fit, ReportsTheBearingAngleAsItsMagnitude) {
+  const std::string dir = testing::ScratchDirectory("fit_bearing_sign");
+  FitResult fits[2];
+  for (int k = 0; k < 2; ++k) {
+    Case c = testing::ShortRun(
+        dir,
+        "  Cm_alpha_delta2: -1.13\n  Cm_bearing: -0.02\n  bearing_angle: 1.0\n",
+        7);
+    c.parameters[FindParameter(c.model, "Cm_bearing")] = {-0.01, true, false};
+    c.parameters[FindParameter(c.model, "bearing_angle")] = {
+        k == 0 ? 1.5 : -1.5, true, false};
+    c.solver.max_iterations = 200;
+    fits[k] = Fit(c);
+  }
+  const ParameterEstimate* plus = SharedEstimate(fits[0], "bearing_angle");
+  const ParameterEstimate* minus = SharedEstimate(fits[1], "bearing_angle");
+  ASSERT_NE(plus, nullptr);
+  ASSERT_NE(minus, nullptr);
+  EXPECT_GT(minus->value, 0.0);
+  EXPECT_NEAR(minus->value, plus->value, 1e-3 * plus->value);
+  EXPECT_NEAR(minus->standard_error,
+              plus->standard_error,
+              0.01 * plus->standard_error);
+  EXPECT_LT(std::abs(minus->value - 1.0), 3.0 * minus->standard_error);
+}
+
 // Writes a record of the Table 6 model with other initial conditions.
 std::string WriteRecord(const std::string& dir,
                         const std::string& name,
