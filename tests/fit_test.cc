@@ -305,9 +305,8 @@ TEST(Fit, ReportsTheBearingAngleAsItsMagnitude) {
   ASSERT_NE(minus, nullptr);
   EXPECT_GT(minus->value, 0.0);
   EXPECT_NEAR(minus->value, plus->value, 1e-3 * plus->value);
-  EXPECT_NEAR(minus->standard_error,
-              plus->standard_error,
-              0.01 * plus->standard_error);
+  EXPECT_NEAR(
+      minus->standard_error, plus->standard_error, 0.01 * plus->standard_error);
   EXPECT_LT(std::abs(minus->value - 1.0), 3.0 * minus->standard_error);
 }
 
