@@ -578,6 +578,9 @@ Diagnosis Search(const Case& c,
       notes->led_first = best.record.effect;
       if (step_rivals.empty()) notes->near_first = best.record.effect;
     }
+    if (d.steps.empty() && step_rivals.empty()) {
+      notes->first_alone = best.record.effect;
+    }
     rivals.push_back(
         WiderRivals(std::move(step_rivals), contenders, earned[0], options));
     current = best.candidate->c;

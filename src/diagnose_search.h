@@ -572,6 +572,9 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
 struct SearchNotes {
   std::string tied_first;
   std::string near_first;
+  // The first step's effect when it was taken alone, untied, near tie or
+  // not (NearTieBranch).
+  std::string first_alone;
   // The first step's effect when its next catalog contender came within
   // near_tie_bic, whether or not a probe tied with it (NearTieUnderProbe).
   std::string led_first;

@@ -146,9 +146,11 @@
 // effect it followed, and its answer is taken when it explains the
 // record, with or without a tie of its own (the effect left is named
 // among the rejected). So is a first step taken alone whose next
-// contender came within `near_tie_bic` (40) of it, when the answer is
-// `ambiguous`, claims that step's effect, and without it the search
-// explains the record with a BIC lower by more than `ambiguity_bic`; and
+// contender came within `near_tie_bic` (40) of it, or led by more while
+// an effect not excluded still lowers BIC beside the answer, when the
+// answer is `ambiguous`, claims that step's effect, and without it the
+// search explains the record with a BIC lower by more than
+// `ambiguity_bic`; and
 // the effect a tie followed when the complete model with another of its
 // effects is lower than the one with it by more than `ambiguity_bic` (a
 // swap that lowers BIC keeps a tie open): the search without it is taken
@@ -333,7 +335,11 @@ struct DiagnoseOptions {
   // taken alone with its next contender (not refused) within near_tie_bic
   // of it, the record is searched again without that effect; that search's
   // answer is taken when it explains the record with a complete model lower in
-  // BIC by more than ambiguity_bic (the greedy search's wrong turn). At
+  // BIC by more than ambiguity_bic (the greedy search's wrong turn), and
+  // stands in a tie with the step within ambiguity_bic. Led by more, the
+  // step is searched without only where an effect not excluded still
+  // lowers BIC beside the answer, and that search is taken only when
+  // better by more than ambiguity_bic (a lead of 42 on draw 37). At
   // the first step every effect is still missing and the leads mislead
   // most: a false body asymmetry has led a 3-s run's true first effect by
   // 14.6, 17.4, 26 and 33.6 on four noise draws.
