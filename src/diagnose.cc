@@ -576,7 +576,6 @@ Diagnosis Search(const Case& c,
     }
     if (d.steps.empty() && NearTie(contenders, earned, options)) {
       notes->led_first = best.record.effect;
-      if (step_rivals.empty()) notes->near_first = best.record.effect;
     }
     if (d.steps.empty() && step_rivals.empty()) {
       notes->first_alone = best.record.effect;

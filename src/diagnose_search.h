@@ -561,9 +561,8 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
 
 // What a search tells its caller besides its answer: the effect it
 // followed at a tie of two catalog effects (empty if none), the first
-// step's effect when it was taken alone, untied, and its next contender
-// not refused came within near_tie_bic (NearTie; empty otherwise), the
-// step the
+// step's effect when it was taken alone, untied, and when its next
+// contender not refused came within near_tie_bic (NearTie), the step the
 // effects not excluded outdid (FindSetReplacements; empty if none), and
 // whether a contender refused for leaving its bounds came ahead of every
 // one that earned its place at some round (a joint set's lead under
@@ -571,9 +570,8 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
 // catalog (Diagnosis::outside_catalog), as fitted.
 struct SearchNotes {
   std::string tied_first;
-  std::string near_first;
   // The first step's effect when it was taken alone, untied, near tie or
-  // not (NearTieBranch).
+  // not (NearTieBranch; a near tie when it is led_first too).
   std::string first_alone;
   // The first step's effect when its next catalog contender came within
   // near_tie_bic, whether or not a probe tied with it (NearTieUnderProbe).

@@ -251,7 +251,7 @@ Diagnosis CatalogAlone(const Case& c,
 }
 
 // Search, and when a probe outdid the catalog, CatalogAlone (whose
-// answer has no notes->outdone or near_first: its search had its own
+// answer has no notes->outdone or first_alone: its search had its own
 // second thoughts).
 Diagnosis Searched(const Case& c,
                    const FitResult& nominal,
@@ -261,7 +261,6 @@ Diagnosis Searched(const Case& c,
   if (d.outside_catalog.effect.empty()) return d;
   const std::string led_first = notes->led_first;
   notes->outdone.clear();
-  notes->near_first.clear();
   notes->first_alone.clear();
   notes->led_first.clear();
   d = CatalogAlone(c, nominal, options, *notes, std::move(d));
@@ -471,7 +470,7 @@ Diagnosis NearTieUnderProbe(const Case& c,
 // greedy search's wrong turn: the search without its effect is the answer
 // when it explains the record with a complete model whose BIC is lower by
 // more than ambiguity_bic; and where its runner-up came within
-// near_tie_bic (a near tie, SearchNotes::near_first), within ambiguity_bic
+// near_tie_bic (a near tie, SearchNotes::led_first), within ambiguity_bic
 // either way the step stands in a tie with what that search found
 // (StandInForSearch). Only the first step, where every effect is still
 // missing and the signatures mix most; only when the answer claims its
@@ -500,7 +499,7 @@ Diagnosis NearTieBranch(const Case& c,
                         const SearchNotes& notes,
                         Diagnosis d) {
   const std::string& first = notes.first_alone;
-  const bool near = !first.empty() && notes.near_first == first;
+  const bool near = !first.empty() && notes.led_first == first;
   const auto claimed =
       std::find_if(d.steps.begin(), d.steps.end(), [&](const DiagnosisStep& s) {
         return s.effect == first;
@@ -539,10 +538,9 @@ Diagnosis NearTieBranch(const Case& c,
                   "; without it the search explains the record "
                   "with a BIC " +
                   FormatNumber("%.1f", margin) + " lower",
-              near ? ", taken first by a small lead, explains the record "
-                     "worse than the effects found without it"
-                   : ", taken first, explains the record worse than the "
-                     "effects found without it",
+              std::string(", taken first") + (near ? " by a small lead" : "") +
+                  ", explains the record worse than the effects found "
+                  "without it",
               &other);
   return other;
 }
