@@ -299,14 +299,14 @@ bool WithEffects(const Case& at,
 }
 
 // Whether the set `members` fitted as `fit` (model `c`) earns its place
-// together: residuals at the noise level, every effect in the model within
-// its bounds, and the held-out part predicted better (gain per parameter
-// as for one effect) into *gain.
+// together: residuals at the noise level, every effect in the model (its
+// members and those `added` before) within its bounds, and the held-out
+// part predicted better (gain per parameter as for one effect) into *gain.
 bool EarnedTogether(const Case& c,
                     const FitResult& fit,
                     const std::vector<int>& members,
                     const std::vector<Contender>& contenders,
-                    std::vector<const Effect*> effects,
+                    const std::vector<const Effect*>& added,
                     int terms,
                     const DiagnoseOptions& options,
                     OutOfSample* out_of_sample,
@@ -324,7 +324,7 @@ bool EarnedTogether(const Case& c,
       return false;
     }
   }
-  if (!ImplausibleAmongAsJudged(effects, c, fit, options).empty()) {
+  if (!ImplausibleAmongAsJudged(added, c, fit, options).empty()) {
     return false;
   }
   *gain = out_of_sample->Gain(FromSolution(c, fit));
