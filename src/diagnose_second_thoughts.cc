@@ -9,8 +9,7 @@
 // other (OtherBranch); a first step that leads nowhere is searched
 // without (DeadEndBranch); joint sets may be led by an effect out of its
 // bounds (FromBounds); a near or outdone tie's first step is searched
-// without (NearTieBranch, OutdoneTieBranch), and so is a step no complete
-// model of a tie needs (RedundantStepBranch); a probe outside the catalog
+// without (NearTieBranch, OutdoneTieBranch); a probe outside the catalog
 // that outdid it is weighed with the catalog's effects beside it
 // (CatalogAlone). Answers are compared by the BIC of their complete
 // models (CompleteBic).
@@ -651,89 +650,6 @@ Diagnosis FromBounds(const Case& c,
   return d;
 }
 
-// The step of the ambiguous answer `d` that none of its complete models
-// (Diagnosis::alternatives) needs, by Prune's rule: without it each stays
-// at the noise level and its BIC rises by less than min_bic_drop (the
-// step whose greatest rise is least), or "" (also when a complete model
-// was not fitted). The swaps that keep a tie open are fitted on the
-// pruned model, but an open tie leaves the steps as taken.
-std::string RedundantInEach(const Diagnosis& d,
-                            const std::vector<TimeHistory>& data,
-                            const DiagnoseOptions& options) {
-  std::vector<const Case*> cases;
-  std::vector<const FitResult*> fits;
-  for (const AlternativeModel& a : d.alternatives) {
-    if (a.fit < 0) return "";
-    cases.push_back(&a.model);
-    fits.push_back(&d.fits[a.fit]);
-  }
-  if (cases.size() < 2 || d.steps.empty()) return "";
-  std::vector<FitResult> without;
-  std::vector<char> fitted;
-  FitWithoutEach(data, cases, fits, d.steps, &without, &fitted);
-  const size_t n = d.steps.size();
-  std::string redundant;
-  double least = options.min_bic_drop;
-  for (size_t i = 0; i < n; ++i) {
-    double rise = -std::numeric_limits<double>::infinity();
-    for (size_t m = 0; m < cases.size(); ++m) {
-      const size_t k = m * n + i;
-      rise = !fitted[k] || !CheckResiduals(without[k], options).at_noise_level
-                 ? std::numeric_limits<double>::infinity()
-                 : std::max(rise, Bic(without[k]) - Bic(*fits[m]));
-    }
-    VLOG(1) << d.steps[i].effect << " in every complete model: BIC "
-            << FormatNumber("%+.1f", rise) << " at most without it";
-    if (rise < least) {
-      least = rise;
-      redundant = d.steps[i].effect;
-    }
-  }
-  return redundant;
-}
-
-// The ambiguous answer `d` searched again without a step none of its
-// complete models needs (RedundantInEach): taken when it explains the
-// record, adds no effect `d` neither added nor tied, and its complete
-// model's BIC is no more than min_bic_drop above (Prune's rule). On a 3-s
-// run with a tunnel stiffness, a nonlinear damping and a body asymmetry
-// (draw 24), a Magnus moment led the first round by 1.7 over the
-// asymmetry, which then came in with the damping; the roll signature of
-// the stiffness tied with a roll torque and a tunnel damping, and every
-// complete model held the Magnus moment within 1.6 of its errors of zero:
-// the false Magnus moment was named beside the right tie.
-Diagnosis RedundantStepBranch(const Case& c,
-                              const FitResult& nominal,
-                              const DiagnoseOptions& options,
-                              Diagnosis d) {
-  if (d.verdict != Verdict::kAmbiguous) return d;
-  const std::string step = RedundantInEach(d, FittedData(nominal), options);
-  if (step.empty()) return d;
-  Diagnosis other = SearchedWithout(c, nominal, options, step);
-  const std::vector<std::string> known = ExplainedIds(d);
-  const std::vector<std::string> found = ExplainedIds(other);
-  const bool within =
-      std::all_of(found.begin(), found.end(), [&](const std::string& id) {
-        return std::find(known.begin(), known.end(), id) != known.end();
-      });
-  const double rise = CompleteBic(other) - CompleteBic(d);
-  VLOG(1) << "searched without " << step << ": "
-          << VerdictToString(other.verdict) << ", complete BIC "
-          << FormatNumber("%+.1f", rise);
-  if (!ExplainsRecord(other) || !within || !(rise < options.min_bic_drop)) {
-    return d;
-  }
-  for (const DiagnosisStep& s : d.steps) {
-    if (s.effect != step) continue;
-    NoteDropped(AsContender(s),
-                "needed in none of the complete models of the tie that "
-                "followed it",
-                ", taken first, was needed in none of the complete models",
-                &other);
-  }
-  return other;
-}
-
 // The search from `nominal`, the fit of `c`, again with a round past the
 // noise level (DiagnoseOptions::past_noise) for the effects that lower BIC
 // by more than min_bic_drop beside the model of `d`, its first answer,
@@ -784,8 +700,8 @@ Diagnosis PastNoise(const Case& c,
 // The search from `nominal`, the fit of `c`, and its second thoughts: an
 // effect past the noise (PastNoise), a step outdone (ReplacedStep), the
 // other branch of a tie (OtherBranch), joint sets led by an effect out of
-// its bounds (FromBounds), a near or outdone tie's first step and a step
-// no complete model of a tie needs searched without.
+// its bounds (FromBounds), a near or outdone tie's first step searched
+// without.
 Diagnosis DiagnoseFrom(const Case& c,
                        const FitResult& nominal,
                        const DiagnoseOptions& options) {
@@ -808,8 +724,7 @@ Diagnosis DiagnoseFrom(const Case& c,
   d = NearTieUnderProbe(c, nominal, options, notes, std::move(d));
   d = FromBounds(c, nominal, options, notes, std::move(d));
   d = NearTieBranch(c, nominal, options, notes, std::move(d));
-  d = OutdoneTieBranch(c, nominal, options, std::move(d));
-  return RedundantStepBranch(c, nominal, options, std::move(d));
+  return OutdoneTieBranch(c, nominal, options, std::move(d));
 }
 
 }  // namespace fit3dof

@@ -503,6 +503,9 @@ struct Diagnosis {
   // level and raises BIC by less than min_bic_drop (a tunnel damping taken
   // first for what a Magnus moment and a nonlinear damping explain
   // together). Forward selection is greedy; this is its backward check.
+  // An ambiguous answer's steps are pruned so when every complete model
+  // (alternatives) stays at the noise level without one, BIC rising by
+  // less than min_bic_drop in each.
   std::vector<DiagnosisStep> pruned;
   Verdict verdict = Verdict::kNoiseLevel;
   std::string verdict_text;  // the sentence for people
@@ -572,7 +575,9 @@ struct Diagnosis {
   // The fit before the first step, then one per step the loop took (kept,
   // partial or pruned, in the order taken), then one per pruning, then
   // after a tie those of the alternatives and of the model without it
-  // (none with a stand-in: the final model is then a step's).
+  // (none with a stand-in: the final model is then a step's), then for
+  // each step pruned within the tie the alternatives and the final model
+  // without it (the alternatives alone with a stand-in).
   std::vector<FitResult> fits;
   size_t final_fit = 0;  // which of them is the final model's
   // The fit whose values the partial steps report: the last model the
