@@ -618,7 +618,7 @@ Diagnosis Search(const Case& c,
   // a true body yaw asymmetry by 10 or more on draws 22 and 25's coning
   // runs, and the asymmetry is named.
   notes->outdone = FindSetReplacements(models, current, data, options, &d);
-  if (notes->outdone.empty() && d.ambiguous.empty()) {
+  if (notes->outdone.empty()) {
     Diagnosis tie;
     notes->outdone =
         FindSingleReplacement(models, current, data, options, &d, &tie);

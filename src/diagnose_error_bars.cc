@@ -793,15 +793,14 @@ void WidenAlternatives(const std::vector<TimeHistory>& data,
 
 namespace {
 
-// Whether the effect not excluded `id` may stand in for a step: neither
-// a near twin nor a lesser refit (Diagnosis::near_twins, lesser_refits).
-bool MayStandIn(const Diagnosis& d, const std::string& id) {
-  for (const auto* list : {&d.near_twins, &d.lesser_refits}) {
-    if (std::find(list->begin(), list->end(), id) != list->end()) {
-      return false;
-    }
-  }
-  return true;
+// Whether the effect not excluded `id` may stand in for a step, `alone`
+// or in a set: never a lesser refit, and a near twin only alone
+// (Diagnosis::lesser_refits, near_twins).
+bool MayStandIn(const Diagnosis& d, const std::string& id, bool alone) {
+  const auto in = [&](const std::vector<std::string>& list) {
+    return std::find(list.begin(), list.end(), id) != list.end();
+  };
+  return !in(d.lesser_refits) && (alone || !in(d.near_twins));
 }
 
 // How far the complete model `m` with `members` in `step`'s place (the
@@ -940,7 +939,7 @@ std::string FindSetReplacements(const std::vector<Case>& models,
   if (!CheckResiduals(*m.fit, options).at_noise_level) return "";
   std::vector<const Effect*> set;
   for (const CandidateFit& k : d->not_excluded) {
-    if (MayStandIn(*d, k.effect)) set.push_back(FindEffect(k.effect));
+    if (MayStandIn(*d, k.effect, false)) set.push_back(FindEffect(k.effect));
   }
   if (set.size() < 2) return "";
   const int n = static_cast<int>(d->steps.size());
@@ -1025,10 +1024,10 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
                                   const DiagnoseOptions& options,
                                   Diagnosis* d,
                                   Diagnosis* outdone_tie) {
-  if (d->steps.empty() || !d->ambiguous.empty()) return "";
+  if (d->steps.empty()) return "";
   std::vector<const Effect*> singles;
   for (const CandidateFit& k : d->not_excluded) {
-    if (k.bic_drop > 0.0 && MayStandIn(*d, k.effect)) {
+    if (k.bic_drop > 0.0 && MayStandIn(*d, k.effect, true)) {
       singles.push_back(FindEffect(k.effect));
     }
   }

@@ -545,10 +545,14 @@ std::string FindSetReplacements(const std::vector<Case>& models,
 // roll torque for the stiffness's roll signature, the stiffness not
 // excluded beside it; in the torque's place it ran to t1 = 1.55 (bound
 // 0.116), and with t1 held at zero its BIC was 4.3 lower: the two tie.
-// Better by ambiguity_bic or more, the step's effect is returned with *d
-// left as it is, and *outdone_tie gets *d with the step in a tie with that
-// effect (DiagnoseFrom keeps it where the search without the step does
-// not explain the record better).
+// An ambiguous answer's steps are tried so too, and a near twin may stand
+// in alone (not a lesser refit): on draw 27's 3-s run of that case a
+// Magnus moment (-2.5 +- 0.56) was named beside the tie the stiffness was
+// in, and the true body asymmetry, a near twin not excluded beside it
+// (BIC -3.1), was 5 lower in its place. Better by ambiguity_bic or more, the
+// step's effect is returned with *d left as it is, and *outdone_tie gets *d
+// with the step in a tie with that effect (DiagnoseFrom keeps it where the
+// search without the step does not explain the record better).
 std::string FindSingleReplacement(const std::vector<Case>& models,
                                   const Case& current,
                                   const std::vector<TimeHistory>& data,

@@ -599,7 +599,8 @@ struct Diagnosis {
   // Those of not_excluded that no round contended: effects the complete
   // model's effects made near twins of its free parameters, tried beside
   // it for that alone (diagnose_error_bars.cc NearTwins). Their error bars
-  // count; they do not stand in for a step (FindSetReplacements).
+  // count; they do not stand in for a step in a set (FindSetReplacements),
+  // but one alone may (FindSingleReplacement).
   std::vector<std::string> near_twins;
   // The effects tried beside the complete model that were only lesser
   // refits (each round that refitted them, they lowered BIC by less than
