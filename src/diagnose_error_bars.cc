@@ -427,12 +427,9 @@ std::string ImplausibleAmongAsJudged(const std::vector<const Effect*>& effects,
                                      const Case& c,
                                      const FitResult& fit,
                                      const DiagnoseOptions& options) {
-  for (const Effect* e : effects) {
-    const std::string why =
-        ImplausibleAsJudged(*e, c, fit, e->Terms(c.model), options);
-    if (!why.empty()) return e->id + " (added before): " + why;
-  }
-  return "";
+  return FirstImplausible(effects, [&](const Effect& e) {
+    return ImplausibleAsJudged(e, c, fit, e.Terms(c.model), options);
+  });
 }
 
 void WidenForTie(Diagnosis* d) {

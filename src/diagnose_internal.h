@@ -7,6 +7,7 @@
 #ifndef FIT3DOF_SRC_DIAGNOSE_INTERNAL_H_
 #define FIT3DOF_SRC_DIAGNOSE_INTERNAL_H_
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -93,8 +94,13 @@ std::string WrongSign(const Effect& probe, const FitResult& fit);
 // The terms WrongSign judges wrong, each (pointers into `fit`).
 std::vector<const ParameterEstimate*> WrongSignTerms(const Effect& probe,
                                                      const FitResult& fit);
-// The first of `effects` outside its bounds in `fit`: "<id> (added
+// The first of `effects` that `why` (an effect -> why it lies outside
+// its bounds, empty when within them) finds outside: "<id> (added
 // before): <why>", or empty.
+std::string FirstImplausible(
+    const std::vector<const Effect*>& effects,
+    const std::function<std::string(const Effect&)>& why);
+// FirstImplausible with each effect judged at `fit` (Implausible).
 std::string ImplausibleAmong(const std::vector<const Effect*>& effects,
                              const Case& c,
                              const FitResult& fit);

@@ -964,17 +964,18 @@ void PruneWithinTie(const std::vector<TimeHistory>& data,
       cases.push_back(
           WithoutStep(CaseAtSolution(a.model, d->fits[a.fit]), step));
     }
-    Case final_case = cases[0];
-    FitResult final_fit = without[0];
-    if (d->stand_in.empty()) {
-      final_case = WithoutStep(CaseAtSolution(*current, d->FinalFit()), step);
-      if (!FitFrom(final_case,
-                   d->FinalFit(),
-                   data,
-                   "without " + step.effect,
-                   &final_fit)) {
-        return;
-      }
+    // With a stand-in the final model is the first complete one.
+    const bool stand_in = !d->stand_in.empty();
+    Case final_case =
+        stand_in ? cases[0]
+                 : WithoutStep(CaseAtSolution(*current, d->FinalFit()), step);
+    FitResult final_fit;
+    if (!stand_in && !FitFrom(final_case,
+                              d->FinalFit(),
+                              data,
+                              "without " + step.effect,
+                              &final_fit)) {
+      return;
     }
     for (size_t m = 0; m < cases.size(); ++m) {
       AlternativeModel& a = d->alternatives[m];
@@ -986,7 +987,7 @@ void PruneWithinTie(const std::vector<TimeHistory>& data,
       a.fit = static_cast<int>(d->fits.size()) - 1;
     }
     step.fit_before = static_cast<int>(d->final_fit);
-    if (d->stand_in.empty()) {
+    if (!stand_in) {
       d->fits.push_back(std::move(final_fit));
       d->final_fit = d->fits.size() - 1;
     } else {

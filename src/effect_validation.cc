@@ -321,14 +321,21 @@ std::string WrongSign(const Effect& probe, const FitResult& fit) {
          FormatNumber("%.2g", e.standard_error) + " is negative";
 }
 
+std::string FirstImplausible(
+    const std::vector<const Effect*>& effects,
+    const std::function<std::string(const Effect&)>& why) {
+  for (const Effect* e : effects) {
+    const std::string outside = why(*e);
+    if (!outside.empty()) return e->id + " (added before): " + outside;
+  }
+  return "";
+}
+
 std::string ImplausibleAmong(const std::vector<const Effect*>& effects,
                              const Case& c,
                              const FitResult& fit) {
-  for (const Effect* e : effects) {
-    const std::string why = Implausible(*e, c, fit);
-    if (!why.empty()) return e->id + " (added before): " + why;
-  }
-  return "";
+  return FirstImplausible(
+      effects, [&](const Effect& e) { return Implausible(e, c, fit); });
 }
 
 std::string Drags(const FitResult& before,
