@@ -2319,6 +2319,43 @@ TEST(Diagnose, ASwapRunningAlongTheRidgeIsHeldAtZeroInTurn) {
   ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
+// The same case on draw 40 (t1 1.02e-3, t3 -3.6e-4, Cm_q_delta2 806, body
+// yaw -0.30%), kept as tests/data/short_stiffness_damping_asymmetry_draw40
+// .csv. A Magnus moment led the first round by 0.9 over the stiffness and
+// took the asymmetry's signal: beside it the asymmetry is excluded, so no
+// search nor replacement from the effects not excluded tried it, and the
+// search without the Magnus moment ended `not_explained` (a lag of the
+// readings outdid the stiffness, which then ran along Eq. 43's ridge).
+// The Magnus moment was named, -3.7 +- 1.3 (2.8 of its own errors from
+// zero). Barely held so, its place is scored afresh at the end
+// (TieScoredInPlace): the asymmetry comes first there and explains the
+// record 10.1 lower in BIC. The two tie, neither is claimed, and the
+// tunnel stiffness's complete model (t1 = -0.71 +- 0.16 along the ridge
+// with the Magnus moment) now covers the asymmetry's model too.
+TEST(Diagnose, AnEffectScoredFirstInABarelyHeldStepsPlaceTiesWithIt) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_draw40.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_FALSE(EffectIds(d.steps).count("magnus")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
+  std::set<std::string> tied = EffectIds(d.ambiguous);
+  for (const auto& tie : d.later_ties) {
+    for (const CandidateFit& k : tie) tied.insert(k.effect);
+  }
+  EXPECT_TRUE(tied.count("magnus") && tied.count("asymmetric_body")) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+  const auto stiffness = std::find_if(
+      d.alternatives.begin(),
+      d.alternatives.end(),
+      [](const AlternativeModel& a) { return a.effect == "tunnel_stiffness"; });
+  ASSERT_NE(stiffness, d.alternatives.end()) << text;
+  ExpectCovers(stiffness->parameters,
+               {{"tunnel_Cm_theta", 1.02e-3}, {"tunnel_Cn_psi", -3.57e-4}},
+               text);
+}
+
 // The same case on draw 29 (t1 8.1e-4, t3 -2.8e-4, Cm_q_delta2 983, body
 // yaw +0.25%), kept as tests/data/short_stiffness_damping_asymmetry_vary29
 // .csv. A roll torque (Eq. 39's roll part of the stiffness) is taken
