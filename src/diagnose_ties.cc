@@ -201,6 +201,10 @@ struct Swap {
   const CandidateFit* rival = nullptr;
   const Effect* effect = nullptr;
   bool unfitted_as_good = false;
+  // A roll-locked twin of a roll-locked step at spins that do not
+  // separate them (Unresolved): fitted, and as good unless its model is
+  // far worse.
+  bool twin = false;
   Case c;
   std::vector<std::string> terms;
   bool fitted = false;
@@ -214,6 +218,20 @@ bool SwapWithin(const Swap& w) {
   return w.effect == nullptr ||
          ImplausibleWithin(*w.effect, w.c, w.fit, w.terms, kBoundErrors)
              .empty();
+}
+
+// Whether the twin swap `w`, fitted (its BIC `rise` above the step's model,
+// which reaches the noise) explains the record far worse: its residuals stay
+// structured and BIC rises by ambiguity_bic or more. Twins are held in a
+// tie whatever a close swap says (a trim moment had won one from the roll
+// reading error that was there), but not against the record: on draw 41's
+// two runs at 30 and 60 deg/s a trim moment in the place of a reading
+// error that varies with roll in pitch and yaw apart (four terms, which a
+// trim moment's two cannot follow) left the probable error at 1.20 with
+// the tunnel stiffness and the angularity in, against 0.999.
+bool FarWorse(const Swap& w, double rise, const DiagnoseOptions& options) {
+  return rise >= options.ambiguity_bic &&
+         !CheckResiduals(w.fit, options).at_noise_level;
 }
 
 // Out of its bounds on Eq. 43's ridge, a tunnel term runs along it as far
@@ -252,7 +270,8 @@ std::vector<Swap> HeldOnRidge(const std::vector<Swap>& swaps) {
 // (not fitted) always does, and so does a roll-locked rival of a
 // roll-locked effect unless a segment spins fast enough to separate them
 // (on two runs at 30 and 60 deg/s a trim moment had won the swap from the
-// roll reading error that was there); a rival in the model is none. The
+// roll reading error that was there) or its swap is far worse (FarWorse);
+// a rival in the model is none. The
 // fits of the rivals that were fitted and kept the tie open go into
 // *as_good_fits.
 std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
@@ -267,9 +286,10 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
   const Effect* own = FindEffect(step.effect);
   const bool twins_separate = SpinSeparatesRollLocked(at, fit, data);
   // Each rival's swap: none for a rival in the model; as good unfitted
-  // for a drift in time and an inseparable twin (a roll-locked rival of a
+  // for a drift in time, or where it does not apply; as good unless far
+  // worse (FarWorse) for an inseparable twin (a roll-locked rival of a
   // roll-locked step that tied with it at the step: one that lost there by
-  // more, WiderRivals, must win the swap), or where it does not apply.
+  // more, WiderRivals, must win the swap).
   std::vector<Swap> swaps;
   for (const CandidateFit& rival : rivals) {
     if (std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
@@ -285,7 +305,8 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
     const bool twins = own != nullptr && own->roll_locked &&
                        w.effect != nullptr && w.effect->roll_locked &&
                        !twins_separate && tied_at_step;
-    w.unfitted_as_good = rival.effect == kDriftInTime || twins ||
+    w.twin = twins;
+    w.unfitted_as_good = rival.effect == kDriftInTime ||
                          !RivalCase(without, rival.effect, &w.c, &w.terms);
     swaps.push_back(std::move(w));
   }
@@ -312,9 +333,11 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
   std::vector<CandidateFit> open;
   for (std::vector<Swap>* all : {&swaps, &held}) {
     for (Swap& w : *all) {
+      const bool close =
+          w.fitted && rise(w) < options.ambiguity_bic && SwapWithin(w);
       const bool as_good =
-          w.unfitted_as_good || (w.held.empty() && !w.fitted) ||
-          (w.fitted && rise(w) < options.ambiguity_bic && SwapWithin(w));
+          w.unfitted_as_good || (w.held.empty() && !w.fitted) || close ||
+          (w.twin && !(w.fitted && FarWorse(w, rise(w), options)));
       VLOG(1) << step.effect << " swapped for " << w.rival->effect
               << (w.held.empty() ? "" : ", " + w.held + " held at zero") << ": "
               << (as_good ? "as good" : "worse")
@@ -326,7 +349,7 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
             return k.effect == w.rival->effect;
           });
       if (!listed) open.push_back(*w.rival);
-      if (w.fitted) as_good_fits->push_back(std::move(w.fit));
+      if (close) as_good_fits->push_back(std::move(w.fit));
     }
   }
   return open;

@@ -2895,6 +2895,35 @@ TEST(Diagnose, AnEffectAdmittedWithinItsErrorsIsJudgedSoBesideOthers) {
       text);
 }
 
+// tools/diagnose_suite's `pair` tunnel stiffness + roll reading error +
+// flow angularity (draw 41, --vary; tests/data/pair_stiffness_roll_error_
+// angularity_draw41.yaml). The roll error and a trim moment tied at their
+// step (BIC 107.1 and 99.5), and at 30 and 60 deg/s, far below the pitch
+// frequency, the two are roll-locked twins whose swap was held a tie
+// unfitted. But the trim moment's two terms cannot follow this reading
+// error's four: with the stiffness and the angularity in its place the
+// probable error stayed at 1.20 (0.999 with the roll error), and since
+// that complete model left the noise the drag rule was applied at the
+// tie, refusing the stiffness (Cm_alpha moved along Eq. 43's ridge by
+// 1640 of the nominal fit's errors): `ambiguous`, nothing added. A twin
+// whose swap is far worse (structured residuals, BIC 10 or more above)
+// no longer holds the tie (FarWorse): the three are named.
+TEST(Diagnose, ATwinWhoseSwapIsFarWorseHoldsNoTie) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_stiffness_roll_error_angularity_draw41.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(
+      d,
+      {"tunnel_stiffness", "roll_interaction", "flow_angularity"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"tunnel_Cm_theta", 1.25e-3},
+       {"theta_cos_phi", -0.0248},
+       {"psi_T", -0.0196}},
+      text);
+}
+
 // tools/diagnose_suite's `pair` tunnel damping + Magnus moment + flow
 // angularity (draw 15, --vary; tests/data/pair_damping_magnus_angularity_
 // vary15.yaml). Alone, the Magnus moment and the angularity predicted the
