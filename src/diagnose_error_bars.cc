@@ -504,20 +504,24 @@ Case EffectsHeld(const CompleteModel& m) {
 // of the body's own coefficients alone are left out: a tunnel stiffness
 // is Cm_alpha's twin on every record (Eq. 43), and tried beside the
 // nominal fit of a clean record it widened Cm_alpha 8800-fold. There the
-// nominal fit holds them absent, as the report's programs did.
+// nominal fit holds them absent, as the report's programs did; they are
+// listed in d->coefficient_twins (but for Eq. 43's tunnel terms, twins on
+// every record), where the answer says so.
 std::vector<const Effect*> NearTwins(
     const std::vector<Candidate>& scored,
     const std::vector<const Effect*>& contended,
     const CompleteModel& model,
-    const Diagnosis& d) {
+    Diagnosis* d) {
   std::vector<const Effect*> near;
   std::vector<double> novelty;
+  std::vector<CandidateScore> scores;
   for (const Candidate& k : scored) {
-    if (IsNearTwin(k.score) && !InTie(d, k.effect->id) &&
+    if (IsNearTwin(k.score) && !InTie(*d, k.effect->id) &&
         std::find(contended.begin(), contended.end(), k.effect) ==
             contended.end()) {
       near.push_back(k.effect);
       novelty.push_back(k.score.novelty);
+      scores.push_back(k.score);
     }
   }
   // Those alone scored again with the effects' terms held.
@@ -536,7 +540,16 @@ std::vector<const Effect*> NearTwins(
     VLOG(1) << near[i]->id << " beside the complete model: novelty "
             << novelty[i] << ", " << held_novelty[i]
             << " with its effects held";
-    if (novelty[i] < 0.1 * held_novelty[i]) twins.push_back(near[i]);
+    if (novelty[i] < 0.1 * held_novelty[i]) {
+      twins.push_back(near[i]);
+    } else if (held_novelty[i] > 0.0 && !OnTunnelRidge(*near[i]) &&
+               std::none_of(d->coefficient_twins.begin(),
+                            d->coefficient_twins.end(),
+                            [&](const CandidateScore& t) {
+                              return t.effect == near[i]->id;
+                            })) {
+      d->coefficient_twins.push_back(scores[i]);
+    }
   }
   return twins;
 }
@@ -651,7 +664,7 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   // The near twins of the first complete model's parameters and the
   // effects its score finds unrefitted: tried beside it alone.
   const std::vector<const Effect*> twins =
-      NearTwins(scored, effects, first[0], *d);
+      NearTwins(scored, effects, first[0], d);
   std::vector<const Effect*> alone = twins;
   for (const Effect* e :
        Unrefitted(scored, effects, *first[0].fit, *d, options)) {

@@ -201,6 +201,11 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   }
   out["not_excluded"] = Contenders(d.not_excluded);
   out["near_twins"] = d.near_twins;
+  out["coefficient_twins"] = json::array();
+  for (const CandidateScore& t : d.coefficient_twins) {
+    out["coefficient_twins"].push_back(
+        {{"effect", t.effect}, {"novelty", t.novelty}});
+  }
   out["outdone_by_probe"] = d.outdone_by_probe;
   out["refused_for_drag"] = d.refused_for_drag;
   out["open_terms"] = Contenders(d.open_terms);
@@ -328,6 +333,13 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   for (const CandidateFit& k : d.open_terms) {
     out += "  left open, the final error bars cover it: " + k.effect + " (" +
            Values(k.parameters) + "): " + k.rejected + "\n";
+  }
+  for (const CandidateScore& t : d.coefficient_twins) {
+    out += "  not seen apart from the fitted coefficients: " + t.effect + " (" +
+           FormatNumber("%.2g", 100.0 * t.novelty) +
+           "% of its information its own on this record): had it been "
+           "present, the coefficients carry it and their error bars do not "
+           "cover it\n";
   }
   for (const CandidateFit& r : d.rejected) {
     out += "  not added: " + r.effect + " (" + Values(r.parameters) +

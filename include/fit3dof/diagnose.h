@@ -604,6 +604,16 @@ struct Diagnosis {
   // count; they do not stand in for a step in a set (FindSetReplacements),
   // but one alone may (FindSingleReplacement).
   std::vector<std::string> near_twins;
+  // Catalog effects the record cannot tell from the final model's free
+  // parameters on its own (near twins of them at the complete model's
+  // solution, less than 1% of the information of some direction of their
+  // terms left, not made so by the effects added; Eq. 43's tunnel terms,
+  // twins of Cm_alpha and Cm_q on every record, left out). None is tried:
+  // had one been present, the fitted coefficients carry it, and their
+  // error bars do not cover it. On a steady cone a Magnus moment keeps
+  // 0.014% of its information apart from Cm_q (draw 42: the final Cm_q
+  // -0.24 against a truth of -5.5).
+  std::vector<CandidateScore> coefficient_twins;
   // The effects tried beside the complete model that were only lesser
   // refits (each round that refitted them, they lowered BIC by less than
   // min_bic_drop), because its score test called for it: when not
