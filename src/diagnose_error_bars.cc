@@ -513,14 +513,12 @@ std::vector<const Effect*> NearTwins(
     const CompleteModel& model,
     Diagnosis* d) {
   std::vector<const Effect*> near;
-  std::vector<double> novelty;
-  std::vector<CandidateScore> scores;
+  std::vector<CandidateScore> scores;  // each of near's
   for (const Candidate& k : scored) {
     if (IsNearTwin(k.score) && !InTie(*d, k.effect->id) &&
         std::find(contended.begin(), contended.end(), k.effect) ==
             contended.end()) {
       near.push_back(k.effect);
-      novelty.push_back(k.score.novelty);
       scores.push_back(k.score);
     }
   }
@@ -538,9 +536,9 @@ std::vector<const Effect*> NearTwins(
   std::vector<const Effect*> twins;
   for (size_t i = 0; i < near.size(); ++i) {
     VLOG(1) << near[i]->id << " beside the complete model: novelty "
-            << novelty[i] << ", " << held_novelty[i]
+            << scores[i].novelty << ", " << held_novelty[i]
             << " with its effects held";
-    if (novelty[i] < 0.1 * held_novelty[i]) {
+    if (scores[i].novelty < 0.1 * held_novelty[i]) {
       twins.push_back(near[i]);
     } else if (held_novelty[i] > 0.0 && !OnTunnelRidge(*near[i]) &&
                std::none_of(d->coefficient_twins.begin(),
@@ -746,6 +744,32 @@ void WidenForNotExcluded(Diagnosis* d) {
                  &d->model_standard_errors);
 }
 
+namespace {
+
+// The alternative `a` of *d widened to cover `models` (WidenErrorBars;
+// `weights`, `by`). The final model's own error bars are widened already,
+// by the tie's other models too; as an alternative (the tied effect it
+// holds in the tie's place) it is widened as the others are, on its own
+// copy: its values had gone out with its own error bars alone (a roll
+// reading error beside a flow angularity not excluded, 0.026 +- 0.0023 deg
+// against a truth of 0.039, and +- 0.010 in the final model).
+void WidenAlternative(
+    const std::vector<const std::vector<ParameterEstimate>*>& models,
+    const std::vector<double>& weights,
+    const std::string& by,
+    Diagnosis* d,
+    AlternativeModel* a) {
+  const bool final = a->fit == static_cast<int>(d->final_fit);
+  FitResult copy;
+  if (final) copy.parameters = a->parameters;
+  FitResult& own = final ? copy : d->fits[a->fit];
+  std::map<std::string, double> unused;
+  WidenErrorBars(models, weights, by, &own, &unused);
+  a->parameters = own.parameters;
+}
+
+}  // namespace
+
 void WidenAlternatives(const std::vector<TimeHistory>& data,
                        const DiagnoseOptions& options,
                        Diagnosis* d) {
@@ -780,24 +804,12 @@ void WidenAlternatives(const std::vector<TimeHistory>& data,
       which += (which.empty() ? "" : ", ") + t.effect->id;
     }
     if (beside.empty()) continue;
-    // The final model's own error bars are widened already, by the tie's
-    // other models too; as an alternative (the tied effect it holds in the
-    // tie's place) it is widened as the others are, on its own copy: its
-    // values had gone out with its own error bars alone (a roll reading
-    // error beside a flow angularity not excluded, 0.026 +- 0.0023 deg
-    // against a truth of 0.039, and +- 0.010 in the final model).
-    const bool final = of[m]->fit == static_cast<int>(d->final_fit);
-    FitResult copy;
-    if (final) copy.parameters = of[m]->parameters;
-    FitResult& own = final ? copy : d->fits[of[m]->fit];
-    std::map<std::string, double> unused;
-    WidenErrorBars(
+    WidenAlternative(
         beside,
         weights,
         "effects the record cannot exclude beside it (" + which + ")",
-        &own,
-        &unused);
-    of[m]->parameters = own.parameters;
+        d,
+        of[m]);
   }
 }
 
@@ -1252,17 +1264,11 @@ void WidenAlternativesInPlace(const std::vector<TimeHistory>& data,
         !Implausible(effect, t.c, t.fit).empty()) {
       continue;
     }
-    const bool final = a.fit == static_cast<int>(d->final_fit);
-    FitResult copy;
-    if (final) copy.parameters = a.parameters;
-    FitResult& own = final ? copy : d->fits[a.fit];
-    std::map<std::string, double> unused;
-    WidenErrorBars({&t.fit.parameters},
-                   {},
-                   effect.id + " in " + step.effect + "'s place",
-                   &own,
-                   &unused);
-    a.parameters = own.parameters;
+    WidenAlternative({&t.fit.parameters},
+                     {},
+                     effect.id + " in " + step.effect + "'s place",
+                     d,
+                     &a);
   }
 }
 
