@@ -526,11 +526,17 @@ std::vector<const Effect*> NearTwins(
   const Case held = EffectsHeld(model);
   const std::vector<TimeHistory> data = FittedData(*model.fit);
   std::vector<double> held_novelty(near.size(), 0.0);
+  // What each would move at the solution, its effects' terms free.
+  std::vector<std::vector<TwinShift>> shifts(near.size());
+  const Case at = CaseAtSolution(model.c, *model.fit);
   ParallelFor(static_cast<int>(near.size()), [&](int i) {
     Case c;
     std::vector<std::string> added;
     if (CandidateCase(held, *near[i], &c, &added)) {
       held_novelty[i] = Score(c, added, near[i]->id, data).novelty;
+    }
+    if (CandidateCase(at, *near[i], &c, &added)) {
+      shifts[i] = TwinShifts(c, added, data);
     }
   });
   std::vector<const Effect*> twins;
@@ -543,10 +549,11 @@ std::vector<const Effect*> NearTwins(
     } else if (held_novelty[i] > 0.0 && !OnTunnelRidge(*near[i]) &&
                std::none_of(d->coefficient_twins.begin(),
                             d->coefficient_twins.end(),
-                            [&](const CandidateScore& t) {
-                              return t.effect == near[i]->id;
+                            [&](const CoefficientTwin& t) {
+                              return t.score.effect == near[i]->id;
                             })) {
-      d->coefficient_twins.push_back(scores[i]);
+      d->coefficient_twins.push_back(
+          {scores[i], shifts[i], model.fit == &d->FinalFit()});
     }
   }
   return twins;

@@ -72,6 +72,16 @@ CandidateScore Score(const Case& candidate,
                      const std::string& id,
                      const std::vector<TimeHistory>& data);
 
+// How the candidate's `added` terms, were they present, would move the
+// model's free coefficients (not a segment's initial conditions) in a fit
+// without them, to first order at the current solution: each coefficient
+// carrying a tenth or more of a term's signal, per unit of the term. For
+// a near twin (IsNearTwin) the fitted coefficient stands for itself plus
+// per_unit times the term.
+std::vector<TwinShift> TwinShifts(const Case& candidate,
+                                  const std::vector<std::string>& added,
+                                  const std::vector<TimeHistory>& data);
+
 // Whether a candidate so scored is a twin of the parameters free at the
 // solution, near or exact (CandidateScore::novelty under 0.01): its score
 // says little of what a refit with it does.

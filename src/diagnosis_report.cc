@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "diagnose_internal.h"
@@ -132,6 +133,29 @@ std::string Widened(const Diagnosis& d) {
          "own, to quote where those effects are known absent\n";
 }
 
+// What each coefficient a twin moves (CoefficientTwin::shifts) stands for,
+// in words: "; the fitted Cm_q stands for Cm_q - 0.057 Cm_p_alpha".
+std::string Stands(const CoefficientTwin& t) {
+  std::vector<std::string> order;
+  std::map<std::string, std::string> sums;
+  for (const TwinShift& s : t.shifts) {
+    if (!sums.count(s.parameter)) {
+      order.push_back(s.parameter);
+      sums[s.parameter] = s.parameter;
+    }
+    sums[s.parameter] += (s.per_unit < 0.0 ? " - " : " + ") +
+                         FormatNumber("%.3g", std::abs(s.per_unit)) + " " +
+                         s.term;
+  }
+  std::string out;
+  for (const std::string& p : order) {
+    out +=
+        (out.empty() ? "; the fitted " : ", ") + p + " stands for " + sums[p];
+  }
+  if (!out.empty() && !t.in_final_model) out += " (in the search's model)";
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::vector<CandidateFit>> Ties(const Diagnosis& d) {
@@ -202,9 +226,17 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["not_excluded"] = Contenders(d.not_excluded);
   out["near_twins"] = d.near_twins;
   out["coefficient_twins"] = json::array();
-  for (const CandidateScore& t : d.coefficient_twins) {
-    out["coefficient_twins"].push_back(
-        {{"effect", t.effect}, {"novelty", t.novelty}});
+  for (const CoefficientTwin& t : d.coefficient_twins) {
+    json moves = json::array();
+    for (const TwinShift& s : t.shifts) {
+      moves.push_back({{"term", s.term},
+                       {"parameter", s.parameter},
+                       {"per_unit", s.per_unit}});
+    }
+    out["coefficient_twins"].push_back({{"effect", t.score.effect},
+                                        {"novelty", t.score.novelty},
+                                        {"moves", moves},
+                                        {"in_final_model", t.in_final_model}});
   }
   out["outdone_by_probe"] = d.outdone_by_probe;
   out["refused_for_drag"] = d.refused_for_drag;
@@ -334,12 +366,13 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
     out += "  left open, the final error bars cover it: " + k.effect + " (" +
            Values(k.parameters) + "): " + k.rejected + "\n";
   }
-  for (const CandidateScore& t : d.coefficient_twins) {
-    out += "  not seen apart from the fitted coefficients: " + t.effect + " (" +
-           FormatNumber("%.2g", 100.0 * t.novelty) +
+  for (const CoefficientTwin& t : d.coefficient_twins) {
+    out += "  not seen apart from the fitted coefficients: " + t.score.effect +
+           " (" + FormatNumber("%.2g", 100.0 * t.score.novelty) +
            "% of its information its own on this record): had it been "
            "present, the coefficients carry it and their error bars do not "
-           "cover it\n";
+           "cover it" +
+           Stands(t) + "\n";
   }
   for (const CandidateFit& r : d.rejected) {
     out += "  not added: " + r.effect + " (" + Values(r.parameters) +

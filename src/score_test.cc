@@ -19,6 +19,10 @@ namespace {
 // score, and an effect no more novel than this is an exact twin.
 constexpr double kRankDrop = 1e-6;
 
+// The share of a near twin's signal a free parameter must carry to be
+// listed among those the twin moves (TwinShifts).
+constexpr double kCarried = 0.1;
+
 // Pseudo-inverse of a symmetric positive semi-definite matrix, dropping
 // directions below `relative` of the largest eigenvalue; `rank` receives
 // the number kept.
@@ -59,24 +63,28 @@ double Novelty(const Eigen::MatrixXd& icc, const Eigen::MatrixXd& schur) {
   return std::max(eigen.eigenvalues().minCoeff(), 0.0);
 }
 
-}  // namespace
-
-CandidateScore Score(const Case& candidate,
-                     const std::vector<std::string>& added,
-                     const std::string& id,
-                     const std::vector<TimeHistory>& data) {
-  CandidateScore score;
-  score.effect = id;
+// The information of a candidate's `added` terms (c) and of the parameters
+// already free (f) at the current solution, split into blocks.
+struct Information {
   Linearization l;
-  if (!Linearize(candidate, data, &l)) return score;
-  std::vector<int> c_index, f_index;
+  std::vector<int> c_index, f_index;  // rows of l.jtj
+  Eigen::MatrixXd iff, icf, icc;
+  Eigen::VectorXd gf, gc;  // the parts of J^T r
+};
+
+bool SplitInformation(const Case& candidate,
+                      const std::vector<std::string>& added,
+                      const std::vector<TimeHistory>& data,
+                      Information* info) {
+  Linearization& l = info->l;
+  if (!Linearize(candidate, data, &l)) return false;
   const auto& table = ParameterTable(candidate.model);
   for (size_t g = 0; g < l.names.size(); ++g) {
     const bool is_added =
         l.segments[g] < 0 &&
         std::find(added.begin(), added.end(), table[l.positions[g]].name) !=
             added.end();
-    (is_added ? c_index : f_index).push_back(static_cast<int>(g));
+    (is_added ? info->c_index : info->f_index).push_back(static_cast<int>(g));
   }
   auto block = [&](const std::vector<int>& rows, const std::vector<int>& cols) {
     Eigen::MatrixXd m(rows.size(), cols.size());
@@ -91,13 +99,29 @@ CandidateScore Score(const Case& candidate,
     for (size_t i = 0; i < rows.size(); ++i) v(i) = l.jtr(rows[i]);
     return v;
   };
-  if (c_index.empty()) return score;
-  const Eigen::MatrixXd iff = block(f_index, f_index);
-  const Eigen::MatrixXd icf = block(c_index, f_index);
-  const Eigen::MatrixXd icc = block(c_index, c_index);
-  const Eigen::MatrixXd iff_inverse = PseudoInverse(iff, 1e-14, nullptr);
+  info->iff = block(info->f_index, info->f_index);
+  info->icf = block(info->c_index, info->f_index);
+  info->icc = block(info->c_index, info->c_index);
+  info->gf = part(info->f_index);
+  info->gc = part(info->c_index);
+  return !info->c_index.empty();
+}
+
+}  // namespace
+
+CandidateScore Score(const Case& candidate,
+                     const std::vector<std::string>& added,
+                     const std::string& id,
+                     const std::vector<TimeHistory>& data) {
+  CandidateScore score;
+  score.effect = id;
+  Information info;
+  if (!SplitInformation(candidate, added, data, &info)) return score;
+  const Eigen::MatrixXd& icf = info.icf;
+  const Eigen::MatrixXd& icc = info.icc;
+  const Eigen::MatrixXd iff_inverse = PseudoInverse(info.iff, 1e-14, nullptr);
   const Eigen::MatrixXd schur = icc - icf * iff_inverse * icf.transpose();
-  const Eigen::VectorXd g = part(c_index) - icf * iff_inverse * part(f_index);
+  const Eigen::VectorXd g = info.gc - icf * iff_inverse * info.gf;
   int rank = 0;
   // Directions the parameters already free span (Eq. 43) carry no new
   // information: they drop out here.
@@ -105,12 +129,42 @@ CandidateScore Score(const Case& candidate,
   Eigen::MatrixXd schur_scaled = schur / std::max(own, 1e-300);
   const Eigen::MatrixXd inverse =
       PseudoInverse(schur_scaled, kRankDrop, &rank) / std::max(own, 1e-300);
-  const int dof = 3 * l.points - static_cast<int>(f_index.size());
-  const double variance = l.ressum / std::max(dof, 1);
+  const int dof = 3 * info.l.points - static_cast<int>(info.f_index.size());
+  const double variance = info.l.ressum / std::max(dof, 1);
   score.score = g.dot(inverse * g) / variance;
   score.dof = rank;
   score.novelty = Novelty(icc, schur);
   return score;
+}
+
+std::vector<TwinShift> TwinShifts(const Case& candidate,
+                                  const std::vector<std::string>& added,
+                                  const std::vector<TimeHistory>& data) {
+  std::vector<TwinShift> shifts;
+  Information info;
+  if (!SplitInformation(candidate, added, data, &info)) return shifts;
+  // Least squares without the terms projects their signal onto the free
+  // parameters' sensitivities: a term at m moves them by
+  // iff^-1 I_fc m.
+  const Eigen::MatrixXd per_unit =
+      PseudoInverse(info.iff, 1e-14, nullptr) * info.icf.transpose();
+  const auto& table = ParameterTable(candidate.model);
+  for (size_t j = 0; j < info.c_index.size(); ++j) {
+    const int c = info.c_index[j];
+    const double own = std::sqrt(std::max(info.icc(j, j), 1e-300));
+    for (size_t i = 0; i < info.f_index.size(); ++i) {
+      const int f = info.f_index[i];
+      // The model's own coefficients, not a segment's initial conditions;
+      // each listed when it carries a tenth of the term's signal or more.
+      const double carried =
+          std::abs(per_unit(i, j)) * std::sqrt(std::max(info.iff(i, i), 0.0));
+      if (info.l.segments[f] >= 0 || carried < kCarried * own) continue;
+      shifts.push_back({table[info.l.positions[c]].name,
+                        table[info.l.positions[f]].name,
+                        per_unit(i, j)});
+    }
+  }
+  return shifts;
 }
 
 bool IsTwin(const CandidateScore& score) {

@@ -2910,16 +2910,37 @@ TEST(Diagnose, AnEffectTheCoefficientsAbsorbIsListedAsUnseen) {
   const auto magnus = std::find_if(
       d.coefficient_twins.begin(),
       d.coefficient_twins.end(),
-      [](const CandidateScore& t) { return t.effect == "magnus"; });
+      [](const CoefficientTwin& t) { return t.score.effect == "magnus"; });
   ASSERT_NE(magnus, d.coefficient_twins.end()) << text;
-  EXPECT_LT(magnus->novelty, 0.01) << text;
+  EXPECT_LT(magnus->score.novelty, 0.01) << text;
   EXPECT_NE(text.find("not seen apart from the fitted coefficients: magnus"),
             std::string::npos)
       << text;
+  // It says what the fitted Cm_q stands for, and that holds: refitted with
+  // the Magnus moment held at m, Cm_q moves by -per_unit m.
+  ASSERT_TRUE(magnus->in_final_model) << text;
+  ASSERT_EQ(magnus->shifts.size(), 1u) << text;
+  const TwinShift& shift = magnus->shifts[0];
+  EXPECT_EQ(shift.term, "Cm_p_alpha");
+  EXPECT_EQ(shift.parameter, "Cm_q");
+  EXPECT_NE(text.find("the fitted Cm_q stands for Cm_q "), std::string::npos)
+      << text;
+  Case held = CaseAtSolution(d.final_case, d.FinalFit());
+  constexpr double kHeld = -20.0;
+  held.parameters[FindParameter(held.model, "Cm_p_alpha")] =
+      ParameterSetting{kHeld, false};
+  std::vector<TimeHistory> data;
+  for (const SegmentFit& segment : d.FinalFit().segments) {
+    data.push_back(segment.data);
+  }
+  const FitResult refit = FitSamples(held, data);
+  const double moved = SharedEstimate(refit.parameters, "Cm_q")->value -
+                       SharedEstimate(d.FinalFit().parameters, "Cm_q")->value;
+  EXPECT_NEAR(moved, -shift.per_unit * kHeld, 0.02 * std::abs(moved)) << text;
   // Eq. 43's tunnel terms, twins on every record, are not listed.
-  for (const CandidateScore& t : d.coefficient_twins) {
-    EXPECT_NE(t.effect, "tunnel_stiffness") << text;
-    EXPECT_NE(t.effect, "tunnel_damping") << text;
+  for (const CoefficientTwin& t : d.coefficient_twins) {
+    EXPECT_NE(t.score.effect, "tunnel_stiffness") << text;
+    EXPECT_NE(t.score.effect, "tunnel_damping") << text;
   }
 }
 

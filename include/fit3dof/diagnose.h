@@ -435,6 +435,26 @@ struct CandidateScore {
   double novelty = 1.0;
 };
 
+// How a term of a near twin of the free parameters would move one of them
+// (diagnose_internal.h TwinShifts): fitted without the term, the
+// parameter stands for itself plus per_unit times the term.
+struct TwinShift {
+  std::string term;
+  std::string parameter;
+  double per_unit = 0.0;
+};
+
+// A catalog effect the record cannot tell from the fitted coefficients
+// (Diagnosis::coefficient_twins): its score there, and what it would move.
+struct CoefficientTwin {
+  CandidateScore score;
+  std::vector<TwinShift> shifts;
+  // Whether the shifts are the final model's (they are the first complete
+  // model's: the search's last, when a tie's final model is short of the
+  // noise).
+  bool in_final_model = false;
+};
+
 // A contender refitted in full, and whether it earned its place.
 struct CandidateFit {
   std::string effect;
@@ -610,10 +630,12 @@ struct Diagnosis {
   // terms left, not made so by the effects added; Eq. 43's tunnel terms,
   // twins of Cm_alpha and Cm_q on every record, left out). None is tried:
   // had one been present, the fitted coefficients carry it, and their
-  // error bars do not cover it. On a steady cone a Magnus moment keeps
-  // 0.014% of its information apart from Cm_q (draw 42: the final Cm_q
-  // -0.24 against a truth of -5.5).
-  std::vector<CandidateScore> coefficient_twins;
+  // error bars do not cover it: each says which coefficients it moves, and
+  // by how much per unit of its terms (the fitted value is the
+  // combination). On a steady cone a Magnus moment keeps 0.014% of its
+  // information apart from Cm_q (draw 42: the final Cm_q -0.24 against a
+  // truth of -5.5, Cm_q - 0.057 Cm_p_alpha).
+  std::vector<CoefficientTwin> coefficient_twins;
   // The effects tried beside the complete model that were only lesser
   // refits (each round that refitted them, they lowered BIC by less than
   // min_bic_drop), because its score test called for it: when not
