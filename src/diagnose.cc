@@ -574,8 +574,9 @@ Diagnosis Search(const Case& c,
       tie = static_cast<int>(d.steps.size());
       if (earned.size() > 1) notes->tied_first = best.record.effect;
     }
-    if (d.steps.empty() && NearTie(contenders, earned, options)) {
-      notes->led_first = best.record.effect;
+    if (NearTie(contenders, earned, options)) {
+      if (d.steps.empty()) notes->led_first = best.record.effect;
+      notes->led_steps.push_back(best.record.effect);
     }
     if (d.steps.empty() && step_rivals.empty()) {
       notes->first_alone = best.record.effect;

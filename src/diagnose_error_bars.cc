@@ -450,6 +450,20 @@ void WidenForTie(Diagnosis* d) {
                  &d->model_standard_errors);
 }
 
+void WidenForCatalogAlike(const Diagnosis& other, Diagnosis* d) {
+  std::vector<const std::vector<ParameterEstimate>*> models = {
+      &other.FinalFit().parameters};
+  for (const AlternativeModel& a : other.alternatives) {
+    if (a.fit >= 0) models.push_back(&other.fits[a.fit].parameters);
+  }
+  for (const auto& m : other.tie_models) models.push_back(&m);
+  WidenErrorBars(models,
+                 {},
+                 "the catalog's effects that explain the record alike",
+                 &d->fits[d->final_fit],
+                 &d->model_standard_errors);
+}
+
 namespace {
 
 // What an effect fitted beside the `model` model (`at_noise`: its

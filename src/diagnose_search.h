@@ -421,6 +421,12 @@ bool HoldAtZero(const std::string& name, Case* c);
 // the final Cm_alpha is as uncertain as in that model.
 void WidenForTie(Diagnosis* d);
 
+// The final error bars of `d`, left `not_explained` by a probe outside
+// the catalog, widened to cover the complete models of `other`, the
+// catalog's answer that explains the record alike (within ambiguity_bic
+// of the probe's model; Diagnosis::catalog_alike), as a tie's are.
+void WidenForCatalogAlike(const Diagnosis& other, Diagnosis* d);
+
 // The contenders of the search's rounds (`contended`: each lowered BIC by
 // more than min_bic_drop where it was tried) that the record cannot
 // exclude beside a complete model (tied effects aside: WidenForTie covers
@@ -596,6 +602,10 @@ struct SearchNotes {
   // The first step's effect when its next catalog contender came within
   // near_tie_bic, whether or not a probe tied with it (NearTieUnderProbe).
   std::string led_first;
+  // Each step's effect, in order, when its next catalog contender came
+  // within near_tie_bic (led_first's rule at every step;
+  // NearTieUnderProbe).
+  std::vector<std::string> led_steps;
   // A step that effects not excluded beat in its place by ambiguity_bic or
   // more, and, when one effect did, the answer with the step in a tie with
   // it instead.

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -174,6 +175,29 @@ void AlikeBeside(const ProbeBeside& b,
   }
 }
 
+// `d`, left `not_explained` by a probe, when the catalog's answer `other`
+// explains the record alike (the probe's model `margin` of BIC above its
+// complete model, within ambiguity_bic either way): the first such answer
+// is named in the verdict and its models widen the final error bars
+// (Diagnosis::catalog_alike).
+void KeepCatalogAlike(const Diagnosis& other,
+                      double margin,
+                      const DiagnoseOptions& options,
+                      Diagnosis* d) {
+  if (!d->catalog_alike.empty() || std::abs(margin) > options.ambiguity_bic) {
+    return;
+  }
+  d->catalog_alike = ExplainedIds(other);
+  d->catalog_alike_bic = margin;
+  WidenForCatalogAlike(other, d);
+  FinalValues(d);
+  d->verdict_text += "; but " + ExplainedBy(other) +
+                     " explain the record alike (the probe's model BIC " +
+                     FormatNumber("%+.1f", margin) +
+                     " above theirs, not enough to set it aside): the final "
+                     "error bars cover their values";
+}
+
 // Whether a catalog model could be expected to beat the probe's fit by
 // ambiguity_bic: its chi-square (in the sigmas the case holds) must lie
 // above its degrees of freedom, the noise's expected share, by more than
@@ -235,7 +259,10 @@ Diagnosis CatalogAlone(const Case& c,
   const double margin = probe_bic - CompleteBic(other);
   VLOG(1) << "probe " << d.outside_catalog.effect << " BIC " << margin
           << " above the catalog's complete model";
-  if (!(margin > options.ambiguity_bic)) return d;
+  if (!(margin > options.ambiguity_bic)) {
+    KeepCatalogAlike(other, margin, options, &d);
+    return d;
+  }
   const ProbeBeside beside =
       SearchedBeside(notes, without, other, d.outside_catalog.effect);
   if (CompletedBeside(beside, options, other, &d)) return d;
@@ -259,13 +286,18 @@ Diagnosis Searched(const Case& c,
   Diagnosis d = Search(c, nominal, options, notes);
   if (d.outside_catalog.effect.empty()) return d;
   const std::string led_first = notes->led_first;
+  std::vector<std::string> led_steps = notes->led_steps;
   notes->outdone.clear();
   notes->first_alone.clear();
   notes->led_first.clear();
+  notes->led_steps.clear();
   d = CatalogAlone(c, nominal, options, *notes, std::move(d));
-  // Where the probe stands, the first step is still the search's
+  // Where the probe stands, the steps are still the search's
   // (NearTieUnderProbe).
-  if (!d.outside_catalog.effect.empty()) notes->led_first = led_first;
+  if (!d.outside_catalog.effect.empty()) {
+    notes->led_first = led_first;
+    notes->led_steps = std::move(led_steps);
+  }
   return d;
 }
 
@@ -410,59 +442,92 @@ Diagnosis DeadEndBranch(const Case& c,
                       std::move(d));
 }
 
-// A probe outside the catalog that outdid the catalog's effects after a
-// first step taken by a near tie (SearchNotes::led_first) may have
-// outdone effects that step had turned wrong: the search without that
-// step is the answer when it explains the record with a complete model
-// whose BIC is lower than the probe's model's by more than ambiguity_bic
-// (CatalogAlone's rule, whose search follows the same first step). On a
-// 3-s run with a tunnel damping, a Magnus moment and a flow angularity
-// (suite draw 29), a body yaw asymmetry led the tunnel damping by 20 and
-// was taken; after the angularity, a lag of the readings outdid the
-// damping and the Magnus moment and reached the noise (`not_explained`,
-// Cm_q 36 of its errors off): without the asymmetry the three explain the
-// record, 15 lower in BIC than the asymmetry, the angularity and the lag.
-Diagnosis NearTieUnderProbe(const Case& c,
-                            const FitResult& nominal,
-                            const DiagnoseOptions& options,
-                            const SearchNotes& notes,
-                            Diagnosis d) {
-  const std::string& first = notes.led_first;
-  if (first.empty() || d.verdict != Verdict::kNotExplained ||
-      d.outside_catalog.effect.empty() || d.partial.empty() ||
-      d.partial[0].effect != first) {
-    return d;
-  }
-  Diagnosis other = SearchedWithout(c, nominal, options, first);
-  if (!ExplainsRecord(other)) return d;
+// The search without the effect of `step`, a step of *d (whose probe
+// outdid the catalog) taken by a near tie, when it explains the record
+// with a complete model whose BIC is lower than the probe's model's by
+// more than ambiguity_bic (CatalogAlone's rule); nothing otherwise (and
+// within ambiguity_bic either way, *d keeps it as alike:
+// KeepCatalogAlike).
+std::optional<Diagnosis> WithoutLedStep(const Case& c,
+                                        const FitResult& nominal,
+                                        const DiagnoseOptions& options,
+                                        const SearchNotes& notes,
+                                        int step,
+                                        Diagnosis* d) {
+  const std::string effect = d->partial[step].effect;
+  Diagnosis other = SearchedWithout(c, nominal, options, effect);
+  if (!ExplainsRecord(other)) return std::nullopt;
   const double margin = Bic(notes.probe_fit) - CompleteBic(other);
-  VLOG(1) << "searched without " << first << ": "
+  VLOG(1) << "searched without " << effect << ": "
           << VerdictToString(other.verdict) << ", the probe's model BIC "
           << FormatNumber("%+.1f", margin) << " above its complete model";
-  if (!(margin > options.ambiguity_bic)) return d;
-  NoteDropped(AsContender(d.partial[0]),
-              "led the next contender at its step by less than " +
+  if (!(margin > options.ambiguity_bic)) {
+    KeepCatalogAlike(other, margin, options, d);
+    return std::nullopt;
+  }
+  const std::string at = "at step " + std::to_string(step + 1);
+  NoteDropped(AsContender(d->partial[step]),
+              "led the next contender " + at + " by less than " +
                   FormatNumber("%.0f", options.near_tie_bic) +
                   " of BIC, and a probe outside the catalog outdid what "
                   "followed it; without it the catalog's effects explain the "
                   "record with a BIC " +
                   FormatNumber("%.1f", margin) + " below the probe's model",
-              ", taken first by a small lead, led to a probe outside the "
-              "catalog that the effects found without it outdo",
+              ", taken " + at +
+                  " by a small lead, led to a probe outside the catalog that "
+                  "the effects found without it outdo",
               &other);
   const bool known = std::any_of(
       other.rejected.begin(), other.rejected.end(), [&](const CandidateFit& k) {
-        return k.effect == d.outside_catalog.effect;
+        return k.effect == d->outside_catalog.effect;
       });
   if (!known) {
-    CandidateFit outside = d.outside_catalog;
-    outside.rejected = "outdid the catalog's effects after " + first +
+    CandidateFit outside = d->outside_catalog;
+    outside.rejected = "outdid the catalog's effects after " + effect +
                        ", but without it the catalog's effects explain the "
                        "record (BIC " +
                        FormatNumber("%.1f", margin) + " lower)";
     other.rejected.push_back(std::move(outside));
   }
   return other;
+}
+
+// A probe outside the catalog that outdid the catalog's effects after a
+// step taken by a near tie (SearchNotes::led_steps) may have outdone
+// effects that step had turned wrong: the search without that step's
+// effect is the answer when it explains the record with a complete model
+// whose BIC is lower than the probe's model's by more than ambiguity_bic
+// (WithoutLedStep; each such step tried in order). On a 3-s run with a
+// tunnel damping, a Magnus moment and a flow angularity (suite draw 29), a
+// body yaw asymmetry led the tunnel damping by 20 and was taken first;
+// after the angularity, a lag of the readings outdid the damping and the
+// Magnus moment and reached the noise (`not_explained`, Cm_q 36 of its
+// errors off): without the asymmetry the three explain the record, 15
+// lower in BIC than the asymmetry, the angularity and the lag. The step
+// that turned wrong need not be the first: on draw 43's coning run with a
+// tunnel stiffness, a nonlinear damping and a body yaw asymmetry, the
+// asymmetry was right, and then a tunnel damping led the tunnel stiffness
+// by 10.4; after it a bearing friction outdid the catalog, and the true
+// model was 44 lower in BIC than the search's.
+Diagnosis NearTieUnderProbe(const Case& c,
+                            const FitResult& nominal,
+                            const DiagnoseOptions& options,
+                            const SearchNotes& notes,
+                            Diagnosis d) {
+  if (d.verdict != Verdict::kNotExplained || d.outside_catalog.effect.empty()) {
+    return d;
+  }
+  for (int step = 0; step < static_cast<int>(d.partial.size()); ++step) {
+    if (std::find(notes.led_steps.begin(),
+                  notes.led_steps.end(),
+                  d.partial[step].effect) == notes.led_steps.end()) {
+      continue;
+    }
+    std::optional<Diagnosis> other =
+        WithoutLedStep(c, nominal, options, notes, step, &d);
+    if (other) return std::move(*other);
+  }
+  return d;
 }
 
 // A first step taken alone (SearchNotes::first_alone) may have been the

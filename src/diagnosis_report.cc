@@ -251,6 +251,9 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["outside_catalog_at_noise_level"] = d.outside_at_noise_level;
   out["outside_catalog_beside"] = d.outside_catalog_beside;
   out["outside_catalog_alike"] = d.outside_catalog_alike;
+  out["catalog_alike"] = d.catalog_alike;
+  out["catalog_alike_bic"] =
+      d.catalog_alike.empty() ? json(nullptr) : json(d.catalog_alike_bic);
   out["final_parameters"] = Estimates(d.final_parameters);
   // Where a tie or an effect not excluded widened an error bar, the final
   // model's own error too: the one to quote if that effect is known absent

@@ -2944,6 +2944,34 @@ TEST(Diagnose, AnEffectTheCoefficientsAbsorbIsListedAsUnseen) {
   }
 }
 
+// tools/diagnose_suite's `coning` tunnel stiffness + nonlinear damping +
+// body yaw asymmetry (draw 43, --vary; tests/data/coning_stiffness_damping_
+// asymmetry_draw43.yaml). After the asymmetry a tunnel damping led the
+// tunnel stiffness by 10.4 (a near tie), and after it a bearing friction
+// outdid the catalog: `not_explained`, the nominal Cm_q -0.45 +- 0.04
+// against a truth of -5.5. Searched without the damping the three are
+// found, 5.7 below the friction's model: not enough to set the probe
+// aside, so the verdict stands, but it names them and the final error
+// bars cover their model.
+TEST(Diagnose, ACatalogAnswerAlikeWithAProbeWidensTheUnexplainedAnswer) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_stiffness_damping_asymmetry_draw43.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  const std::set<std::string> alike(d.catalog_alike.begin(),
+                                    d.catalog_alike.end());
+  EXPECT_EQ(alike,
+            std::set<std::string>(
+                {"asymmetric_body", "tunnel_stiffness", "nonlinear_damping"}))
+      << text;
+  EXPECT_LT(std::abs(d.catalog_alike_bic), DiagnoseOptions().ambiguity_bic)
+      << text;
+  EXPECT_NE(text.find("explain the record alike"), std::string::npos) << text;
+  ExpectCovers(d.final_parameters, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
 // tools/diagnose_suite's `pair` tunnel stiffness + roll reading error +
 // flow angularity (draw 41, --vary; tests/data/pair_stiffness_roll_error_
 // angularity_draw41.yaml). The roll error and a trim moment tied at their
