@@ -540,19 +540,14 @@ std::vector<const Effect*> NearTwins(
   const Case held = EffectsHeld(model);
   const std::vector<TimeHistory> data = FittedData(*model.fit);
   std::vector<double> held_novelty(near.size(), 0.0);
-  // What each would move at the solution, its effects' terms free.
-  std::vector<std::vector<TwinShift>> shifts(near.size());
-  const Case at = CaseAtSolution(model.c, *model.fit);
   ParallelFor(static_cast<int>(near.size()), [&](int i) {
     Case c;
     std::vector<std::string> added;
     if (CandidateCase(held, *near[i], &c, &added)) {
       held_novelty[i] = Score(c, added, near[i]->id, data).novelty;
     }
-    if (CandidateCase(at, *near[i], &c, &added)) {
-      shifts[i] = TwinShifts(c, added, data);
-    }
   });
+  const size_t listed = d->coefficient_twins.size();
   std::vector<const Effect*> twins;
   for (size_t i = 0; i < near.size(); ++i) {
     VLOG(1) << near[i]->id << " beside the complete model: novelty "
@@ -567,9 +562,21 @@ std::vector<const Effect*> NearTwins(
                               return t.score.effect == near[i]->id;
                             })) {
       d->coefficient_twins.push_back(
-          {scores[i], shifts[i], model.fit == &d->FinalFit()});
+          {scores[i], {}, model.fit == &d->FinalFit()});
     }
   }
+  // What each one newly listed would move at the solution, its effects'
+  // terms free.
+  const Case at = CaseAtSolution(model.c, *model.fit);
+  ParallelFor(
+      static_cast<int>(d->coefficient_twins.size() - listed), [&](int j) {
+        CoefficientTwin& t = d->coefficient_twins[listed + j];
+        Case c;
+        std::vector<std::string> added;
+        if (CandidateCase(at, *FindEffect(t.score.effect), &c, &added)) {
+          t.shifts = TwinShifts(c, added, data);
+        }
+      });
   return twins;
 }
 

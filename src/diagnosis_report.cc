@@ -134,7 +134,7 @@ std::string Widened(const Diagnosis& d) {
 }
 
 // What each coefficient a twin moves (CoefficientTwin::shifts) stands for,
-// in words: "; the fitted Cm_q stands for Cm_q - 0.057 Cm_p_alpha".
+// in words: "; the fitted Cm_q stands for Cm_q + 0.0325 Cm_p_alpha".
 std::string Stands(const CoefficientTwin& t) {
   std::vector<std::string> order;
   std::map<std::string, std::string> sums;
