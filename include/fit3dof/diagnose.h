@@ -33,8 +33,9 @@
 // sigma: auto.
 //
 // With sigma given the search stops at the noise level, save for a round
-// for the nominal fit's near twins; an explained answer whose model some
-// contender beside it lowers BIC by more than `min_bic_drop` is searched
+// for the nominal fit's near twins; an explained or ambiguous answer whose
+// model some contender beside it lowers BIC by more than `min_bic_drop` is
+// searched
 // again with one round past the noise for those effects
 // (DiagnoseOptions::past_noise), each earning its place as in any round
 // (docs/diagnose.md, "Sigma and the noise").
