@@ -575,7 +575,6 @@ Diagnosis Search(const Case& c,
       if (earned.size() > 1) notes->tied_first = best.record.effect;
     }
     if (NearTie(contenders, earned, options)) {
-      if (d.steps.empty()) notes->led_first = best.record.effect;
       notes->led_steps.push_back(best.record.effect);
     }
     if (d.steps.empty() && step_rivals.empty()) {

@@ -597,14 +597,11 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
 struct SearchNotes {
   std::string tied_first;
   // The first step's effect when it was taken alone, untied, near tie or
-  // not (NearTieBranch; a near tie when it is led_first too).
+  // not (NearTieBranch; a near tie when it is in led_steps too).
   std::string first_alone;
-  // The first step's effect when its next catalog contender came within
-  // near_tie_bic, whether or not a probe tied with it (NearTieUnderProbe).
-  std::string led_first;
   // Each step's effect, in order, when its next catalog contender came
-  // within near_tie_bic (led_first's rule at every step;
-  // NearTieUnderProbe).
+  // within near_tie_bic, whether or not a probe tied with it
+  // (NearTieUnderProbe, NearTieBranch).
   std::vector<std::string> led_steps;
   // A step that effects not excluded beat in its place by ambiguity_bic or
   // more, and, when one effect did, the answer with the step in a tie with

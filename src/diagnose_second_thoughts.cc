@@ -285,19 +285,15 @@ Diagnosis Searched(const Case& c,
                    SearchNotes* notes) {
   Diagnosis d = Search(c, nominal, options, notes);
   if (d.outside_catalog.effect.empty()) return d;
-  const std::string led_first = notes->led_first;
   std::vector<std::string> led_steps = notes->led_steps;
   notes->outdone.clear();
   notes->first_alone.clear();
-  notes->led_first.clear();
   notes->led_steps.clear();
   d = CatalogAlone(c, nominal, options, *notes, std::move(d));
   // Where the probe stands, the steps are still the search's
   // (NearTieUnderProbe).
-  if (!d.outside_catalog.effect.empty()) {
-    notes->led_first = led_first;
+  if (!d.outside_catalog.effect.empty())
     notes->led_steps = std::move(led_steps);
-  }
   return d;
 }
 
@@ -534,7 +530,7 @@ Diagnosis NearTieUnderProbe(const Case& c,
 // greedy search's wrong turn: the search without its effect is the answer
 // when it explains the record with a complete model whose BIC is lower by
 // more than ambiguity_bic; and where its runner-up came within
-// near_tie_bic (a near tie, SearchNotes::led_first), within ambiguity_bic
+// near_tie_bic (a near tie, SearchNotes::led_steps), within ambiguity_bic
 // either way the step stands in a tie with what that search found
 // (StandInForSearch). Only the first step, where every effect is still
 // missing and the signatures mix most; only when the answer claims its
@@ -563,7 +559,9 @@ Diagnosis NearTieBranch(const Case& c,
                         const SearchNotes& notes,
                         Diagnosis d) {
   const std::string& first = notes.first_alone;
-  const bool near = !first.empty() && notes.led_first == first;
+  const bool near = !first.empty() && std::find(notes.led_steps.begin(),
+                                                notes.led_steps.end(),
+                                                first) != notes.led_steps.end();
   const auto claimed =
       std::find_if(d.steps.begin(), d.steps.end(), [&](const DiagnosisStep& s) {
         return s.effect == first;
