@@ -681,7 +681,6 @@ Diagnosis WithNoiseHeld(const Case& c, const DiagnoseOptions& options) {
   DiagnoseOptions past = options;
   past.noise_held = true;
   Diagnosis d = DiagnoseFrom(held, Fit(held), past);
-  TieScoredInPlace(held, past, &d);
   d.final_case.sigma_auto = c.sigma_auto;
   return d;
 }
@@ -712,10 +711,7 @@ void CheckAbsent(const DiagnoseOptions& options) {
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
   CheckAbsent(options);
   if (c.AnySigmaAuto()) return WithNoiseHeld(c, options);
-  Diagnosis d = DiagnoseFrom(c, Fit(c), options);
-  // Once on the answer, not in each of the searches DiagnoseFrom runs.
-  TieScoredInPlace(c, options, &d);
-  return d;
+  return DiagnoseFrom(c, Fit(c), options);
 }
 
 }  // namespace fit3dof

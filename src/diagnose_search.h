@@ -542,22 +542,6 @@ std::string FindSetReplacements(const std::vector<Case>& models,
                                 const DiagnoseOptions& options,
                                 Diagnosis* d);
 
-// The answer *d looked at once more, after every search (not in each):
-// the place of each claimed step that is barely held (every free term
-// within 4 of its own standard errors of zero in the final model) scored
-// afresh with the answer's other effects in (the final model, or an
-// ambiguous answer's first complete model, without the step), and the
-// effect scored first there fitted in it. An effect the step took the
-// signal of is excluded beside it, yet may explain the record as well in
-// its place. Within ambiguity_bic of the complete model, or below it, the
-// step stands in a tie with that effect (the least rise over the steps;
-// one tie at most), and the tie's complete models (alternatives) widen to
-// cover their models with it in the step's place. `c` is the case
-// diagnosed (its weights). True when *d changed.
-bool TieScoredInPlace(const Case& c,
-                      const DiagnoseOptions& options,
-                      Diagnosis* d);
-
 // One effect not excluded that lowered BIC beside the complete model,
 // fitted in a step's place (each step, each such effect): FindSetReplacements'
 // rule for a set of one. A tunnel term out of its bounds there has run

@@ -2327,12 +2327,12 @@ TEST(Diagnose, ASwapRunningAlongTheRidgeIsHeldAtZeroInTurn) {
 // search without the Magnus moment ended `not_explained` (a lag of the
 // readings outdid the stiffness, which then ran along Eq. 43's ridge).
 // The Magnus moment was named, -3.7 +- 1.3 (2.8 of its own errors from
-// zero). Scored afresh in its place at the end (TieScoredInPlace), the
-// asymmetry came first and tied with it. Since ambiguous answers are
-// searched past the noise too (PastNoise), the search past the noise
-// names the asymmetry and the damping, drops the Magnus moment, and ties
-// the tunnel stiffness with a roll torque and a tunnel damping (the
-// barely-held stage no longer decides this record).
+// zero). Since ambiguous answers are searched past the noise too
+// (PastNoise), the search past the noise names the asymmetry and the
+// damping, drops the Magnus moment, and ties the tunnel stiffness with a
+// roll torque and a tunnel damping. (A stage that scored a barely held
+// step's place afresh at the end had tied the asymmetry with the Magnus
+// moment here; it was removed when no record needed it.)
 TEST(Diagnose, AMagnusMomentThatTookTheAsymmetrysSignalIsNotClaimed) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =

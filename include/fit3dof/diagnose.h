@@ -561,9 +561,8 @@ struct Diagnosis {
   // keeps its terms, its error bars covering the replacing model's values
   // (diagnose_error_bars.cc, FindSetReplacements). A body's own yaw damping
   // added on a 3-s run stood in for a tunnel damping and a Magnus moment
-  // together. One effect may replace a step so too: one not excluded
-  // (FindSingleReplacement), or, at the end, the one scored first in the
-  // place of a step the final model barely holds (TieScoredInPlace).
+  // together. One effect not excluded may replace a step so too
+  // (FindSingleReplacement).
   std::vector<DiagnosisStep> stood_in;
   std::vector<std::vector<std::string>> stood_in_for;  // the replacing sets
   // When the residuals stay structured: what they show, and the contenders
