@@ -284,6 +284,7 @@ ResidualCheck TakeJointSteps(JointSet joint,
       if (k == m) continue;
       others += (others.empty() ? "" : " and ") + contenders[k].record.effect;
     }
+    d->steps.back().joint_set = true;
     d->steps.back().note =
         "adopted together with " + others + ": " +
         (contenders[m].dragged ? "alone it dragged the coefficients; " : "") +

@@ -483,6 +483,7 @@ struct DiagnosisStep {
   // Why a pruned step was dropped, or that the step was adopted together
   // with others (a joint set).
   std::string note;
+  bool joint_set = false;  // adopted together with others
   // Diagnosis::fits of the model before and after the step (for a pruned
   // step: with and without it; `fit3dof diagnose` writes them to stepN/).
   int fit_before = -1;
