@@ -7,11 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <unsupported/Eigen/FFT>
 #include <vector>
 
 #include "fit3dof/diagnose.h"
 #include "line_statistics.h"
+#include "spectral_lines.h"
 
 namespace fit3dof {
 namespace {
@@ -104,24 +104,14 @@ ResidualCheck CheckResiduals(const FitResult& fit,
     const SegmentFit& s = fit.segments[0];
     const int n = s.data.size();
     std::vector<std::complex<double>> z(n);
-    std::complex<double> mean(0.0, 0.0);
     for (int i = 0; i < n; ++i) {
       z[i] = {s.computed[3 * i + 1] - s.data.theta[i],
               s.computed[3 * i + 2] - s.data.psi[i]};
-      mean += z[i] / static_cast<double>(n);
     }
-    // The discrete Fourier transform sum_i z_i exp(-2 pi i k i / n) by
-    // Eigen's FFT (kissfft, any n): the direct sum, n^2 terms, had taken a
-    // tenth of a Table 6 diagnosis, which checks every refit.
-    for (std::complex<double>& v : z) v -= mean;
-    std::vector<std::complex<double>> spectrum;
-    Eigen::FFT<double> fft;
-    fft.fwd(spectrum, z);
-    std::vector<double> power(n, 0.0);
+    const std::vector<double> power = Periodogram(z);
     double total = 0.0, peak = 0.0;
     int peak_k = 0;
     for (int k = 1; k < n; ++k) {  // the mean (k = 0) is not a line
-      power[k] = std::norm(spectrum[k]);
       total += power[k];
       if (power[k] > peak) {
         peak = power[k];

@@ -11,19 +11,32 @@
 
 namespace fit3dof {
 
-std::vector<double> Periodogram(const std::vector<double>& x) {
+namespace {
+
+// |FFT(x - mean)|^2 at bins 1 .. bins - 1 (bin 0 is 0), x real or complex.
+template <typename T>
+std::vector<double> CentredPower(const std::vector<T>& x, int bins) {
   const int n = static_cast<int>(x.size());
-  double mean = 0.0;
-  for (double v : x) mean += v / n;
-  std::vector<double> centred(n);
+  T mean = T();
+  for (const T& v : x) mean += v / static_cast<double>(n);
+  std::vector<T> centred(n);
   for (int i = 0; i < n; ++i) centred[i] = x[i] - mean;
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> spectrum;
   fft.fwd(spectrum, centred);
-  const int half = n / 2;
-  std::vector<double> power(half + 1, 0.0);
-  for (int k = 1; k <= half; ++k) power[k] = std::norm(spectrum[k]);
+  std::vector<double> power(bins, 0.0);
+  for (int k = 1; k < bins; ++k) power[k] = std::norm(spectrum[k]);
   return power;
+}
+
+}  // namespace
+
+std::vector<double> Periodogram(const std::vector<double>& x) {
+  return CentredPower(x, static_cast<int>(x.size()) / 2 + 1);
+}
+
+std::vector<double> Periodogram(const std::vector<std::complex<double>>& z) {
+  return CentredPower(z, static_cast<int>(z.size()));
 }
 
 std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,

@@ -10,6 +10,7 @@
 #ifndef FIT3DOF_SRC_SPECTRAL_LINES_H_
 #define FIT3DOF_SRC_SPECTRAL_LINES_H_
 
+#include <complex>
 #include <vector>
 
 namespace fit3dof {
@@ -22,6 +23,12 @@ struct SpectralLine {
 // The periodogram of x: |FFT(x - mean)|^2 at bins 0..N/2 (bin k is
 // k / (N dt) Hz); bin 0 is 0, the mean being removed.
 std::vector<double> Periodogram(const std::vector<double>& x);
+
+// The two-sided periodogram of a complex series z (theta + i psi: a
+// whirl's sense is the sign of its frequency): |FFT(z - mean)|^2 at bins
+// 0..N-1, bin k above N/2 being the negative frequency (k - N) / (N dt)
+// Hz; bin 0 is 0.
+std::vector<double> Periodogram(const std::vector<std::complex<double>>& z);
 
 // The strongest lines (at most `most`, strongest first) of `x` sampled
 // every `dt` seconds; none for fewer than 16 samples.

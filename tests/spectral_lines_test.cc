@@ -6,6 +6,7 @@
 #include "spectral_lines.h"
 
 #include <cmath>
+#include <complex>
 #include <random>
 
 #include "gtest/gtest.h"
@@ -44,6 +45,26 @@ TEST(SpectralLines, WhiteNoiseHasNone) {
   }
   EXPECT_GE(quiet, 48);
   EXPECT_TRUE(SpectralLines(std::vector<double>(10, 1.0), 0.01).empty());
+}
+
+// theta + i psi whirling forward (counter-clockwise) at bin 7 and backward
+// at bin 3 of 100, on an offset: the two-sided periodogram puts the first
+// at bin 7, the second at bin 100 - 3, and nothing at bin 0.
+TEST(SpectralLines, AComplexSeriesKeepsTheWhirlsSense) {
+  const int n = 100;
+  std::vector<std::complex<double>> z(n);
+  for (int i = 0; i < n; ++i) {
+    z[i] = std::complex<double>(0.3, -0.2) +
+           2.0 * std::polar(1.0, 2.0 * M_PI * 7 * i / n) +
+           1.0 * std::polar(1.0, -2.0 * M_PI * 3 * i / n);
+  }
+  const std::vector<double> power = Periodogram(z);
+  ASSERT_EQ(power.size(), static_cast<size_t>(n));
+  EXPECT_NEAR(power[0], 0.0, 1e-18);
+  EXPECT_NEAR(power[7], 4.0 * n * n, 1e-8 * n * n);
+  EXPECT_NEAR(power[n - 3], 1.0 * n * n, 1e-8 * n * n);
+  EXPECT_NEAR(power[3], 0.0, 1e-8 * n * n);
+  EXPECT_NEAR(power[n - 7], 0.0, 1e-8 * n * n);
 }
 
 }  // namespace
