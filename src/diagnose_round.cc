@@ -175,7 +175,7 @@ void Judge(const FitResult& current,
   if (why.empty()) {
     const double gain = out_of_sample->Gain(FromSolution(k.c, c->fit));
     c->record.prediction_gain = gain;
-    const double needed = options.gain_per_parameter * k.added.size();
+    const double needed = GainNeeded(static_cast<int>(k.added.size()), options);
     if (!(gain > needed)) {
       why =
           "it does not predict the held-out part of the record better "
@@ -328,7 +328,7 @@ bool EarnedTogether(const Case& c,
     return false;
   }
   *gain = out_of_sample->Gain(FromSolution(c, fit));
-  return *gain > options.gain_per_parameter * terms;
+  return *gain > GainNeeded(terms, options);
 }
 
 // The lowest BIC of `contenders`, refused or not (+inf when none).

@@ -136,6 +136,14 @@ std::vector<Contender> Contenders(const std::vector<Candidate>& candidates,
                                   const DiagnoseOptions& options,
                                   std::vector<Contender>* minor);
 
+// The log-likelihood gain out of sample (OutOfSample::Gain) a model with
+// `terms` more free parameters must exceed to earn its place: a newcomer
+// (Judge), a joint set (EarnedTogether), and the bar a refused rival did
+// not clear (Unresolved).
+inline double GainNeeded(int terms, const DiagnoseOptions& options) {
+  return options.gain_per_parameter * terms;
+}
+
 // The out-of-sample check of one round: the current model fitted to the
 // first part of each segment once, each contender against it.
 class OutOfSample {

@@ -262,11 +262,11 @@ std::vector<Swap> HeldOnRidge(const std::vector<Swap>& swaps) {
 // alone (not in a joint set), explained the record to the noise, and the
 // rival, refitted at the same round, predicted the held-out part worse
 // than the step and too little to earn its place (a finite gain at or
-// below gain_per_parameter per term; NaN where not checked). Refused
-// rivals count because effects still missing may hide their worth
-// (Rivals): beside a missing nonlinear damping a roll reading error, a
-// trim moment and a flow angularity all predicted worse, and a joint set
-// then took the angularity with the damping. With nothing missing the
+// below GainNeeded; NaN where not checked). Refused rivals count because
+// effects still missing may hide their worth (Rivals): beside a missing
+// nonlinear damping a roll reading error, a trim moment and a flow
+// angularity all predicted worse, and a joint set then took the
+// angularity with the damping. With nothing missing the
 // refusal stands: on draw 38's coning run with a tunnel damping, a Magnus
 // moment and a flow angularity, the angularity (gain 10.8, needs 4) and a
 // roll reading error (7.4, needs 8) had tied 7.6 apart in BIC.
@@ -281,8 +281,7 @@ bool SeparatedOutOfSample(const CandidateFit& rival,
       std::count_if(rival.parameters.begin(),
                     rival.parameters.end(),
                     [](const ParameterEstimate& e) { return e.free; });
-  return terms > 0 &&
-         !(rival.prediction_gain > options.gain_per_parameter * terms) &&
+  return terms > 0 && !(rival.prediction_gain > GainNeeded(terms, options)) &&
          rival.prediction_gain < step.prediction_gain;
 }
 
