@@ -224,12 +224,35 @@ std::vector<Contender> WithMembers(const std::vector<Contender>& contenders,
   return with;
 }
 
-// Adds the members of `joint` (Jointly) to the search's record *d as
+// What the forward search (Search) carries from round to round.
+struct SearchState {
+  // The user's case, its fits without the profiles (fit.h, CheckRidges;
+  // the fits the search reports get them, Reported).
+  Case quiet;
+  Case current;   // the model as it stands
+  FitResult fit;  // its fit
+  std::vector<TimeHistory> data;
+  std::vector<Case> models;  // the model of each of d.fits
+  ResidualCheck check;       // of `fit`
+  // The step at which two contenders first tied (diagnose.h), or -1; each
+  // step's rivals.
+  int tie = -1;
+  std::vector<std::vector<CandidateFit>> rivals;
+  // Every round's contenders, each once: the effects tried beside the
+  // complete model (FindNotExcluded); and the lesser refits (those that
+  // lowered BIC by less than min_bic_drop), tried there when their score
+  // calls for it.
+  std::vector<const Effect*> contended;
+  std::vector<const Effect*> lesser;
+  Diagnosis d;
+};
+
+// Adds the members of `joint` (Jointly) to the search's record s->d as
 // steps in turn (TakeStep), each with the round's rivals outside the set
 // (`pooled`: the contenders, then the lesser refits; MemberRivals),
-// as a step taken alone would have them (*tie, *rivals), and with its
-// model and fit (*models, *current, *fit); returns the residual check of
-// the last. At the search's first tie a member that ties goes first
+// as a step taken alone would have them (s->tie, s->rivals), and with its
+// model and fit (s->models, s->current, s->fit); returns the residual
+// check of the last. At the search's first tie a member that ties goes first
 // (TieFirst): the steps after a tie are judged against its rivals
 // (AdoptAfterTie), a step before it is not. On a 3-s run with a roll
 // reading error and a nonlinear damping, the set {nonlinear damping, flow
@@ -242,28 +265,24 @@ ResidualCheck TakeJointSteps(JointSet joint,
                              const std::vector<Contender>& contenders,
                              const std::vector<Contender>& pooled,
                              const std::vector<Candidate>& candidates,
-                             const std::vector<TimeHistory>& data,
                              const DiagnoseOptions& options,
-                             int* tie,
-                             std::vector<std::vector<CandidateFit>>* rivals,
-                             std::vector<Case>* models,
-                             Case* current,
-                             FitResult* fit,
-                             Diagnosis* d) {
-  if (*tie < 0) {
-    TieFirst(*current, *fit, data, options, contenders, pooled, &joint);
+                             SearchState* s) {
+  const std::vector<TimeHistory>& data = s->data;
+  Diagnosis* d = &s->d;
+  if (s->tie < 0) {
+    TieFirst(s->current, s->fit, data, options, contenders, pooled, &joint);
   }
   ResidualCheck check;
   for (size_t j = 0; j < joint.members.size(); ++j) {
     const int m = joint.members[j];
-    if (*tie < 0 &&
+    if (s->tie < 0 &&
         !MemberRivals(joint, contenders, pooled, m, data, options, false)
              .empty()) {
-      *tie = static_cast<int>(d->steps.size());
+      s->tie = static_cast<int>(d->steps.size());
     }
-    rivals->push_back(
+    s->rivals.push_back(
         MemberRivals(joint, contenders, pooled, m, data, options, true));
-    AddTwins(contenders[m], options, &rivals->back());
+    AddTwins(contenders[m], options, &s->rivals.back());
     Contender step;
     step.candidate = &joint.models[j];
     step.fit = joint.fits[j];
@@ -275,9 +294,9 @@ ResidualCheck TakeJointSteps(JointSet joint,
         j + 1 == joint.members.size()
             ? joint.prediction_gain
             : std::numeric_limits<double>::quiet_NaN();
-    *current = joint.models[j].c;
-    *fit = step.fit;
-    models->push_back(*current);
+    s->current = joint.models[j].c;
+    s->fit = step.fit;
+    s->models.push_back(s->current);
     check = TakeStep(step, contenders, candidates, options, d);
     std::string others;
     for (int k : joint.members) {
@@ -417,6 +436,267 @@ Diagnosis Concluded(const Case& c,
   return d;
 }
 
+// The search's state before its first round: the nominal fit of `c`.
+SearchState StartSearch(const Case& c,
+                        const FitResult& nominal,
+                        const DiagnoseOptions& options) {
+  SearchState s;
+  s.quiet = c;
+  s.quiet.solver.profile_ridges = false;
+  s.current = s.quiet;
+  s.fit = nominal;
+  s.data = FittedData(s.fit);
+  s.d.fits.push_back(s.fit);
+  s.models = {s.current};
+  s.d.noise_held = options.noise_held;
+  s.d.absent = options.absent;
+  s.d.initial = CheckResiduals(s.fit, options);
+  s.check = s.d.initial;
+  return s;
+}
+
+// A round's start: Polish (diagnose_search.h) takes the model as it stands
+// further down where it can, and the steps' record follows it. Returns
+// whether it moved.
+bool PolishRound(const DiagnoseOptions& options, SearchState* s) {
+  if (!Polish(s->current, s->data, &s->fit)) return false;
+  s->d.fits.back() = s->fit;
+  s->check = CheckResiduals(s->fit, options);
+  if (s->d.steps.empty()) {
+    s->d.initial = s->check;
+  } else {
+    s->d.steps.back().after = s->check;
+  }
+  return true;
+}
+
+// A round's candidates into *candidates: scored at the model as it
+// stands, or the first round's hidden twins (*twins, moved from) when
+// they were scored at that very fit (`at_twins`). At the noise level with
+// sigma given, and past it (noise_held) when no refit's score can earn a
+// place, a round holds only the effects named past the noise (and, with
+// sigma given, the `first` round's hidden twins). False when none is
+// left: the search ends.
+bool RoundCandidates(bool first,
+                     bool at_twins,
+                     std::vector<Candidate>* twins,
+                     const DiagnoseOptions& options,
+                     const SearchState& s,
+                     std::vector<Candidate>* candidates) {
+  *candidates = at_twins ? std::move(*twins)
+                         : ScoredCandidates(s.current, s.fit, options);
+  if (s.check.at_noise_level &&
+      (!options.noise_held || !ScoreMayEarn(*candidates, s.fit, options))) {
+    *candidates = AtNoiseLevel(
+        std::move(*candidates), s.fit, options, first && !options.noise_held);
+    if (candidates->empty()) return false;
+  }
+  return true;
+}
+
+// Each effect of a round's refits once in s->contended (`contenders`) or
+// s->lesser (`minor`).
+void NoteContended(const std::vector<Contender>& contenders,
+                   const std::vector<Contender>& minor,
+                   SearchState* s) {
+  for (const std::vector<Contender>* refits : {&contenders, &minor}) {
+    std::vector<const Effect*>* list =
+        refits == &contenders ? &s->contended : &s->lesser;
+    for (const Contender& k : *refits) {
+      const Effect* e = k.candidate->effect;
+      if (std::find(list->begin(), list->end(), e) == list->end()) {
+        list->push_back(e);
+      }
+    }
+  }
+}
+
+// The last round's record when none of its `contenders` earned its place
+// (`earned`, Earned) or `probe` outdid them: each rejected, those the
+// probe outdid kept as such, and short of the noise those refused for
+// dragging the coefficients.
+void RejectRound(const std::vector<Contender>& contenders,
+                 const std::vector<int>& earned,
+                 const Contender& probe,
+                 SearchState* s) {
+  Diagnosis* d = &s->d;
+  for (const Contender& k : contenders) d->rejected.push_back(k.record);
+  if (!d->outside_catalog.effect.empty()) {
+    KeepOutdoneByProbe(probe, contenders, earned, d);
+  }
+  if (!s->check.at_noise_level) KeepRefusedForDrag(contenders, s->fit, d);
+}
+
+// The round's best that earned its place (contenders[earned[0]]) taken as
+// the next step, with its rivals (Rivals; `probe`, when fitted, among
+// them): a tie opens there when it has one, and *notes records a near tie
+// and a first step taken alone.
+void TakeBest(const std::vector<Contender>& contenders,
+              const std::vector<int>& earned,
+              const std::vector<Candidate>& candidates,
+              const Contender* probe,
+              const DiagnoseOptions& options,
+              SearchNotes* notes,
+              SearchState* s) {
+  const Contender& best = contenders[earned[0]];
+  std::vector<CandidateFit> step_rivals =
+      Rivals(contenders, earned[0], probe, s->data, options);
+  if (s->tie < 0 && !step_rivals.empty()) {
+    // Go on with the best: whether the rest of the record is explained
+    // decides between `ambiguous` and `not_explained`.
+    s->tie = static_cast<int>(s->d.steps.size());
+    if (earned.size() > 1) notes->tied_first = best.record.effect;
+  }
+  if (NearTie(contenders, earned, options)) {
+    notes->led_steps.push_back(best.record.effect);
+  }
+  if (s->d.steps.empty() && step_rivals.empty()) {
+    notes->first_alone = best.record.effect;
+  }
+  s->rivals.push_back(
+      WiderRivals(std::move(step_rivals), contenders, earned[0], options));
+  s->current = best.candidate->c;
+  s->fit = best.fit;
+  s->models.push_back(s->current);
+  s->check = TakeStep(best, contenders, candidates, options, &s->d);
+}
+
+// A round of the search on `candidates`: the best few refitted
+// (Contenders), judged (Earned) and weighed against the probes
+// (WeighProbes); a joint set adopted (Jointly, TakeJointSteps) or the best
+// that earned its place taken (TakeBest). False when the search ends:
+// nothing earned its place, or a probe outdid the catalog (RejectRound).
+bool SearchRound(const std::vector<Candidate>& candidates,
+                 const DiagnoseOptions& options,
+                 SearchNotes* notes,
+                 SearchState* s) {
+  std::vector<Contender> minor;
+  std::vector<Contender> contenders =
+      Contenders(candidates, s->fit, s->data, options, &minor);
+  NoteContended(contenders, minor, s);
+  OutOfSample out_of_sample(s->current, s->fit, options);
+  std::vector<const Effect*> added;
+  for (const DiagnosisStep& step : s->d.steps) {
+    added.push_back(FindEffect(step.effect));
+  }
+  const std::vector<int> earned =
+      Earned(s->fit, added, options, &out_of_sample, &contenders);
+  notes->bounded_lead |= BoundedLead(contenders, earned);
+  std::vector<Candidate> probes;
+  Contender probe;
+  const bool probed = WeighProbes(s->current,
+                                  s->fit,
+                                  s->data,
+                                  options,
+                                  earned,
+                                  &probes,
+                                  &probe,
+                                  &contenders,
+                                  &s->d);
+  const bool outside = !s->d.outside_catalog.effect.empty();
+  if (probed && outside) {
+    notes->probe_case = probe.candidate->c;
+    notes->probe_fit = probe.fit;
+  }
+  // A joint set draws on the round's lesser refits too (after the
+  // contenders, which keep their indices): on a coning run with a body
+  // yaw asymmetry (added), a nonlinear damping and a tunnel stiffness
+  // (suite draw 18), the damping dragged Cn_r and was the round's only
+  // contender, the stiffness lowering BIC by 3 beside it alone.
+  std::vector<Contender> pooled = contenders;
+  pooled.insert(pooled.end(), minor.begin(), minor.end());
+  JointSet joint;
+  if (!outside && Jointly(s->current,
+                          s->fit,
+                          s->data,
+                          options,
+                          added,
+                          &out_of_sample,
+                          candidates,
+                          earned,
+                          &pooled,
+                          &joint)) {
+    const std::vector<Contender> with = WithMembers(contenders, pooled, &joint);
+    s->check = TakeJointSteps(joint, with, pooled, candidates, options, s);
+    return true;
+  }
+  if (earned.empty() || outside) {
+    RejectRound(contenders, earned, probe, s);
+    return false;
+  }
+  TakeBest(contenders,
+           earned,
+           candidates,
+           probed ? &probe : nullptr,
+           options,
+           notes,
+           s);
+  return true;
+}
+
+// The search's answer once its rounds are done (s, moved from): the final
+// model settled (SettleFinalModel) and reported, the effects it cannot
+// exclude beside it (FindNotExcluded), a step that effects in its place
+// outdo (notes->outdone, with the answer that has them tied), then the
+// error bars widened and the verdict (Concluded).
+Diagnosis SearchAnswer(const Case& c,
+                       const DiagnoseOptions& options,
+                       SearchNotes* notes,
+                       SearchState s) {
+  Diagnosis& d = s.d;
+  const std::vector<TimeHistory>& data = s.data;
+  // A probe that outdoes the catalog, even past the noise level
+  // (noise_held), is structure the catalog lacks: the record is not
+  // explained by it.
+  if (!d.outside_catalog.effect.empty()) s.check.at_noise_level = false;
+  d.partial_fit = d.fits.size() - 1;
+  d.final = SettleFinalModel(s.quiet,
+                             data,
+                             options,
+                             s.models,
+                             s.tie,
+                             s.rivals,
+                             s.check,
+                             &d,
+                             &s.current);
+  BackToSymmetric(s.quiet, data, &d, &s.current);
+  Reported(s.current, data, &d.fits[d.final_fit]);
+  if (!d.partial.empty() && d.partial_fit != d.final_fit) {
+    Reported(s.models[d.partial_fit], data, &d.fits[d.partial_fit]);
+  }
+  WidenForTie(&d);
+  // What the search was run without is tried beside its model too: the
+  // record may not exclude it there (DiagnoseOptions::searched_without;
+  // catalog effects only, as contenders are).
+  for (const std::string& id : options.searched_without) {
+    const Effect* e = FindEffect(id);
+    if (e == nullptr) continue;
+    if (std::find(s.contended.begin(), s.contended.end(), e) ==
+        s.contended.end()) {
+      s.contended.push_back(e);
+    }
+  }
+  FindNotExcluded(
+      s.contended, s.lesser, s.models, s.current, data, options, &d);
+  // A step outdone (by ambiguity_bic or more) by one effect in its place
+  // stands in a tie with it only where the search without it does not
+  // explain the record better (DiagnoseFrom): the answer with the tie is
+  // kept aside. Not so for a set in its place: two or three effects beat
+  // a true body yaw asymmetry by 10 or more on draws 22 and 25's coning
+  // runs, and the asymmetry is named.
+  notes->outdone = FindSetReplacements(s.models, s.current, data, options, &d);
+  if (notes->outdone.empty()) {
+    Diagnosis tie;
+    notes->outdone =
+        FindSingleReplacement(s.models, s.current, data, options, &d, &tie);
+    if (!notes->outdone.empty()) {
+      notes->outdone_tie =
+          Concluded(c, s.quiet, s.current, data, options, std::move(tie));
+    }
+  }
+  return Concluded(c, s.quiet, s.current, data, options, std::move(d));
+}
+
 }  // namespace
 
 // The forward search (diagnose.h) from `nominal`, the fit of `c`, with
@@ -426,209 +706,39 @@ Diagnosis Search(const Case& c,
                  const DiagnoseOptions& options,
                  SearchNotes* notes) {
   *notes = SearchNotes();
-  Diagnosis d;
-  // The search's fits skip the profiles (fit.h, CheckRidges); the fits it
-  // reports get them (Reported).
-  Case quiet = c;
-  quiet.solver.profile_ridges = false;
-  Case current = quiet;
-  FitResult fit = nominal;
-  const std::vector<TimeHistory> data = FittedData(fit);
-  d.fits.push_back(fit);
-  std::vector<Case> models = {current};  // the model of each of d.fits
-  d.noise_held = options.noise_held;
-  d.absent = options.absent;
-  d.initial = CheckResiduals(fit, options);
-  ResidualCheck check = d.initial;
-  // The step at which two contenders first tied (diagnose.h), or -1, and
-  // whether each step tied.
-  int tie = -1;
-  std::vector<std::vector<CandidateFit>> rivals;
-  // Every round's contenders, each once: the effects tried beside the
-  // complete model (FindNotExcluded); and the lesser refits (those that
-  // lowered BIC by less than min_bic_drop), tried there when their score
-  // calls for it.
-  std::vector<const Effect*> contended;
-  std::vector<const Effect*> lesser;
+  SearchState s = StartSearch(c, nominal, options);
   // At the noise level with sigma given, one round for the near twins alone
   // (HiddenTwins), scored here once.
   std::vector<Candidate> twins;
-  if (check.at_noise_level && !options.noise_held) {
-    twins = HiddenTwins(ScoredCandidates(current, fit, options), fit, options);
+  if (s.check.at_noise_level && !options.noise_held) {
+    twins = HiddenTwins(
+        ScoredCandidates(s.current, s.fit, options), s.fit, options);
   }
   const bool hidden = !twins.empty();
   // At the noise level the search goes on only for a round it may add in.
   const bool past = !options.past_noise.empty();
+  const auto on_at_noise = [&](int step) {
+    return options.noise_held || past || (hidden && step == 0);
+  };
   for (int step = 0; step < options.max_steps &&
-                     (!check.at_noise_level || options.noise_held || past ||
-                      (hidden && step == 0));
+                     (!s.check.at_noise_level || on_at_noise(step));
        ++step) {
-    const bool polished = Polish(current, data, &fit);
-    if (polished) {
-      // The same model, further down: the steps' record follows it.
-      d.fits.back() = fit;
-      check = CheckResiduals(fit, options);
-      if (d.steps.empty()) {
-        d.initial = check;
-      } else {
-        d.steps.back().after = check;
-      }
-      if (check.at_noise_level && !options.noise_held && !past &&
-          !(hidden && step == 0)) {
-        break;
-      }
-    }
+    const bool polished = PolishRound(options, &s);
+    if (polished && s.check.at_noise_level && !on_at_noise(step)) break;
     // The twins' round scores the fit the twins were found at, unless
     // Polish moved it.
-    std::vector<Candidate> candidates =
-        hidden && step == 0 && !polished
-            ? std::move(twins)
-            : ScoredCandidates(current, fit, options);
-    // At the noise level with sigma given, and past it (noise_held) when
-    // no refit's score can earn a place, a round holds only the effects
-    // named past the noise (and, with sigma given, the first round's
-    // hidden twins); with none the search ends.
-    if (check.at_noise_level &&
-        (!options.noise_held || !ScoreMayEarn(candidates, fit, options))) {
-      candidates = AtNoiseLevel(std::move(candidates),
-                                fit,
-                                options,
-                                step == 0 && !options.noise_held);
-      if (candidates.empty()) break;
-    }
-    std::vector<Contender> minor;
-    std::vector<Contender> contenders =
-        Contenders(candidates, fit, data, options, &minor);
-    for (const std::vector<Contender>* refits : {&contenders, &minor}) {
-      for (const Contender& k : *refits) {
-        const Effect* e = k.candidate->effect;
-        std::vector<const Effect*>* list =
-            refits == &contenders ? &contended : &lesser;
-        if (std::find(list->begin(), list->end(), e) == list->end()) {
-          list->push_back(e);
-        }
-      }
-    }
-    OutOfSample out_of_sample(current, fit, options);
-    std::vector<const Effect*> added;
-    for (const DiagnosisStep& s : d.steps)
-      added.push_back(FindEffect(s.effect));
-    const std::vector<int> earned =
-        Earned(fit, added, options, &out_of_sample, &contenders);
-    notes->bounded_lead |= BoundedLead(contenders, earned);
-    std::vector<Candidate> probes;
-    Contender probe;
-    const bool probed = WeighProbes(
-        current, fit, data, options, earned, &probes, &probe, &contenders, &d);
-    if (probed && !d.outside_catalog.effect.empty()) {
-      notes->probe_case = probe.candidate->c;
-      notes->probe_fit = probe.fit;
-    }
-    // A joint set draws on the round's lesser refits too (after the
-    // contenders, which keep their indices): on a coning run with a body
-    // yaw asymmetry (added), a nonlinear damping and a tunnel stiffness
-    // (suite draw 18), the damping dragged Cn_r and was the round's only
-    // contender, the stiffness lowering BIC by 3 beside it alone.
-    std::vector<Contender> pooled = contenders;
-    pooled.insert(pooled.end(), minor.begin(), minor.end());
-    JointSet joint;
-    if (d.outside_catalog.effect.empty() && Jointly(current,
-                                                    fit,
-                                                    data,
-                                                    options,
-                                                    added,
-                                                    &out_of_sample,
-                                                    candidates,
-                                                    earned,
-                                                    &pooled,
-                                                    &joint)) {
-      const std::vector<Contender> with =
-          WithMembers(contenders, pooled, &joint);
-      check = TakeJointSteps(joint,
-                             with,
-                             pooled,
-                             candidates,
-                             data,
-                             options,
-                             &tie,
-                             &rivals,
-                             &models,
-                             &current,
-                             &fit,
-                             &d);
-      continue;
-    }
-    if (earned.empty() || !d.outside_catalog.effect.empty()) {
-      for (const Contender& k : contenders) d.rejected.push_back(k.record);
-      if (!d.outside_catalog.effect.empty()) {
-        KeepOutdoneByProbe(probe, contenders, earned, &d);
-      }
-      if (!check.at_noise_level) KeepRefusedForDrag(contenders, fit, &d);
+    std::vector<Candidate> candidates;
+    if (!RoundCandidates(step == 0,
+                         hidden && step == 0 && !polished,
+                         &twins,
+                         options,
+                         s,
+                         &candidates) ||
+        !SearchRound(candidates, options, notes, &s)) {
       break;
     }
-    const Contender& best = contenders[earned[0]];
-    std::vector<CandidateFit> step_rivals =
-        Rivals(contenders, earned[0], probed ? &probe : nullptr, data, options);
-    if (tie < 0 && !step_rivals.empty()) {
-      // Go on with the best: whether the rest of the record is explained
-      // decides between `ambiguous` and `not_explained`.
-      tie = static_cast<int>(d.steps.size());
-      if (earned.size() > 1) notes->tied_first = best.record.effect;
-    }
-    if (NearTie(contenders, earned, options)) {
-      notes->led_steps.push_back(best.record.effect);
-    }
-    if (d.steps.empty() && step_rivals.empty()) {
-      notes->first_alone = best.record.effect;
-    }
-    rivals.push_back(
-        WiderRivals(std::move(step_rivals), contenders, earned[0], options));
-    current = best.candidate->c;
-    fit = best.fit;
-    models.push_back(current);
-    check = TakeStep(best, contenders, candidates, options, &d);
   }
-  // A probe that outdoes the catalog, even past the noise level
-  // (noise_held), is structure the catalog lacks: the record is not
-  // explained by it.
-  if (!d.outside_catalog.effect.empty()) check.at_noise_level = false;
-  d.partial_fit = d.fits.size() - 1;
-  d.final = SettleFinalModel(
-      quiet, data, options, models, tie, rivals, check, &d, &current);
-  BackToSymmetric(quiet, data, &d, &current);
-  Reported(current, data, &d.fits[d.final_fit]);
-  if (!d.partial.empty() && d.partial_fit != d.final_fit) {
-    Reported(models[d.partial_fit], data, &d.fits[d.partial_fit]);
-  }
-  WidenForTie(&d);
-  // What the search was run without is tried beside its model too: the
-  // record may not exclude it there (DiagnoseOptions::searched_without;
-  // catalog effects only, as contenders are).
-  for (const std::string& id : options.searched_without) {
-    const Effect* e = FindEffect(id);
-    if (e == nullptr) continue;
-    if (std::find(contended.begin(), contended.end(), e) == contended.end()) {
-      contended.push_back(e);
-    }
-  }
-  FindNotExcluded(contended, lesser, models, current, data, options, &d);
-  // A step outdone (by ambiguity_bic or more) by one effect in its place
-  // stands in a tie with it only where the search without it does not
-  // explain the record better (DiagnoseFrom): the answer with the tie is
-  // kept aside. Not so for a set in its place: two or three effects beat
-  // a true body yaw asymmetry by 10 or more on draws 22 and 25's coning
-  // runs, and the asymmetry is named.
-  notes->outdone = FindSetReplacements(models, current, data, options, &d);
-  if (notes->outdone.empty()) {
-    Diagnosis tie;
-    notes->outdone =
-        FindSingleReplacement(models, current, data, options, &d, &tie);
-    if (!notes->outdone.empty()) {
-      notes->outdone_tie =
-          Concluded(c, quiet, current, data, options, std::move(tie));
-    }
-  }
-  return Concluded(c, quiet, current, data, options, std::move(d));
+  return SearchAnswer(c, options, notes, std::move(s));
 }
 
 const char* VerdictToString(Verdict verdict) {
