@@ -649,6 +649,220 @@ void SplitAtTie(int tie, const std::vector<int>& adopt, Diagnosis* d) {
   d->steps = std::move(steps);
 }
 
+// What AdoptAfterTie weighs after a tie at step `tie`: the steps after it
+// to adopt, the complete model without the tied step, and the complete
+// model with each tied effect.
+struct Adoption {
+  int tie = 0;
+  int through = 0;         // d->fits of the complete model through the last
+  int full = 0;            // that with every step the search took
+  bool later = false;      // a later tie's followed effects are in `full`
+  std::vector<int> adopt;  // the steps after the tie to adopt
+  Case without;            // the complete model without the tied step
+  FitResult without_fit;
+  std::vector<const Effect*> effects;  // the adopted model's
+  std::vector<std::string> names;      // the terms added after the tie
+  std::vector<int> companions;         // TieCompanions
+  bool stand_in = false;  // the adopted steps need one of the tied effects
+  // The complete models with each tied effect, the first the search's;
+  // the rivals' fits and cases beside them; whether all reach the noise.
+  std::vector<AlternativeModel> alternatives;
+  std::vector<FitResult> rival_fits;
+  std::vector<Case> rival_cases;
+  bool known = false;
+};
+
+// The steps after the tie up to the next one (`tied` marks every step in
+// doubt) into *a, with the complete model without the tied step fitted;
+// a step out of its bounds without the tied effect may be its companion
+// (TieCompanions): it goes with it. False when there is nothing to adopt,
+// a fit fails, or the adopted steps need one of the tied effects while a
+// later tie or a companion leaves no stand-in.
+bool StartAdoption(const std::vector<TimeHistory>& data,
+                   const DiagnoseOptions& options,
+                   const std::vector<Case>& models,
+                   int tie,
+                   const std::vector<bool>& tied,
+                   const Diagnosis& d,
+                   Adoption* a) {
+  int last = tie;  // the last step to adopt
+  while (last + 1 < static_cast<int>(d.steps.size()) && !tied[last + 1]) {
+    ++last;
+  }
+  VLOG(1) << "after the tie at step " << tie << ": " << last - tie
+          << " step(s) before the next tie";
+  if (last == tie) return false;
+  a->tie = tie;
+  a->through = last + 1;
+  const FitResult& complete = d.fits[a->through];
+  const FitResult& before = d.fits[tie];
+  for (int i = tie + 1; i <= last; ++i) a->adopt.push_back(i);
+  a->without =
+      WithoutStep(CaseAtSolution(models[a->through], complete), d.steps[tie]);
+  if (!FitFrom(a->without,
+               complete,
+               data,
+               "without " + d.steps[tie].effect,
+               &a->without_fit)) {
+    return false;
+  }
+  AdoptedEffects(d, tie, a->adopt, &a->effects, &a->names);
+  bool needed = NeededWithoutTied(
+      options, a->effects, a->without, a->without_fit, before);
+  if (!needed) {
+    a->companions =
+        TieCompanions(data, options, d, a->adopt, a->without, a->without_fit);
+  }
+  if (!a->companions.empty()) {
+    if (!WithoutCompanions(
+            data, d, a->companions, &a->adopt, &a->without, &a->without_fit)) {
+      return false;
+    }
+    AdoptedEffects(d, tie, a->adopt, &a->effects, &a->names);
+    needed = NeededWithoutTied(
+        options, a->effects, a->without, a->without_fit, before);
+  }
+  a->stand_in = !needed;
+  // The complete models: with every step the search took (a later tie's
+  // followed effects in).
+  a->later = last + 1 < static_cast<int>(d.steps.size());
+  if (a->stand_in && (a->later || !a->companions.empty())) {
+    VLOG(1) << "no stand-in for the tie with a later tie or companions";
+    return false;
+  }
+  a->full = a->later ? static_cast<int>(d.partial_fit) : a->through;
+  return true;
+}
+
+// The complete models into a->alternatives: the search's, then with each
+// rival instead of the tied step, against that rival alone on the model
+// before the tie. False when one is not needed, not plausible or not
+// fitted.
+bool RivalAlternatives(const std::vector<TimeHistory>& data,
+                       const DiagnoseOptions& options,
+                       const std::vector<Case>& models,
+                       const Diagnosis& d,
+                       Adoption* a) {
+  const int full = a->full;
+  a->alternatives = {{d.steps[a->tie].effect,
+                      CheckResiduals(d.fits[full], options),
+                      d.fits[full].parameters,
+                      full,
+                      models[full]}};
+  a->known = a->alternatives[0].check.at_noise_level;
+  for (size_t r = 1; r < d.ambiguous.size(); ++r) {
+    const std::string& rival = d.ambiguous[r].effect;
+    // A drift in time is no model (a straight drift of the readings stands
+    // in for it) and is tested only when it is the one rival.
+    if (rival == kDriftInTime && d.ambiguous.size() > 2) continue;
+    FitResult rival_fit;
+    Case with_rival;
+    if (!AdoptedWithRival(data,
+                          options,
+                          a->effects,
+                          a->without,
+                          a->without_fit,
+                          models[a->tie],
+                          d.fits[a->tie],
+                          rival,
+                          &with_rival,
+                          &rival_fit)) {
+      VLOG(1) << "not needed, or not plausible, with " << rival;
+      return false;
+    }
+    if (a->later && !CompleteWithRival(data,
+                                       models[full],
+                                       d.fits[full],
+                                       d.steps[a->tie],
+                                       rival,
+                                       &with_rival,
+                                       &rival_fit)) {
+      return false;
+    }
+    a->alternatives.push_back({rival,
+                               CheckResiduals(rival_fit, options),
+                               rival_fit.parameters,
+                               -1,
+                               with_rival});
+    a->known = a->known && a->alternatives.back().check.at_noise_level;
+    a->rival_fits.push_back(std::move(rival_fit));
+    a->rival_cases.push_back(std::move(with_rival));
+  }
+  return true;
+}
+
+// Whether the adoption holds: a stand-in for the tie needs every complete
+// model at the noise and the adopted steps needed in each (NeededInEach);
+// short of that, the adopted effects must not drag the coefficients.
+bool AdoptionHolds(const std::vector<TimeHistory>& data,
+                   const DiagnoseOptions& options,
+                   const std::vector<Case>& models,
+                   const Diagnosis& d,
+                   const Adoption& a) {
+  if (a.stand_in && (!a.known || a.rival_fits.empty())) {
+    VLOG(1) << "a stand-in for the tie needs every complete model at the "
+            << "noise";
+    return false;
+  }
+  if (a.stand_in) {
+    std::vector<const Case*> cases = {&models[a.through]};
+    std::vector<const FitResult*> fits = {&d.fits[a.through]};
+    for (size_t r = 0; r < a.rival_fits.size(); ++r) {
+      cases.push_back(&a.rival_cases[r]);
+      fits.push_back(&a.rival_fits[r]);
+    }
+    std::vector<DiagnosisStep> steps;
+    for (int i : a.adopt) steps.push_back(d.steps[i]);
+    if (!NeededInEach(data, options, cases, fits, steps)) return false;
+  }
+  // The drag rule guards against an effect absorbing an unknown structure;
+  // when every complete model reaches the noise, what the final model
+  // leaves is known (the tie's signature), and the coefficients may move.
+  if (!a.known) {
+    const std::string drags =
+        Drags(d.fits[a.tie], a.without_fit, a.names, options.max_drag);
+    if (!drags.empty()) {
+      VLOG(1) << "the adopted effects drag the coefficients: " << drags;
+      return false;
+    }
+  }
+  return true;
+}
+
+// The adoption `a` (moved from) taken into *d: the complete models
+// reported as its alternatives, the final model (*current, its check in
+// *final) the stand-in's or the one without the tied step, and the steps
+// split at the tie (SplitAtTie).
+void Adopt(const std::vector<TimeHistory>& data,
+           const DiagnoseOptions& options,
+           const std::vector<Case>& models,
+           Adoption a,
+           Diagnosis* d,
+           Case* current,
+           ResidualCheck* final) {
+  Reported(models[a.full], data, &d->fits[a.full]);
+  a.alternatives[0].parameters = d->fits[a.full].parameters;
+  for (size_t r = 0; r < a.rival_fits.size(); ++r) {
+    Reported(a.rival_cases[r], data, &a.rival_fits[r]);
+    a.alternatives[r + 1].parameters = a.rival_fits[r].parameters;
+    d->fits.push_back(std::move(a.rival_fits[r]));
+    a.alternatives[r + 1].fit = static_cast<int>(d->fits.size()) - 1;
+  }
+  d->alternatives = std::move(a.alternatives);
+  if (a.stand_in) {
+    d->stand_in = d->steps[a.tie].effect;
+    d->final_fit = a.through;
+    *current = models[a.through];
+  } else {
+    d->fits.push_back(a.without_fit);
+    d->final_fit = d->fits.size() - 1;
+    *current = a.without;
+  }
+  SplitAtTie(a.tie, a.adopt, d);
+  *final = CheckResiduals(d->FinalFit(), options);
+  d->steps.back().after = *final;
+}
+
 // After a tie (at step `tie`; `tied` marks every step that stays in
 // doubt) followed to an explained record: the steps after it up to the
 // next tie are adopted when the record needs them whichever of the tied
@@ -672,154 +886,13 @@ bool AdoptAfterTie(const std::vector<TimeHistory>& data,
                    Diagnosis* d,
                    Case* current,
                    ResidualCheck* final) {
-  int last = tie;  // the last step to adopt
-  while (last + 1 < static_cast<int>(d->steps.size()) && !tied[last + 1]) {
-    ++last;
-  }
-  VLOG(1) << "after the tie at step " << tie << ": " << last - tie
-          << " step(s) before the next tie";
-  if (last == tie) return false;
-  // The complete model through `last` (its fit and case).
-  const int through = last + 1;
-  const FitResult& complete = d->fits[through];
-  const FitResult& before = d->fits[tie];
-  std::vector<int> adopt;  // the steps after the tie to adopt
-  for (int i = tie + 1; i <= last; ++i) adopt.push_back(i);
-  Case without =
-      WithoutStep(CaseAtSolution(models[through], complete), d->steps[tie]);
-  FitResult without_fit;
-  if (!FitFrom(without,
-               complete,
-               data,
-               "without " + d->steps[tie].effect,
-               &without_fit)) {
+  Adoption a;
+  if (!StartAdoption(data, options, models, tie, tied, *d, &a) ||
+      !RivalAlternatives(data, options, models, *d, &a) ||
+      !AdoptionHolds(data, options, models, *d, a)) {
     return false;
   }
-  std::vector<const Effect*> effects;  // the adopted model's
-  std::vector<std::string> names;      // the terms added after the tie
-  AdoptedEffects(*d, tie, adopt, &effects, &names);
-  // A step out of its bounds without the tied effect may be its companion
-  // (TieCompanions): it goes with it.
-  std::vector<int> companions;
-  bool needed =
-      NeededWithoutTied(options, effects, without, without_fit, before);
-  if (!needed) {
-    companions = TieCompanions(data, options, *d, adopt, without, without_fit);
-  }
-  if (!companions.empty()) {
-    if (!WithoutCompanions(
-            data, *d, companions, &adopt, &without, &without_fit)) {
-      return false;
-    }
-    AdoptedEffects(*d, tie, adopt, &effects, &names);
-    needed = NeededWithoutTied(options, effects, without, without_fit, before);
-  }
-  const bool stand_in = !needed;
-  // The complete models: with every step the search took (a later tie's
-  // followed effects in).
-  const bool later = last + 1 < static_cast<int>(d->steps.size());
-  if (stand_in && (later || !companions.empty())) {
-    VLOG(1) << "no stand-in for the tie with a later tie or companions";
-    return false;
-  }
-  const int full = later ? static_cast<int>(d->partial_fit) : through;
-  // With each rival instead of the first, against that rival alone on the
-  // model before the tie.
-  std::vector<AlternativeModel> alternatives = {
-      {d->steps[tie].effect,
-       CheckResiduals(d->fits[full], options),
-       d->fits[full].parameters,
-       full,
-       models[full]}};
-  bool known = alternatives[0].check.at_noise_level;
-  std::vector<FitResult> rival_fits;
-  std::vector<Case> rival_cases;
-  for (size_t r = 1; r < d->ambiguous.size(); ++r) {
-    const std::string& rival = d->ambiguous[r].effect;
-    // A drift in time is no model (a straight drift of the readings stands
-    // in for it) and is tested only when it is the one rival.
-    if (rival == kDriftInTime && d->ambiguous.size() > 2) continue;
-    FitResult rival_fit;
-    Case with_rival;
-    if (!AdoptedWithRival(data,
-                          options,
-                          effects,
-                          without,
-                          without_fit,
-                          models[tie],
-                          before,
-                          rival,
-                          &with_rival,
-                          &rival_fit)) {
-      VLOG(1) << "not needed, or not plausible, with " << rival;
-      return false;
-    }
-    if (later && !CompleteWithRival(data,
-                                    models[full],
-                                    d->fits[full],
-                                    d->steps[tie],
-                                    rival,
-                                    &with_rival,
-                                    &rival_fit)) {
-      return false;
-    }
-    alternatives.push_back({rival,
-                            CheckResiduals(rival_fit, options),
-                            rival_fit.parameters,
-                            -1,
-                            with_rival});
-    known = known && alternatives.back().check.at_noise_level;
-    rival_fits.push_back(std::move(rival_fit));
-    rival_cases.push_back(std::move(with_rival));
-  }
-  if (stand_in && (!known || rival_fits.empty())) {
-    VLOG(1) << "a stand-in for the tie needs every complete model at the "
-            << "noise";
-    return false;
-  }
-  if (stand_in) {
-    std::vector<const Case*> cases = {&models[through]};
-    std::vector<const FitResult*> fits = {&complete};
-    for (size_t r = 0; r < rival_fits.size(); ++r) {
-      cases.push_back(&rival_cases[r]);
-      fits.push_back(&rival_fits[r]);
-    }
-    std::vector<DiagnosisStep> steps;
-    for (int i : adopt) steps.push_back(d->steps[i]);
-    if (!NeededInEach(data, options, cases, fits, steps)) return false;
-  }
-  // The drag rule guards against an effect absorbing an unknown structure;
-  // when every complete model reaches the noise, what the final model
-  // leaves is known (the tie's signature), and the coefficients may move.
-  if (!known) {
-    const std::string drags =
-        Drags(before, without_fit, names, options.max_drag);
-    if (!drags.empty()) {
-      VLOG(1) << "the adopted effects drag the coefficients: " << drags;
-      return false;
-    }
-  }
-  Reported(models[full], data, &d->fits[full]);
-  alternatives[0].parameters = d->fits[full].parameters;
-  for (size_t r = 0; r < rival_fits.size(); ++r) {
-    Reported(rival_cases[r], data, &rival_fits[r]);
-    alternatives[r + 1].parameters = rival_fits[r].parameters;
-    d->fits.push_back(std::move(rival_fits[r]));
-    alternatives[r + 1].fit = static_cast<int>(d->fits.size()) - 1;
-  }
-  d->alternatives = std::move(alternatives);
-  if (stand_in) {
-    d->stand_in = d->steps[tie].effect;
-    d->final_fit = through;
-    *current = models[through];
-  } else {
-    d->fits.push_back(without_fit);
-    d->final_fit = d->fits.size() - 1;
-    *current = without;
-  }
-  SplitAtTie(tie, adopt, d);
-  *final = CheckResiduals(d->FinalFit(), options);
-  d->steps.back().after = *final;
+  Adopt(data, options, models, std::move(a), d, current, final);
   return true;
 }
 
