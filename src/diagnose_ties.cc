@@ -665,11 +665,10 @@ struct Adoption {
   std::vector<int> companions;         // TieCompanions
   bool stand_in = false;  // the adopted steps need one of the tied effects
   // The complete models with each tied effect, the first the search's;
-  // the rivals' fits and cases beside them; whether all reach the noise.
+  // the rivals' fits and cases beside them.
   std::vector<AlternativeModel> alternatives;
   std::vector<FitResult> rival_fits;
   std::vector<Case> rival_cases;
-  bool known = false;
 };
 
 // The steps after the tie up to the next one (`tied` marks every step in
@@ -749,7 +748,6 @@ bool RivalAlternatives(const std::vector<TimeHistory>& data,
                       d.fits[full].parameters,
                       full,
                       models[full]}};
-  a->known = a->alternatives[0].check.at_noise_level;
   for (size_t r = 1; r < d.ambiguous.size(); ++r) {
     const std::string& rival = d.ambiguous[r].effect;
     // A drift in time is no model (a straight drift of the readings stands
@@ -784,7 +782,6 @@ bool RivalAlternatives(const std::vector<TimeHistory>& data,
                                rival_fit.parameters,
                                -1,
                                with_rival});
-    a->known = a->known && a->alternatives.back().check.at_noise_level;
     a->rival_fits.push_back(std::move(rival_fit));
     a->rival_cases.push_back(std::move(with_rival));
   }
@@ -799,7 +796,13 @@ bool AdoptionHolds(const std::vector<TimeHistory>& data,
                    const std::vector<Case>& models,
                    const Diagnosis& d,
                    const Adoption& a) {
-  if (a.stand_in && (!a.known || a.rival_fits.empty())) {
+  // Every complete model at the noise: what the final model leaves is
+  // known (the tie's signature).
+  const bool known = std::all_of(
+      a.alternatives.begin(),
+      a.alternatives.end(),
+      [](const AlternativeModel& m) { return m.check.at_noise_level; });
+  if (a.stand_in && (!known || a.rival_fits.empty())) {
     VLOG(1) << "a stand-in for the tie needs every complete model at the "
             << "noise";
     return false;
@@ -818,7 +821,7 @@ bool AdoptionHolds(const std::vector<TimeHistory>& data,
   // The drag rule guards against an effect absorbing an unknown structure;
   // when every complete model reaches the noise, what the final model
   // leaves is known (the tie's signature), and the coefficients may move.
-  if (!a.known) {
+  if (!known) {
     const std::string drags =
         Drags(d.fits[a.tie], a.without_fit, a.names, options.max_drag);
     if (!drags.empty()) {
