@@ -24,6 +24,7 @@
 #include "diagnose_search.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/model_conversion.h"
+#include "fit3dof/thread_budget.h"
 #include "noise_relaxation.h"
 
 namespace fit3dof {
@@ -660,10 +661,16 @@ Diagnosis SearchAnswer(const Case& c,
                              &d,
                              &s.current);
   BackToSymmetric(s.quiet, data, &d, &s.current);
-  Reported(s.current, data, &d.fits[d.final_fit]);
-  if (!d.partial.empty() && d.partial_fit != d.final_fit) {
-    Reported(s.models[d.partial_fit], data, &d.fits[d.partial_fit]);
-  }
+  // The final model and the partial one (when it is another) reported at
+  // once: each fit is its own.
+  const bool partial = !d.partial.empty() && d.partial_fit != d.final_fit;
+  ParallelFor(partial ? 2 : 1, [&](int i) {
+    if (i == 0) {
+      Reported(s.current, data, &d.fits[d.final_fit]);
+    } else {
+      Reported(s.models[d.partial_fit], data, &d.fits[d.partial_fit]);
+    }
+  });
   WidenForTie(&d);
   // What the search was run without is tried beside its model too: the
   // record may not exclude it there (DiagnoseOptions::searched_without;

@@ -843,10 +843,16 @@ void Adopt(const std::vector<TimeHistory>& data,
            Diagnosis* d,
            Case* current,
            ResidualCheck* final) {
-  Reported(models[a.full], data, &d->fits[a.full]);
+  // Each complete model's fit is its own: all reported at once.
+  ParallelFor(1 + static_cast<int>(a.rival_fits.size()), [&](int r) {
+    if (r == 0) {
+      Reported(models[a.full], data, &d->fits[a.full]);
+    } else {
+      Reported(a.rival_cases[r - 1], data, &a.rival_fits[r - 1]);
+    }
+  });
   a.alternatives[0].parameters = d->fits[a.full].parameters;
   for (size_t r = 0; r < a.rival_fits.size(); ++r) {
-    Reported(a.rival_cases[r], data, &a.rival_fits[r]);
     a.alternatives[r + 1].parameters = a.rival_fits[r].parameters;
     d->fits.push_back(std::move(a.rival_fits[r]));
     a.alternatives[r + 1].fit = static_cast<int>(d->fits.size()) - 1;
@@ -1101,17 +1107,25 @@ void PruneWithinTie(const std::vector<TimeHistory>& data,
     Case final_case =
         stand_in ? cases[0]
                  : WithoutStep(CaseAtSolution(*current, d->FinalFit()), step);
+    // The final model without the step (its own fit, unless a stand-in's
+    // is final) and each complete model reported, all at once.
     FitResult final_fit;
-    if (!stand_in && !FitFrom(final_case,
-                              d->FinalFit(),
-                              data,
-                              "without " + step.effect,
-                              &final_fit)) {
-      return;
-    }
+    bool final_fitted = stand_in;
+    const int n = static_cast<int>(cases.size());
+    ParallelFor(n + (stand_in ? 0 : 1), [&](int m) {
+      if (m < n) {
+        Reported(cases[m], data, &without[m]);
+      } else {
+        final_fitted = FitFrom(final_case,
+                               d->FinalFit(),
+                               data,
+                               "without " + step.effect,
+                               &final_fit);
+      }
+    });
+    if (!final_fitted) return;
     for (size_t m = 0; m < cases.size(); ++m) {
       AlternativeModel& a = d->alternatives[m];
-      Reported(cases[m], data, &without[m]);
       a.check = CheckResiduals(without[m], options);
       a.parameters = without[m].parameters;
       a.model = cases[m];
