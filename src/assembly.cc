@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fit3dof/thread_budget.h"
+
 namespace fit3dof {
 
 Assembly Assemble(const std::vector<PreparedSegment>& segments,
@@ -67,11 +69,15 @@ std::vector<double> SegmentFullValues(const Assembly& a, size_t s) {
   return a.costs[s]->FullValues(values.data());
 }
 
+int HelperThreadsFor(const Assembly& a) { return a.costs.size() == 2 ? 1 : 0; }
+
 bool EvaluateJacobian(const Assembly& a,
                       ceres::CRSMatrix* jacobian,
                       std::vector<double>* residuals) {
   ceres::Problem::EvaluateOptions options;
   options.parameter_blocks = a.blocks;
+  const ThreadLease lease(HelperThreadsFor(a));
+  options.num_threads = 1 + lease.count();
   double cost = 0.0;
   if (!a.problem->Evaluate(options, &cost, residuals, nullptr, jacobian)) {
     return false;

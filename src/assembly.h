@@ -48,6 +48,15 @@ std::vector<double> FreeValues(const Assembly& a,
 // The full parameter vector segment `s` sees in the assembly.
 std::vector<double> SegmentFullValues(const Assembly& a, size_t s);
 
+// Threads beyond the caller's that Ceres may evaluate `a`'s residual
+// blocks on (Solver::Options::num_threads and Problem::EvaluateOptions'
+// less one): one for exactly two segments, none otherwise. Ceres sums the
+// blocks' costs thread by thread and then the threads' sums; two blocks'
+// costs summed in either order are the same number, three or more need
+// not be, and a fit must repeat to the bit (the fit memo and diagnose's
+// comparisons rely on it). Hold them from the budget (ThreadLease).
+int HelperThreadsFor(const Assembly& a);
+
 // The Jacobian of the weighted residuals (rows: each segment's samples in
 // order, phi, theta, psi per sample; columns in global free order, in the
 // assembly's scaled coordinates) and the residuals; false if the motion

@@ -16,6 +16,7 @@
 #include "ceres/ceres.h"
 #include "fit3dof/interrupt.h"
 #include "fit3dof/progress.h"
+#include "fit3dof/thread_budget.h"
 #include "format.h"
 
 namespace fit3dof {
@@ -169,6 +170,8 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
   options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = settings.max_iterations;
+  const ThreadLease lease(HelperThreadsFor(assembly));
+  options.num_threads = 1 + lease.count();
   options.initial_trust_region_radius = settings.initial_radius;
   // The report's rule (the callback) decides convergence; Ceres' own
   // tolerances only stop a fit that cannot move at all.

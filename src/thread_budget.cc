@@ -65,4 +65,8 @@ void ParallelFor(int n, const std::function<void(int)>& task) {
   for (std::thread& t : threads) t.join();
 }
 
+ThreadLease::ThreadLease(int wanted) : count_(Borrow(wanted)) {}
+
+ThreadLease::~ThreadLease() { lendable += count_; }
+
 }  // namespace fit3dof

@@ -18,6 +18,7 @@
 #include "fit3dof/model_conversion.h"
 #include "fit3dof/noise.h"
 #include "fit3dof/simulator.h"
+#include "fit3dof/thread_budget.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
 
@@ -372,6 +373,25 @@ TEST(Fit, TwoSegmentsJointlyBeatEitherAlone) {
   // Each segment keeps its own initial conditions.
   EXPECT_NEAR(Find(joint, "b.theta0").value, -3.0, 0.01);
   EXPECT_NEAR(Find(joint, "a.theta0").value, 5.18, 0.01);
+
+  // With a thread of the budget free Ceres evaluates the two segments on
+  // two threads (HelperThreadsFor, assembly.h): the same fit to the last
+  // bit as on one.
+  SetThreadBudget(1);
+  const FitResult one = Fit(LoadConfig(dir + "/joint.yaml"));
+  SetThreadBudget(2);
+  const FitResult two = Fit(LoadConfig(dir + "/joint.yaml"));
+  EXPECT_EQ(one.iterations, two.iterations);
+  EXPECT_EQ(one.probable_error, two.probable_error);
+  ASSERT_EQ(one.parameters.size(), two.parameters.size());
+  for (size_t i = 0; i < one.parameters.size(); ++i) {
+    EXPECT_EQ(one.parameters[i].value, two.parameters[i].value)
+        << one.parameters[i].name;
+    if (!one.parameters[i].free) continue;
+    EXPECT_EQ(one.parameters[i].standard_error,
+              two.parameters[i].standard_error)
+        << one.parameters[i].name;
+  }
 }
 
 // Parameters the data cannot see (Magnus and roll damping with no spin)

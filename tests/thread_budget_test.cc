@@ -67,5 +67,24 @@ TEST(ThreadBudget, AnExhaustedBudgetRunsOnTheCallingThread) {
   EXPECT_EQ(sum.load(), 2 * (0 + 1 + 2 + 3 + 4) + 5 * 10);
 }
 
+// A lease takes what is free, at most what it asks for, and gives it
+// back when it ends; a loop started meanwhile gets only the rest.
+TEST(ThreadBudget, ALeaseHoldsThreadsUntilItEnds) {
+  SetThreadBudget(3);
+  {
+    const ThreadLease lease(1);
+    EXPECT_EQ(lease.count(), 1);
+    EXPECT_EQ(FreeThreads(), 1);
+    const ThreadLease more(5);
+    EXPECT_EQ(more.count(), 1);
+    EXPECT_EQ(FreeThreads(), 0);
+    const ThreadLease none(1);
+    EXPECT_EQ(none.count(), 0);
+    const std::thread::id caller = std::this_thread::get_id();
+    ParallelFor(4, [&](int) { EXPECT_EQ(std::this_thread::get_id(), caller); });
+  }
+  EXPECT_EQ(FreeThreads(), 2);
+}
+
 }  // namespace
 }  // namespace fit3dof

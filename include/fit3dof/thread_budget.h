@@ -34,6 +34,26 @@ int FreeThreads();
 // index is left for it. The task must not throw.
 void ParallelFor(int n, const std::function<void(int)>& task);
 
+// Threads of the budget held for work that starts threads of its own
+// (Ceres' evaluation of a problem's residual blocks): up to `wanted`
+// beyond the calling thread, as many as are free now (perhaps none),
+// given back when the lease ends.
+//
+//   ThreadLease lease(1);
+//   options.num_threads = 1 + lease.count();
+class ThreadLease {
+ public:
+  explicit ThreadLease(int wanted);
+  ~ThreadLease();
+  ThreadLease(const ThreadLease&) = delete;
+  ThreadLease& operator=(const ThreadLease&) = delete;
+
+  int count() const { return count_; }
+
+ private:
+  int count_;
+};
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_THREAD_BUDGET_H_
