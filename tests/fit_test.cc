@@ -377,10 +377,12 @@ TEST(Fit, TwoSegmentsJointlyBeatEitherAlone) {
   // With a thread of the budget free Ceres evaluates the two segments on
   // two threads (HelperThreadsFor, assembly.h): the same fit to the last
   // bit as on one.
+  const int budget = ThreadBudget();
   SetThreadBudget(1);
   const FitResult one = Fit(LoadConfig(dir + "/joint.yaml"));
   SetThreadBudget(2);
   const FitResult two = Fit(LoadConfig(dir + "/joint.yaml"));
+  SetThreadBudget(budget);
   EXPECT_EQ(one.iterations, two.iterations);
   EXPECT_EQ(one.probable_error, two.probable_error);
   ASSERT_EQ(one.parameters.size(), two.parameters.size());
