@@ -24,7 +24,6 @@
 #include "diagnose_search.h"
 #include "fit3dof/input_error.h"
 #include "fit3dof/model_conversion.h"
-#include "fit3dof/thread_budget.h"
 #include "noise_relaxation.h"
 
 namespace fit3dof {
@@ -661,16 +660,14 @@ Diagnosis SearchAnswer(const Case& c,
                              &d,
                              &s.current);
   BackToSymmetric(s.quiet, data, &d, &s.current);
-  // The final model and the partial one (when it is another) reported at
-  // once: each fit is its own.
-  const bool partial = !d.partial.empty() && d.partial_fit != d.final_fit;
-  ParallelFor(partial ? 2 : 1, [&](int i) {
-    if (i == 0) {
-      Reported(s.current, data, &d.fits[d.final_fit]);
-    } else {
-      Reported(s.models[d.partial_fit], data, &d.fits[d.partial_fit]);
-    }
-  });
+  // The final model and the partial one, when it is another.
+  std::vector<const Case*> reported = {&s.current};
+  std::vector<FitResult*> fits = {&d.fits[d.final_fit]};
+  if (!d.partial.empty() && d.partial_fit != d.final_fit) {
+    reported.push_back(&s.models[d.partial_fit]);
+    fits.push_back(&d.fits[d.partial_fit]);
+  }
+  ReportedAll(reported, data, fits);
   WidenForTie(&d);
   // What the search was run without is tried beside its model too: the
   // record may not exclude it there (DiagnoseOptions::searched_without;

@@ -479,6 +479,14 @@ void Reported(const Case& model,
   CheckRidges(c, data, fit);
 }
 
+void ReportedAll(const std::vector<const Case*>& models,
+                 const std::vector<TimeHistory>& data,
+                 const std::vector<FitResult*>& fits) {
+  CHECK_EQ(models.size(), fits.size());
+  ParallelFor(static_cast<int>(models.size()),
+              [&](int i) { Reported(*models[i], data, fits[i]); });
+}
+
 bool FitFrom(const Case& c,
              const FitResult& from,
              const std::vector<TimeHistory>& data,

@@ -118,6 +118,12 @@ void Reported(const Case& model,
               const std::vector<TimeHistory>& data,
               FitResult* fit);
 
+// Reported for each of `models` with its fit in `fits`, side by side:
+// each fit is its own.
+void ReportedAll(const std::vector<const Case*>& models,
+                 const std::vector<TimeHistory>& data,
+                 const std::vector<FitResult*>& fits);
+
 // The case `c` fitted from `from`, its solution, into *fit; false (and a
 // warning naming the refit, `what`) when the fit fails.
 bool FitFrom(const Case& c,

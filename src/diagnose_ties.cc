@@ -843,14 +843,13 @@ void Adopt(const std::vector<TimeHistory>& data,
            Diagnosis* d,
            Case* current,
            ResidualCheck* final) {
-  // Each complete model's fit is its own: all reported at once.
-  ParallelFor(1 + static_cast<int>(a.rival_fits.size()), [&](int r) {
-    if (r == 0) {
-      Reported(models[a.full], data, &d->fits[a.full]);
-    } else {
-      Reported(a.rival_cases[r - 1], data, &a.rival_fits[r - 1]);
-    }
-  });
+  std::vector<const Case*> complete = {&models[a.full]};
+  std::vector<FitResult*> fits = {&d->fits[a.full]};
+  for (size_t r = 0; r < a.rival_fits.size(); ++r) {
+    complete.push_back(&a.rival_cases[r]);
+    fits.push_back(&a.rival_fits[r]);
+  }
+  ReportedAll(complete, data, fits);
   a.alternatives[0].parameters = d->fits[a.full].parameters;
   for (size_t r = 0; r < a.rival_fits.size(); ++r) {
     a.alternatives[r + 1].parameters = a.rival_fits[r].parameters;
