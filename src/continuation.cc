@@ -110,7 +110,10 @@ PipelineOutcome RunPipeline(const Case& c,
     settings.max_iterations = last ? c.solver.max_iterations : 50;
     settings.bic_tolerance = c.solver.bic_tolerance;
     settings.stop_below = c.solver.stop_below;
-    if (c.solver.from_solution) settings.initial_radius = kFromSolutionRadius;
+    if (c.solver.from_solution) {
+      settings.initial_radius = kFromSolutionRadius;
+      settings.coarser_jacobians = true;
+    }
     auto solve = [&](std::vector<double>* trial) {
       return gauss_newton
                  ? SolveGaussNewton(stage, free, problem.model, settings, trial)

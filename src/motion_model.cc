@@ -97,6 +97,14 @@ MotionModel::MotionModel(const ModelSpec& spec, const ActiveSet& active)
   moment_scale_ = {qsd / spec_.body.Ix, qsd / spec_.body.Iy, qsd / iz};
 }
 
+std::shared_ptr<const MotionModel> MotionModel::WithMaxStep(
+    double max_step) const {
+  CHECK_GT(max_step, 0.0);
+  auto coarser = std::make_shared<MotionModel>(*this);
+  coarser->spec_.max_step = max_step;
+  return coarser;
+}
+
 StateGuard MotionModel::Guard() const {
   StateGuard guard;
   guard.theta_index =

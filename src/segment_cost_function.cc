@@ -17,9 +17,10 @@ namespace fit3dof {
 // Compiled in segment_cost_function_jets_N.cc, each width in its own unit
 // (in parallel); this unit needs only Predict and WhitenedResiduals for
 // doubles from the header.
-#define FIT3DOF_JET_WIDTH(N)                                  \
-  extern template bool SegmentCostFunction::EvaluateLanes<N>( \
-      const double*, const int*, int, double*, double**) const;
+#define FIT3DOF_JET_WIDTH(N)                                                 \
+  extern template bool SegmentCostFunction::EvaluateLanes<N>(                \
+      const MotionModel&, const double*, const int*, int, double*, double**) \
+      const;
 FIT3DOF_JET_WIDTH(2)
 FIT3DOF_JET_WIDTH(4)
 FIT3DOF_JET_WIDTH(6)
@@ -124,7 +125,7 @@ bool SegmentCostFunction::ComputeAngles(const std::vector<double>& full,
                                         IntegrationFailure* failure) const {
   const int n = data_.size();
   angles->resize(3 * n);
-  if (!Predict(full.data(), angles->data(), failure)) return false;
+  if (!Predict(*model_, full.data(), angles->data(), failure)) return false;
   if (innovation_weights_ != nullptr) return true;  // on the branch already
   for (int i = 0; i < n; ++i) {
     double& phi = (*angles)[3 * i];
@@ -133,7 +134,8 @@ bool SegmentCostFunction::ComputeAngles(const std::vector<double>& full,
   return true;
 }
 
-bool SegmentCostFunction::EvaluatePass(const double* u,
+bool SegmentCostFunction::EvaluatePass(const MotionModel& model,
+                                       const double* u,
                                        const int* lanes,
                                        int count,
                                        double* residuals,
@@ -141,24 +143,25 @@ bool SegmentCostFunction::EvaluatePass(const double* u,
   CHECK_LE(count, kMaxLanes);
 #ifndef FIT3DOF_FEWER_JET_WIDTHS
   if (count <= 2) {
-    return EvaluateLanes<2>(u, lanes, count, residuals, jacobians);
+    return EvaluateLanes<2>(model, u, lanes, count, residuals, jacobians);
   }
 #endif
   if (count <= 4) {
-    return EvaluateLanes<4>(u, lanes, count, residuals, jacobians);
+    return EvaluateLanes<4>(model, u, lanes, count, residuals, jacobians);
   }
 #ifndef FIT3DOF_FEWER_JET_WIDTHS
   if (count <= 6) {
-    return EvaluateLanes<6>(u, lanes, count, residuals, jacobians);
+    return EvaluateLanes<6>(model, u, lanes, count, residuals, jacobians);
   }
 #endif
   if (count <= 8) {
-    return EvaluateLanes<8>(u, lanes, count, residuals, jacobians);
+    return EvaluateLanes<8>(model, u, lanes, count, residuals, jacobians);
   }
-  return EvaluateLanes<12>(u, lanes, count, residuals, jacobians);
+  return EvaluateLanes<12>(model, u, lanes, count, residuals, jacobians);
 }
 
-bool SegmentCostFunction::EvaluateSensitivities(const double* u,
+bool SegmentCostFunction::EvaluateSensitivities(const MotionModel& model,
+                                                const double* u,
                                                 const std::vector<int>& lanes,
                                                 double* residuals,
                                                 double** jacobians) const {
@@ -185,14 +188,14 @@ bool SegmentCostFunction::EvaluateSensitivities(const double* u,
   }
   const int columns = static_cast<int>(wrt.size());
   std::vector<double> angles(3 * n), derivatives(3 * n * columns);
-  if (!model_->EvaluateWithSensitivities(full.data(),
-                                         wrt.data(),
-                                         columns,
-                                         data_.t.data(),
-                                         n,
-                                         angles.data(),
-                                         derivatives.data(),
-                                         nullptr)) {
+  if (!model.EvaluateWithSensitivities(full.data(),
+                                       wrt.data(),
+                                       columns,
+                                       data_.t.data(),
+                                       n,
+                                       angles.data(),
+                                       derivatives.data(),
+                                       nullptr)) {
     return false;
   }
   const double inv_sigma[3] = {
@@ -241,31 +244,53 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
       if (jacobians[block] != nullptr) lanes.push_back(j);
     }
   }
-  if (lanes.empty()) {
-    const std::vector<double> full = FullFromFree(u.data());
-    std::vector<double> angles;
-    if (!ComputeAngles(full, &angles, nullptr)) return false;
-    if (innovation_weights_ != nullptr) {
-      for (int i = 0; i < data_.size(); ++i) {
-        WhitenedResiduals(i, &angles[3 * i], residuals + 3 * i);
-      }
-      for (int r = 0; r < num_residuals(); ++r) {
-        if (!std::isfinite(residuals[r])) return false;
-      }
-      return true;
-    }
-    const double* measured[3] = {
-        data_.phi.data(), data_.theta.data(), data_.psi.data()};
-    const double sigma[3] = {sigma_.phi, sigma_.theta, sigma_.psi};
+  if (lanes.empty()) return EvaluateResiduals(u.data(), residuals);
+  if (jacobian_model_ == nullptr || innovation_weights_ != nullptr) {
+    return EvaluateJacobian(*model_, u.data(), lanes, residuals, jacobians);
+  }
+  // The residuals from the model's motion, the Jacobian from the coarser
+  // one (its residuals discarded), or from the model's where that fails.
+  if (!EvaluateResiduals(u.data(), residuals)) return false;
+  std::vector<double> coarse(num_residuals());
+  if (EvaluateJacobian(
+          *jacobian_model_, u.data(), lanes, coarse.data(), jacobians)) {
+    return true;
+  }
+  return EvaluateJacobian(*model_, u.data(), lanes, coarse.data(), jacobians);
+}
+
+bool SegmentCostFunction::EvaluateResiduals(const double* u,
+                                            double* residuals) const {
+  const std::vector<double> full = FullFromFree(u);
+  std::vector<double> angles;
+  if (!ComputeAngles(full, &angles, nullptr)) return false;
+  if (innovation_weights_ != nullptr) {
     for (int i = 0; i < data_.size(); ++i) {
-      for (int c = 0; c < 3; ++c) {
-        const double r = (angles[3 * i + c] - measured[c][i]) / sigma[c];
-        if (!std::isfinite(r)) return false;
-        residuals[3 * i + c] = r;
-      }
+      WhitenedResiduals(i, &angles[3 * i], residuals + 3 * i);
+    }
+    for (int r = 0; r < num_residuals(); ++r) {
+      if (!std::isfinite(residuals[r])) return false;
     }
     return true;
   }
+  const double* measured[3] = {
+      data_.phi.data(), data_.theta.data(), data_.psi.data()};
+  const double sigma[3] = {sigma_.phi, sigma_.theta, sigma_.psi};
+  for (int i = 0; i < data_.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double r = (angles[3 * i + c] - measured[c][i]) / sigma[c];
+      if (!std::isfinite(r)) return false;
+      residuals[3 * i + c] = r;
+    }
+  }
+  return true;
+}
+
+bool SegmentCostFunction::EvaluateJacobian(const MotionModel& model,
+                                           const double* u,
+                                           const std::vector<int>& lanes,
+                                           double* residuals,
+                                           double** jacobians) const {
   const int columns = static_cast<int>(lanes.size());
   // The filter's predictor has no sensitivity form: Jet lanes.
   const bool sensitivities =
@@ -273,13 +298,14 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
       (method_ == JacobianMethod::kSensitivities ||
        (method_ == JacobianMethod::kAuto && columns >= kMinSensitivityColumns));
   if (sensitivities) {
-    return EvaluateSensitivities(u.data(), lanes, residuals, jacobians);
+    return EvaluateSensitivities(model, u, lanes, residuals, jacobians);
   }
   // Passes of up to 12 lanes, each as narrow as its columns allow (2, 4, 6,
   // 8 or 12; the header says why).
   for (size_t first = 0, count = 0; first < lanes.size(); first += count) {
     count = std::min<size_t>(kMaxLanes, lanes.size() - first);
-    if (!EvaluatePass(u.data(),
+    if (!EvaluatePass(model,
+                      u,
                       lanes.data() + first,
                       static_cast<int>(count),
                       residuals,
@@ -288,6 +314,11 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
     }
   }
   return true;
+}
+
+void SegmentCostFunction::set_jacobian_step(double step) {
+  jacobian_model_ =
+      step > model_->spec().max_step ? model_->WithMaxStep(step) : nullptr;
 }
 
 }  // namespace fit3dof

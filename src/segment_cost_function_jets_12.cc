@@ -7,7 +7,11 @@
 
 namespace fit3dof {
 
-template bool SegmentCostFunction::EvaluateLanes<12>(
-    const double*, const int*, int, double*, double**) const;
+template bool SegmentCostFunction::EvaluateLanes<12>(const MotionModel&,
+                                                     const double*,
+                                                     const int*,
+                                                     int,
+                                                     double*,
+                                                     double**) const;
 
 }  // namespace fit3dof

@@ -11,8 +11,12 @@
 #ifndef FIT3DOF_FEWER_JET_WIDTHS
 namespace fit3dof {
 
-template bool SegmentCostFunction::EvaluateLanes<6>(
-    const double*, const int*, int, double*, double**) const;
+template bool SegmentCostFunction::EvaluateLanes<6>(const MotionModel&,
+                                                    const double*,
+                                                    const int*,
+                                                    int,
+                                                    double*,
+                                                    double**) const;
 
 }  // namespace fit3dof
 #endif

@@ -17,20 +17,21 @@
 namespace fit3dof {
 
 template <typename T>
-bool SegmentCostFunction::Predict(const T* full,
+bool SegmentCostFunction::Predict(const MotionModel& model,
+                                  const T* full,
                                   T* angles,
                                   IntegrationFailure* failure) const {
   const int n = data_.size();
   if (innovation_weights_ == nullptr) {
-    return model_->Evaluate(full, data_.t.data(), n, angles, failure);
+    return model.Evaluate(full, data_.t.data(), n, angles, failure);
   }
-  if (!model_->EvaluateFiltered(full,
-                                data_.t.data(),
-                                n,
-                                measured_.data(),
-                                innovation_weights_->gains.data(),
-                                angles,
-                                failure)) {
+  if (!model.EvaluateFiltered(full,
+                              data_.t.data(),
+                              n,
+                              measured_.data(),
+                              innovation_weights_->gains.data(),
+                              angles,
+                              failure)) {
     return false;
   }
   // angles holds the innovations e = y - h: the prediction is y - e.
@@ -51,7 +52,8 @@ void SegmentCostFunction::WhitenedResiduals(int i,
 }
 
 template <int N>
-bool SegmentCostFunction::EvaluateLanes(const double* u,
+bool SegmentCostFunction::EvaluateLanes(const MotionModel& model,
+                                        const double* u,
                                         const int* lanes,
                                         int count,
                                         double* residuals,
@@ -65,7 +67,7 @@ bool SegmentCostFunction::EvaluateLanes(const double* u,
   for (int l = 0; l < count; ++l) full[free_[lanes[l]]].v[l] = scale_[lanes[l]];
   ApplyTies(ties_, full.data());
   std::vector<J> angles(3 * n);
-  if (!Predict(full.data(), angles.data(), nullptr)) return false;
+  if (!Predict(model, full.data(), angles.data(), nullptr)) return false;
   const double inv_sigma[3] = {
       1.0 / sigma_.phi, 1.0 / sigma_.theta, 1.0 / sigma_.psi};
   int block[N], column[N];

@@ -29,6 +29,9 @@ struct StageOutcome {
   int iterations = 0;
   int failed_evaluations = 0;  // rejected trial steps that blew up
   double ressum = 0.0;         // weighted residual sum of squares at the end
+  // Whether Levenberg-Marquardt's Jacobians came from the coarser motion
+  // (StageSettings::coarser_jacobians; in the last run of SolveStage).
+  bool coarser_jacobians = false;
   std::string termination;
   std::string failure;  // why the start values could not be integrated
 };
@@ -47,6 +50,32 @@ struct StageOutcome {
 inline constexpr double kStartRadius = 1e4;
 inline constexpr double kFromSolutionRadius = 1e8;
 
+// A refit from a nearby model's solution (StageSettings::coarser_jacobians)
+// takes Levenberg-Marquardt's Jacobians from the motion integrated with
+// this many times the model's step (SegmentCostFunction::set_jacobian_step):
+// its residuals, and so its answer, the minimum of their sum of squares,
+// stay the model's. RK4's error grows as the step's fourth power: the
+// Jacobian's is at most 4^4 = 256 times the motion's own truncation error,
+// which the step is chosen to keep far below the noise (a relative 1e-5
+// becomes 3e-3 in a Jacobian, which costs Levenberg-Marquardt's steps
+// nothing they need). The start's Jacobian (the coordinates' scales, the
+// columns the data cannot see) and every Jacobian after the run (error
+// bars, score tests) are the model's. Draw 50 of tools/diagnose_suite
+// (165 diagnoses): every verdict and added effect the same, the final
+// values within 0.006 of their errors and the errors within 0.7%; alone,
+// three 3-s runs at the default step (0.001 s) 0.80x the time, at the
+// suite's 0.002 s 0.8-0.86x, Table 6 records (0.01 s, 6 steps a sample)
+// 0.9-1.0x. Not for fits from guesses: the continuation stages of a Table 6
+// record with an unmodelled roll damping crawl without converging, and
+// where such a crawl stops depends on the last digits of its steps (with
+// coarser Jacobians the nominal fit ended at a probable error of 12600
+// instead of 946, and the diagnosis named a reading lag).
+inline constexpr double kJacobianStepFactor = 4.0;
+// ... when at the start each column the data see is within this of the
+// model's own (relative to the column's norm); the model's Jacobians
+// otherwise.
+inline constexpr double kJacobianAgreement = 1e-2;
+
 // What a stage solve needs besides the segments and the values.
 struct StageSettings {
   double tolerance = 0.0;           // absolute, on the probable error
@@ -60,6 +89,9 @@ struct StageSettings {
   // every free coordinate's Jacobian column unit norm (Ceres' radius is
   // the inverse of the damping added to that unit diagonal).
   double initial_radius = kStartRadius;
+  // Levenberg-Marquardt's Jacobians from a coarser motion where they serve
+  // (kJacobianStepFactor): for refits from a nearby model's solution.
+  bool coarser_jacobians = false;
 };
 
 // One Levenberg-Marquardt run from `values` (global free order, updated in

@@ -1851,7 +1851,13 @@ TEST(Diagnose, AlternativesErrorBarsCoverAnEffectTheRecordCannotExclude) {
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   EXPECT_TRUE(EffectIds(d.ambiguous).count("magnus")) << text;
-  EXPECT_TRUE(EffectIds(d.not_excluded).count("nonlinear_damping")) << text;
+  // The damping is not excluded, or added beside the calibration error:
+  // the joint set's refits land within their tolerance of the minimum, and
+  // where one lands nearer (as with Levenberg-Marquardt's Jacobians from
+  // the coarser motion, stage_solver.h) the damping earns its place.
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("nonlinear_damping") ||
+              EffectIds(d.steps).count("nonlinear_damping"))
+      << text;
   // Nothing is added (the tie's final model is the one before it, short of
   // the noise): beside it a body asymmetry had lowered BIC by 77.6 and was
   // reported "not needed beside the final model, nor excluded". Each

@@ -14,6 +14,7 @@
 
 #include "fit3dof/fit.h"
 #include "fit3dof/parameters.h"
+#include "fit_problem.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
 
@@ -80,6 +81,63 @@ TEST(StageSolver, ARefitFromASolutionTakesTheRidgeAtOnce) {
   // Where the nominal fit stops short of the ridge's bottom, the cautious
   // start crawls there (13-14 iterations against 5 on two seeds of three).
   EXPECT_LE(2 * trusted_iterations, cautious_iterations);
+}
+
+// A refit from a solution takes Levenberg-Marquardt's Jacobians from the
+// motion at kJacobianStepFactor times the step (StageSettings::
+// coarser_jacobians): its answer is the residuals' minimum, where the run
+// with the model's own Jacobians ends, in as many iterations. Not where
+// the coarser motion's Jacobian disagrees with the model's at the start:
+// with the step a quarter of the sample interval, the coarser motion takes
+// one RK4 step per sample (about 0.6 rad of the pitching motion), and the
+// run keeps the model's Jacobians.
+TEST(StageSolver, CoarserJacobiansWhereTheyAgreeReachTheSameMinimum) {
+  for (int seed = 1; seed <= 3; ++seed) {
+    const Refit r = RidgeRefit(
+        testing::ScratchDirectory("stage_coarse_" + std::to_string(seed)),
+        seed);
+    Case at = r.c;
+    at.solver.from_solution = true;
+    const FitProblem problem = PrepareProblem(at, r.data);
+    StageSettings settings;
+    settings.tolerance = at.solver.tolerance;
+    settings.initial_radius = kFromSolutionRadius;
+    std::vector<double> exact = problem.values, coarse = problem.values;
+    const StageOutcome model_jacobians = SolveStage(problem.segments,
+                                                    problem.free,
+                                                    problem.model,
+                                                    problem.names,
+                                                    settings,
+                                                    &exact);
+    settings.coarser_jacobians = true;
+    const StageOutcome coarser = SolveStage(problem.segments,
+                                            problem.free,
+                                            problem.model,
+                                            problem.names,
+                                            settings,
+                                            &coarse);
+    std::cout << "seed " << seed << ": " << model_jacobians.iterations << " -> "
+              << coarser.iterations << " iterations, sum of squares "
+              << model_jacobians.ressum << " -> " << coarser.ressum << "\n";
+    EXPECT_FALSE(model_jacobians.coarser_jacobians);
+    EXPECT_TRUE(coarser.coarser_jacobians);
+    ASSERT_TRUE(coarser.converged) << coarser.termination;
+    EXPECT_NEAR(
+        coarser.ressum, model_jacobians.ressum, 1e-4 * model_jacobians.ressum);
+    EXPECT_LE(coarser.iterations, model_jacobians.iterations + 1);
+
+    const double interval = r.data[0].t[1] - r.data[0].t[0];
+    at.solver.step = interval / 4.0;
+    const FitProblem sparse = PrepareProblem(at, r.data);
+    std::vector<double> values = sparse.values;
+    const StageOutcome kept = SolveStage(sparse.segments,
+                                         sparse.free,
+                                         sparse.model,
+                                         sparse.names,
+                                         settings,
+                                         &values);
+    EXPECT_FALSE(kept.coarser_jacobians) << "seed " << seed;
+  }
 }
 
 // A refit from a nearby model's solution whose start is far from the

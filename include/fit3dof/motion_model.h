@@ -64,6 +64,11 @@ class MotionModel {
   MotionModel(const ModelSpec& spec, const ActiveSet& active);
 
   const ModelSpec& spec() const { return spec_; }
+
+  // The same model integrated with another largest step (s): the coarser
+  // motion that a Levenberg-Marquardt run's Jacobians may come from
+  // (SegmentCostFunction::set_jacobian_step).
+  std::shared_ptr<const MotionModel> WithMaxStep(double max_step) const;
   int num_parameters() const { return NumParameters(spec_.model); }
   const std::vector<double>& scale() const { return scale_; }
 

@@ -32,7 +32,9 @@
 //   copies) instead of every operation of the equations.
 //
 // Both give the same residuals exactly and the same derivatives to rounding
-// (segment_cost_function_test). kAuto takes Jet lanes up to 8 columns and
+// (segment_cost_function_test). Either may run on a coarser motion
+// (set_jacobian_step: a refit's Levenberg-Marquardt steps, stage_solver.h),
+// the residuals still the model's. kAuto takes Jet lanes up to 8 columns and
 // the sensitivities from 9 on. Measured with tools/bench
 // (bench/evaluation_benchmark: Table 6 record, 800 samples, 4800 RK4
 // steps; more free parameters also switch on more terms of the model, and
@@ -153,11 +155,21 @@ class SegmentCostFunction : public ceres::CostFunction {
   static constexpr int kMinSensitivityColumns = 9;
   void set_jacobian_method(JacobianMethod method) { method_ = method; }
 
+  // Jacobians from the motion integrated with the largest step `step` (s)
+  // instead of the model's: a Levenberg-Marquardt run's (stage_solver.cc),
+  // whose answer is the minimum of the residuals, which stay the model's
+  // exactly (computed alongside by a forward pass). Where the coarser
+  // motion blows up, the Jacobian is the model's. The model's own step or
+  // less: the model's Jacobians; so too with innovation weights (the
+  // filter's predictor).
+  void set_jacobian_step(double step);
+
  private:
   // Evaluates with Jets whose lanes carry the derivatives with respect to
   // free coordinates lanes[0..count).
   template <int N>
-  bool EvaluateLanes(const double* u,
+  bool EvaluateLanes(const MotionModel& model,
+                     const double* u,
                      const int* lanes,
                      int count,
                      double* residuals,
@@ -165,11 +177,13 @@ class SegmentCostFunction : public ceres::CostFunction {
   bool EvaluateOrFail(double const* const* parameters,
                       double* residuals,
                       double** jacobians) const;
-  bool EvaluateSensitivities(const double* u,
+  bool EvaluateSensitivities(const MotionModel& model,
+                             const double* u,
                              const std::vector<int>& lanes,
                              double* residuals,
                              double** jacobians) const;
-  bool EvaluatePass(const double* u,
+  bool EvaluatePass(const MotionModel& model,
+                    const double* u,
                     const int* lanes,
                     int count,
                     double* residuals,
@@ -188,7 +202,18 @@ class SegmentCostFunction : public ceres::CostFunction {
   // or with innovation weights the filter's one-step predictions (on the
   // measurement's roll branch). T: double or a Jet.
   template <typename T>
-  bool Predict(const T* full, T* angles, IntegrationFailure* failure) const;
+  bool Predict(const MotionModel& model,
+               const T* full,
+               T* angles,
+               IntegrationFailure* failure) const;
+  // The weighted residuals alone, from the model's motion.
+  bool EvaluateResiduals(const double* u, double* residuals) const;
+  // The residuals and the Jacobian, both from `model`'s motion.
+  bool EvaluateJacobian(const MotionModel& model,
+                        const double* u,
+                        const std::vector<int>& lanes,
+                        double* residuals,
+                        double** jacobians) const;
   // Sample i's three residuals with innovation weights: L_i^-1 (computed
   // - measured).
   template <typename T>
@@ -197,6 +222,8 @@ class SegmentCostFunction : public ceres::CostFunction {
   void Locate(int j, int* block, int* column) const;
 
   std::shared_ptr<const MotionModel> model_;
+  // The coarser motion of set_jacobian_step; null: model_.
+  std::shared_ptr<const MotionModel> jacobian_model_;
   std::vector<double> base_;
   std::vector<int> free_;
   int num_shared_;
