@@ -12,6 +12,7 @@
 #include "line_statistics.h"
 #include "reading_errors.h"
 #include "spectral_lines.h"
+#include "symmetric_eigen.h"
 
 namespace fit3dof {
 namespace {
@@ -286,10 +287,9 @@ Eigen::MatrixXd ColoredInformation(const std::vector<ResidualSeries>& series,
   // Symmetric and positive semidefinite: a truncated, tapered sum of
   // sampled autocorrelations need not be.
   const Eigen::MatrixXd symmetric = 0.5 * (bracket + bracket.transpose());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(symmetric);
-  const Eigen::VectorXd lambda = eigen.eigenvalues().cwiseMax(0.0);
-  return eigen.eigenvectors() * lambda.asDiagonal() *
-         eigen.eigenvectors().transpose();
+  const SymmetricEigen eigen(symmetric);
+  const Eigen::VectorXd lambda = eigen.values().cwiseMax(0.0);
+  return eigen.vectors() * lambda.asDiagonal() * eigen.vectors().transpose();
 }
 
 Eigen::MatrixXd SandwichCovariance(const Eigen::MatrixXd& b,

@@ -10,6 +10,7 @@
 #include "diagnose_internal.h"
 #include "fit3dof/fit.h"
 #include "fit3dof/parameters.h"
+#include "symmetric_eigen.h"
 
 namespace fit3dof {
 namespace {
@@ -33,14 +34,14 @@ Eigen::MatrixXd PseudoInverse(const Eigen::MatrixXd& m,
     if (rank) *rank = 0;
     return m;
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(m);
-  const Eigen::VectorXd lambda = eigen.eigenvalues();
+  const SymmetricEigen eigen(m);
+  const Eigen::VectorXd lambda = eigen.values();
   const double limit = relative * std::max(lambda.maxCoeff(), 0.0);
   Eigen::MatrixXd inverse = Eigen::MatrixXd::Zero(m.rows(), m.cols());
   int kept = 0;
   for (int j = 0; j < lambda.size(); ++j) {
     if (lambda(j) > limit && lambda(j) > 0.0) {
-      const Eigen::VectorXd v = eigen.eigenvectors().col(j);
+      const Eigen::VectorXd v = eigen.vectors().col(j);
       inverse += v * v.transpose() / lambda(j);
       ++kept;
     }
@@ -59,8 +60,8 @@ double Novelty(const Eigen::MatrixXd& icc, const Eigen::MatrixXd& schur) {
   const Eigen::VectorXd scale = own.rsqrt().matrix();
   const Eigen::MatrixXd scaled =
       scale.asDiagonal() * schur * scale.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled);
-  return std::max(eigen.eigenvalues().minCoeff(), 0.0);
+  const SymmetricEigen eigen(scaled);
+  return std::max(eigen.values().minCoeff(), 0.0);
 }
 
 // The information of a candidate's `added` terms (c) and of the parameters

@@ -18,6 +18,7 @@
 #include "fit3dof/progress.h"
 #include "fit3dof/thread_budget.h"
 #include "format.h"
+#include "symmetric_eigen.h"
 
 namespace fit3dof {
 namespace {
@@ -381,12 +382,12 @@ StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
     old_e = e;
     // Solve J^T J du = -J^T r (pseudo-inverse: a singular direction gets no
     // correction, as the listing's INV would divide by zero instead).
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(jtj);
-    const Eigen::VectorXd lambda = eigen.eigenvalues();
+    const SymmetricEigen eigen(jtj);
+    const Eigen::VectorXd lambda = eigen.values();
     Eigen::VectorXd du = Eigen::VectorXd::Zero(k);
     for (int j = 0; j < k; ++j) {
       if (lambda(j) > 1e-14 * lambda.maxCoeff()) {
-        const Eigen::VectorXd v = eigen.eigenvectors().col(j);
+        const Eigen::VectorXd v = eigen.vectors().col(j);
         du -= v * (v.dot(jtr) / lambda(j));
       }
     }

@@ -22,6 +22,7 @@
 #include "fit3dof/angles.h"
 #include "fit3dof/input_error.h"
 #include "format.h"
+#include "symmetric_eigen.h"
 
 namespace fit3dof {
 namespace {
@@ -109,8 +110,8 @@ SolutionInformation InformationAtSolution(const FitProblem& p,
 // ill-conditioned for it. Held coordinates keep zero rows and columns.
 bool SvdCovariance(const SolutionInformation& info, Eigen::MatrixXd* cov_u) {
   // Rank-deficient fits go to the named-null-space path.
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(info.jtj);
-  const Eigen::VectorXd lambda = eigen.eigenvalues();
+  const SymmetricEigen eigen(info.jtj);
+  const Eigen::VectorXd lambda = eigen.values();
   if (!(lambda.minCoeff() > 1e-13 * lambda.maxCoeff())) return false;
   const int k = static_cast<int>(info.jtj.rows());
   std::vector<int> column(k, -1);
@@ -155,13 +156,13 @@ int PseudoInverse(const SolutionInformation& info,
                   std::vector<bool>* determined,
                   std::vector<std::string>* warnings) {
   const int k = static_cast<int>(names.size());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(info.jtj);
-  const Eigen::VectorXd lambda = eigen.eigenvalues();
+  const SymmetricEigen eigen(info.jtj);
+  const Eigen::VectorXd lambda = eigen.values();
   const double lambda_max = lambda.maxCoeff();
   cov_u->setZero(k, k);
   int named = 0;
   for (int e = 0; e < k; ++e) {
-    const Eigen::VectorXd v = eigen.eigenvectors().col(e);
+    const Eigen::VectorXd v = eigen.vectors().col(e);
     bool null_coordinate = false;
     for (int g = 0; g < k; ++g) {
       null_coordinate |= info.null_columns[g] && std::abs(v(g)) > 0.5;
@@ -239,10 +240,10 @@ void NamePairs(const Eigen::MatrixXd& cov,
 void NameGroups(const std::vector<std::string>& names, Uncertainty* u) {
   if (!u->correlation.allFinite()) return;
   const int k = static_cast<int>(names.size());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(u->correlation);
+  const SymmetricEigen eigen(u->correlation);
   for (int e = 0; e < k; ++e) {
-    if (eigen.eigenvalues()(e) > 1e-6) continue;
-    const Eigen::VectorXd v = eigen.eigenvectors().col(e);
+    if (eigen.values()(e) > 1e-6) continue;
+    const Eigen::VectorXd v = eigen.vectors().col(e);
     std::vector<std::string> involved;
     for (int g = 0; g < k; ++g) {
       if (std::abs(v(g)) > 0.25) involved.push_back(names[g]);
