@@ -675,6 +675,28 @@ bool TakeSet(int i,
   return true;
 }
 
+// The lead with its whole `pool` (indices into `contenders`) fitted as one
+// model from `fit` (of the model `at`) into *model and *union_fit, stopped
+// once below the noise limit. False when it cannot be built or fitted.
+bool FitUnion(int lead,
+              const std::vector<int>& pool,
+              const Case& at,
+              const FitResult& fit,
+              const std::vector<TimeHistory>& data,
+              const DiagnoseOptions& options,
+              const std::vector<Contender>& contenders,
+              Candidate* model,
+              FitResult* union_fit) {
+  std::vector<int> all = {lead};
+  all.insert(all.end(), pool.begin(), pool.end());
+  int terms = 0;
+  if (!WithEffects(at, contenders, all, model, &terms)) return false;
+  // Below the noise it has answered: no need to go further down (a union
+  // with a trim moment had crawled 34 iterations there).
+  model->c.solver.stop_below = CheckResiduals(fit, options).noise_limit;
+  return FitFrom(model->c, fit, data, "with a joint set's union", union_fit);
+}
+
 // Whether the lead with its whole `pool` fitted as one model,
 // the largest of its sets (JointSets), reaches the noise level as far as
 // its sum of squares tells: no set of its members fits lower than they all
@@ -695,17 +717,11 @@ bool UnionMayReachTheNoise(int lead,
                            const std::vector<TimeHistory>& data,
                            const DiagnoseOptions& options,
                            const std::vector<Contender>& contenders) {
-  std::vector<int> all = {lead};
-  all.insert(all.end(), pool.begin(), pool.end());
-  if (all.size() < 3) return true;
+  if (pool.size() < 2) return true;
   Candidate model;
-  int terms = 0;
-  if (!WithEffects(at, contenders, all, &model, &terms)) return true;
-  // Below the noise it has answered: no need to go further down (a union
-  // with a trim moment had crawled 34 iterations there).
-  model.c.solver.stop_below = CheckResiduals(fit, options).noise_limit;
   FitResult union_fit;
-  if (!FitFrom(model.c, fit, data, "with a joint set's union", &union_fit)) {
+  if (!FitUnion(
+          lead, pool, at, fit, data, options, contenders, &model, &union_fit)) {
     return true;
   }
   const ResidualCheck check = CheckResiduals(union_fit, options);
@@ -714,9 +730,8 @@ bool UnionMayReachTheNoise(int lead,
                        std::sqrt((residuals - union_fit.free_parameters) /
                                  (residuals - fit.free_parameters));
   VLOG(1) << fit.name << ": " << contenders[lead].record.effect
-          << " with its pool of " << all.size() - 1
-          << ": probable error at least " << least << " (limit "
-          << check.noise_limit << ")";
+          << " with its pool of " << pool.size() << ": probable error at least "
+          << least << " (limit " << check.noise_limit << ")";
   return least < check.noise_limit;
 }
 
@@ -825,6 +840,29 @@ bool PoolEarns(int lead,
                   joint);
 }
 
+// Whether a set of the lead with the last of `pool` (UnionPool's newcomer)
+// earns its place (SetEarns, into *joint): the pair, then each triple with
+// another of the pool, once the whole pool's union may reach the noise.
+// The sets without the newcomer were drawn before (its pool's own union
+// stayed above the noise, or its sets were fitted). The newcomer second
+// in a triple: the pair is the triple's prefix (TakeSet).
+bool WiderPoolEarns(int lead,
+                    const std::vector<int>& pool,
+                    const JointRound& r,
+                    JointSet* joint) {
+  if (pool.empty() ||
+      !UnionMayReachTheNoise(
+          lead, pool, r.at, r.fit, r.data, r.options, r.contenders)) {
+    return false;
+  }
+  const int newcomer = pool.back();
+  std::vector<std::vector<int>> sets = {{lead, newcomer}};
+  for (size_t a = 0; a + 1 < pool.size(); ++a) {
+    sets.push_back({lead, newcomer, pool[a]});
+  }
+  return SetEarns(lead, sets, r, joint);
+}
+
 // Jointly for one lead: its sets from its pool by BIC (JointPool), then,
 // when none earns, from its pool by score (ScorePool).
 bool JointlyLedBy(int lead, const JointRound& r, JointSet* joint) {
@@ -855,36 +893,25 @@ int ContenderFor(const Effect* effect,
   return static_cast<int>(contenders->size()) - 1;
 }
 
-// The three others for the contender at `lead` that score highest at its
-// own fit (one of score twins), those the round had not refitted
-// refitted and appended to *contenders; empty when its pool by BIC or by
-// score drew them all. An effect that only shows once
-// the lead is in can score too little at the round to be refitted: on a
-// 3-s coning run with a Magnus moment, a nonlinear damping and a pitch/yaw
-// calibration nonlinearity (suite draw 34), the damping dragged Cm_q
-// (nominal -10.0, truth -5.5) and led; the Magnus moment came second by
-// score (10.8) and the calibration not among the five refitted, and both
-// pools stopped at a probable error of 1.42 (limit 1.18). At the damping's
-// fit the Magnus moment (14.3) and the calibration (13.7) score highest.
-// Three, as the other pools: on draw 35's record of the same three, the
-// calibration came third there (6.1, after the Magnus moment 19.8 and a
-// tunnel damping 15.6).
-std::vector<int> LeadPool(int lead,
-                          const std::vector<Candidate>& candidates,
-                          const JointRound& r,
-                          std::vector<Contender>* contenders) {
-  // The pools drawn before, from the round's own refits (what LeadPool
-  // appends is in neither).
-  const std::vector<std::vector<int>> tried = {JointPool(lead, *contenders),
-                                               ScorePool(lead, *contenders)};
-  // Scored before ContenderFor appends to *contenders (which moves them).
-  const Effect* own = (*contenders)[lead].candidate->effect;
-  const std::vector<Candidate> scored = ScoredCandidates(
-      (*contenders)[lead].candidate->c, (*contenders)[lead].fit, r.options);
+// Up to `count` contenders (indices into *contenders) for the effects that
+// score highest at `fit` of the model `c`, one of score twins, none of
+// `skip` and each one that may join the set `lead` leads (MayJoin); those
+// the round had not refitted are refitted from its fit and appended to
+// *contenders (`c` and `fit`, which may be a contender's, are read before
+// it grows).
+std::vector<int> ScoredPool(const Case& c,
+                            const FitResult& fit,
+                            const std::vector<const Effect*>& skip,
+                            int count,
+                            int lead,
+                            const std::vector<Candidate>& candidates,
+                            const JointRound& r,
+                            std::vector<Contender>* contenders) {
+  const std::vector<Candidate> scored = ScoredCandidates(c, fit, r.options);
   std::vector<const Candidate*> picked;
   for (const Candidate& s : scored) {
-    if (picked.size() + 1 == kJointPool) break;
-    if (s.effect == own ||
+    if (static_cast<int>(picked.size()) == count) break;
+    if (std::find(skip.begin(), skip.end(), s.effect) != skip.end() ||
         std::any_of(picked.begin(), picked.end(), [&](const Candidate* p) {
           return ScoreTwins(s, *p);
         })) {
@@ -898,14 +925,92 @@ std::vector<int> LeadPool(int lead,
         ContenderFor(s->effect, candidates, r.fit, r.data, contenders);
     if (i >= 0 && MayJoin(i, lead, *contenders)) pool.push_back(i);
   }
+  return pool;
+}
+
+// The three others for the contender at `lead` that score highest at its
+// own fit (one of score twins), those the round had not refitted
+// refitted and appended to *contenders; empty when its pool by BIC or by
+// score drew them all. An effect that only shows once
+// the lead is in can score too little at the round to be refitted: on a
+// 3-s coning run with a Magnus moment, a nonlinear damping and a pitch/yaw
+// calibration nonlinearity (suite draw 34), the damping dragged Cm_q
+// (nominal -10.0, truth -5.5) and led; the Magnus moment came second by
+// score (10.8) and the calibration not among the five refitted, and both
+// pools stopped at a probable error of 1.42 (limit 1.18). At the damping's
+// fit the Magnus moment (14.3) and the calibration (13.7) score highest.
+// Three, as the other pools: on draw 35's record of the same three, the
+// calibration came third there (6.1, after the Magnus moment 19.8 and a
+// tunnel damping 15.6). *picked_pool gets the three, drawn before or not
+// (UnionPool widens them).
+std::vector<int> LeadPool(int lead,
+                          const std::vector<Candidate>& candidates,
+                          const JointRound& r,
+                          std::vector<Contender>* contenders,
+                          std::vector<int>* picked_pool) {
+  // The pools drawn before, from the round's own refits (what LeadPool
+  // appends is in neither).
+  const std::vector<std::vector<int>> tried = {JointPool(lead, *contenders),
+                                               ScorePool(lead, *contenders)};
+  const Contender& own = (*contenders)[lead];
+  *picked_pool = ScoredPool(own.candidate->c,
+                            own.fit,
+                            {own.candidate->effect},
+                            kJointPool - 1,
+                            lead,
+                            candidates,
+                            r,
+                            contenders);
   for (const std::vector<int>& drawn : tried) {
-    if (std::all_of(pool.begin(), pool.end(), [&](int i) {
+    if (std::all_of(picked_pool->begin(), picked_pool->end(), [&](int i) {
           return std::find(drawn.begin(), drawn.end(), i) != drawn.end();
         })) {
       return {};
     }
   }
-  return pool;
+  return *picked_pool;
+}
+
+// The pool `pool` of the contender at `lead` (LeadPool's three, with no
+// set that earned) with one more: the effect that scores highest at the
+// fit of their union, refitted and appended to *contenders when the round had
+// not; empty when none is left or the union cannot be fitted. The effect that
+// completes a set can score too little to be drawn while another that the
+// set does not need stands in for it: on a 3-s coning run with a Magnus
+// moment, a nonlinear damping and a pitch/yaw calibration nonlinearity
+// (suite draw 52), the damping dragged Cm_q and led; at its own fit the
+// Magnus moment (17.1), a tunnel stiffness (12.9) and a tunnel damping
+// (12.5) scored above the calibration (8.0), every union of the damping's
+// pools stopped at a probable error of 1.22 (limit 1.18), and the record
+// ended `not_explained` with Cm_q 3.0 of its errors off while the true
+// model reached the noise.
+std::vector<int> UnionPool(int lead,
+                           const std::vector<int>& pool,
+                           const std::vector<Candidate>& candidates,
+                           const JointRound& r,
+                           std::vector<Contender>* contenders) {
+  if (pool.empty()) return {};
+  Candidate model;
+  FitResult union_fit;
+  if (!FitUnion(lead,
+                pool,
+                r.at,
+                r.fit,
+                r.data,
+                r.options,
+                *contenders,
+                &model,
+                &union_fit)) {
+    return {};
+  }
+  std::vector<const Effect*> in_union = {(*contenders)[lead].candidate->effect};
+  for (int m : pool) in_union.push_back((*contenders)[m].candidate->effect);
+  const std::vector<int> one = ScoredPool(
+      model.c, union_fit, in_union, 1, lead, candidates, r, contenders);
+  if (one.empty()) return {};
+  std::vector<int> wider = pool;
+  wider.push_back(one[0]);
+  return wider;
 }
 
 }  // namespace
@@ -941,12 +1046,17 @@ bool Jointly(const Case& current,
   JointRound shown = round;
   shown.members_shown = true;
   for (int lead = 0; lead < judged; ++lead) {
-    if (leads((*contenders)[lead]) &&
-        PoolEarns(lead,
-                  LeadPool(lead, candidates, round, contenders),
+    if (!leads((*contenders)[lead])) continue;
+    std::vector<int> picked;
+    if (PoolEarns(lead,
+                  LeadPool(lead, candidates, round, contenders, &picked),
                   true,
                   shown,
-                  joint)) {
+                  joint) ||
+        WiderPoolEarns(lead,
+                       UnionPool(lead, picked, candidates, round, contenders),
+                       shown,
+                       joint)) {
       return true;
     }
   }
