@@ -12,12 +12,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "diagnose_search.h"
 #include "fit3dof/thread_budget.h"
+#include "fit_memo.h"
 #include "format.h"
+#include "recent_memo.h"
 #include "stage_solver.h"
 
 namespace fit3dof {
@@ -409,11 +412,46 @@ bool Polish(const Case& current,
   }
 }
 
+namespace {
+
+// What ScoredCandidates reads: the model at its solution, the samples and
+// the options' catalog.
+struct ScoreKey {
+  Case at;
+  std::vector<TimeHistory> data;
+  std::vector<std::string> effects;
+  std::vector<std::string> absent;
+  bool operator==(const ScoreKey& o) const {
+    return SameCase(at, o.at) && SameSamples(data, o.data) &&
+           effects == o.effects && absent == o.absent;
+  }
+};
+
+// The scores a diagnosis repeats: its second searches score the same
+// models at the same rounds again (a Table 6 record with a drift of the
+// dynamic pressure scored one joint set's union five times). As many as
+// the fit memo keeps (kFitMemoCapacity).
+RecentMemo<ScoreKey, std::vector<Candidate>>& TheScoreMemo() {
+  // Never destroyed: used until exit.
+  static auto* memo =
+      new RecentMemo<ScoreKey, std::vector<Candidate>>(kFitMemoCapacity);
+  return *memo;
+}
+
+}  // namespace
+
 std::vector<Candidate> ScoredCandidates(const Case& current,
                                         const FitResult& fit,
                                         const DiagnoseOptions& options) {
-  const Case at = CaseAtSolution(current, fit);
-  const std::vector<TimeHistory> data = FittedData(fit);
+  ScoreKey key{CaseAtSolution(current, fit),
+               FittedData(fit),
+               options.effects,
+               options.absent};
+  if (std::optional<std::vector<Candidate>> scored = TheScoreMemo().Find(key)) {
+    return *scored;
+  }
+  const Case& at = key.at;
+  const std::vector<TimeHistory>& data = key.data;
   std::vector<Candidate> all;
   for (const Effect& e : EffectCatalog()) {
     if (!Wanted(options, e)) continue;
@@ -425,6 +463,7 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
   for (Candidate& k : all) {
     if (k.score.dof > 0) candidates.push_back(std::move(k));
   }
+  TheScoreMemo().Add(std::move(key), candidates);
   return candidates;
 }
 
@@ -697,6 +736,16 @@ bool FitUnion(int lead,
   return FitFrom(model->c, fit, data, "with a joint set's union", union_fit);
 }
 
+// The probable error of `union_fit` counted with the degrees of freedom of
+// `fit`, the model it extends (the fewest terms): a lower bound on any
+// fit of fewer of its effects.
+double LeastProbableError(const FitResult& union_fit, const FitResult& fit) {
+  const double residuals = 3.0 * union_fit.points;
+  return union_fit.probable_error *
+         std::sqrt((residuals - union_fit.free_parameters) /
+                   (residuals - fit.free_parameters));
+}
+
 // Whether the lead with its whole `pool` fitted as one model,
 // the largest of its sets (JointSets), reaches the noise level as far as
 // its sum of squares tells: no set of its members fits lower than they all
@@ -725,10 +774,7 @@ bool UnionMayReachTheNoise(int lead,
     return true;
   }
   const ResidualCheck check = CheckResiduals(union_fit, options);
-  const double residuals = 3.0 * union_fit.points;
-  const double least = union_fit.probable_error *
-                       std::sqrt((residuals - union_fit.free_parameters) /
-                                 (residuals - fit.free_parameters));
+  const double least = LeastProbableError(union_fit, fit);
   VLOG(1) << fit.name << ": " << contenders[lead].record.effect
           << " with its pool of " << pool.size() << ": probable error at least "
           << least << " (limit " << check.noise_limit << ")";
@@ -894,15 +940,16 @@ int ContenderFor(const Effect* effect,
 }
 
 // Up to `count` contenders (indices into *contenders) for the effects that
-// score highest at `fit` of the model `c`, one of score twins, none of
-// `skip` and each one that may join the set `lead` leads (MayJoin); those
-// the round had not refitted are refitted from its fit and appended to
-// *contenders (`c` and `fit`, which may be a contender's, are read before
-// it grows).
+// score highest at `fit` of the model `c`, at least `least_score`, one of
+// score twins, none of `skip` and each one that may join the set `lead`
+// leads (MayJoin); those the round had not refitted are refitted from its
+// fit and appended to *contenders (`c` and `fit`, which may be a
+// contender's, are read before it grows).
 std::vector<int> ScoredPool(const Case& c,
                             const FitResult& fit,
                             const std::vector<const Effect*>& skip,
                             int count,
+                            double least_score,
                             int lead,
                             const std::vector<Candidate>& candidates,
                             const JointRound& r,
@@ -911,6 +958,9 @@ std::vector<int> ScoredPool(const Case& c,
   std::vector<const Candidate*> picked;
   for (const Candidate& s : scored) {
     if (static_cast<int>(picked.size()) == count) break;
+    VLOG(1) << fit.name << ": at the union " << s.effect->id << " scores "
+            << s.score.score << ", needs " << least_score;
+    if (s.score.score < least_score) break;  // ranked by score
     if (std::find(skip.begin(), skip.end(), s.effect) != skip.end() ||
         std::any_of(picked.begin(), picked.end(), [&](const Candidate* p) {
           return ScoreTwins(s, *p);
@@ -957,6 +1007,7 @@ std::vector<int> LeadPool(int lead,
                             own.fit,
                             {own.candidate->effect},
                             kJointPool - 1,
+                            -std::numeric_limits<double>::infinity(),
                             lead,
                             candidates,
                             r,
@@ -1005,8 +1056,15 @@ std::vector<int> UnionPool(int lead,
   }
   std::vector<const Effect*> in_union = {(*contenders)[lead].candidate->effect};
   for (int m : pool) in_union.push_back((*contenders)[m].candidate->effect);
+  // The score (the Gauss-Newton step's drop in the sum of squares, in
+  // units of the union's residual variance) that would bring the union's
+  // least probable error (UnionMayReachTheNoise) down to the noise limit.
+  const double spare = 3.0 * union_fit.points - union_fit.free_parameters;
+  const double reach = CheckResiduals(union_fit, r.options).noise_limit /
+                       LeastProbableError(union_fit, r.fit);
+  const double needed = spare * (1.0 - reach * reach);
   const std::vector<int> one = ScoredPool(
-      model.c, union_fit, in_union, 1, lead, candidates, r, contenders);
+      model.c, union_fit, in_union, 1, needed, lead, candidates, r, contenders);
   if (one.empty()) return {};
   std::vector<int> wider = pool;
   wider.push_back(one[0]);
