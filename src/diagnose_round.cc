@@ -958,9 +958,11 @@ std::vector<int> ScoredPool(const Case& c,
   std::vector<const Candidate*> picked;
   for (const Candidate& s : scored) {
     if (static_cast<int>(picked.size()) == count) break;
-    VLOG(1) << fit.name << ": at the union " << s.effect->id << " scores "
-            << s.score.score << ", needs " << least_score;
-    if (s.score.score < least_score) break;  // ranked by score
+    if (s.score.score < least_score) {  // the rest score less
+      VLOG(1) << fit.name << ": " << s.effect->id << " scores " << s.score.score
+              << ", under the " << least_score << " needed";
+      break;
+    }
     if (std::find(skip.begin(), skip.end(), s.effect) != skip.end() ||
         std::any_of(picked.begin(), picked.end(), [&](const Candidate* p) {
           return ScoreTwins(s, *p);
