@@ -714,26 +714,41 @@ bool TakeSet(int i,
   return true;
 }
 
-// The lead with its whole `pool` (indices into `contenders`) fitted as one
-// model from `fit` (of the model `at`) into *model and *union_fit, stopped
-// once below the noise limit. False when it cannot be built or fitted.
+// What a round's joint sets are drawn and judged from (Jointly): the
+// model as it stands at its solution `at` (fitted as `fit` to `data`), the
+// effects added before, the held-out part, and the round's contenders
+// (with its lesser refits last).
+struct JointRound {
+  Case at;
+  const FitResult& fit;
+  const std::vector<TimeHistory>& data;
+  const DiagnoseOptions& options;
+  const std::vector<const Effect*>& added;
+  OutOfSample* out_of_sample;
+  const std::vector<Contender>& contenders;
+  // Each member but the lead must show in the set's fit (MembersShow): a
+  // lead's pool drawn from its own scores (LeadPool).
+  bool members_shown = false;
+};
+
+// The lead with its whole `pool` (indices into the round's contenders)
+// fitted as one model from the round's fit into *model and *union_fit,
+// stopped once below the noise limit. False when it cannot be built or
+// fitted.
 bool FitUnion(int lead,
               const std::vector<int>& pool,
-              const Case& at,
-              const FitResult& fit,
-              const std::vector<TimeHistory>& data,
-              const DiagnoseOptions& options,
-              const std::vector<Contender>& contenders,
+              const JointRound& r,
               Candidate* model,
               FitResult* union_fit) {
   std::vector<int> all = {lead};
   all.insert(all.end(), pool.begin(), pool.end());
   int terms = 0;
-  if (!WithEffects(at, contenders, all, model, &terms)) return false;
+  if (!WithEffects(r.at, r.contenders, all, model, &terms)) return false;
   // Below the noise it has answered: no need to go further down (a union
   // with a trim moment had crawled 34 iterations there).
-  model->c.solver.stop_below = CheckResiduals(fit, options).noise_limit;
-  return FitFrom(model->c, fit, data, "with a joint set's union", union_fit);
+  model->c.solver.stop_below = CheckResiduals(r.fit, r.options).noise_limit;
+  return FitFrom(
+      model->c, r.fit, r.data, "with a joint set's union", union_fit);
 }
 
 // The probable error of `union_fit` counted with the degrees of freedom of
@@ -761,42 +776,18 @@ double LeastProbableError(const FitResult& union_fit, const FitResult& fit) {
 // than three sets.
 bool UnionMayReachTheNoise(int lead,
                            const std::vector<int>& pool,
-                           const Case& at,
-                           const FitResult& fit,
-                           const std::vector<TimeHistory>& data,
-                           const DiagnoseOptions& options,
-                           const std::vector<Contender>& contenders) {
+                           const JointRound& r) {
   if (pool.size() < 2) return true;
   Candidate model;
   FitResult union_fit;
-  if (!FitUnion(
-          lead, pool, at, fit, data, options, contenders, &model, &union_fit)) {
-    return true;
-  }
-  const ResidualCheck check = CheckResiduals(union_fit, options);
-  const double least = LeastProbableError(union_fit, fit);
-  VLOG(1) << fit.name << ": " << contenders[lead].record.effect
+  if (!FitUnion(lead, pool, r, &model, &union_fit)) return true;
+  const ResidualCheck check = CheckResiduals(union_fit, r.options);
+  const double least = LeastProbableError(union_fit, r.fit);
+  VLOG(1) << r.fit.name << ": " << r.contenders[lead].record.effect
           << " with its pool of " << pool.size() << ": probable error at least "
           << least << " (limit " << check.noise_limit << ")";
   return least < check.noise_limit;
 }
-
-// What a round's joint sets are drawn and judged from (Jointly): the
-// model as it stands at its solution `at` (fitted as `fit` to `data`), the
-// effects added before, the held-out part, and the round's contenders
-// (with its lesser refits last).
-struct JointRound {
-  Case at;
-  const FitResult& fit;
-  const std::vector<TimeHistory>& data;
-  const DiagnoseOptions& options;
-  const std::vector<const Effect*>& added;
-  OutOfSample* out_of_sample;
-  const std::vector<Contender>& contenders;
-  // Each member but the lead must show in the set's fit (MembersShow): a
-  // lead's pool drawn from its own scores (LeadPool).
-  bool members_shown = false;
-};
 
 // Whether each member of `set` but the lead (its first) shows in `fit`:
 // one of its terms at least two of its standard errors from zero. A pool
@@ -877,9 +868,7 @@ bool PoolEarns(int lead,
                bool minor_in_triples,
                const JointRound& r,
                JointSet* joint) {
-  return !pool.empty() &&
-         UnionMayReachTheNoise(
-             lead, pool, r.at, r.fit, r.data, r.options, r.contenders) &&
+  return !pool.empty() && UnionMayReachTheNoise(lead, pool, r) &&
          SetEarns(lead,
                   JointSets(lead, pool, minor_in_triples, r.contenders),
                   r,
@@ -896,9 +885,7 @@ bool WiderPoolEarns(int lead,
                     const std::vector<int>& pool,
                     const JointRound& r,
                     JointSet* joint) {
-  if (pool.empty() ||
-      !UnionMayReachTheNoise(
-          lead, pool, r.at, r.fit, r.data, r.options, r.contenders)) {
+  if (pool.empty() || !UnionMayReachTheNoise(lead, pool, r)) {
     return false;
   }
   const int newcomer = pool.back();
@@ -1052,17 +1039,7 @@ std::vector<int> UnionPool(int lead,
   if (pool.empty()) return {};
   Candidate model;
   FitResult union_fit;
-  if (!FitUnion(lead,
-                pool,
-                r.at,
-                r.fit,
-                r.data,
-                r.options,
-                *contenders,
-                &model,
-                &union_fit)) {
-    return {};
-  }
+  if (!FitUnion(lead, pool, r, &model, &union_fit)) return {};
   std::vector<const Effect*> in_union = {(*contenders)[lead].candidate->effect};
   for (int m : pool) in_union.push_back((*contenders)[m].candidate->effect);
   // The score (the Gauss-Newton step's drop in the sum of squares, in

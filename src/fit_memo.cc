@@ -6,18 +6,6 @@
 
 namespace fit3dof {
 
-bool SameSamples(const std::vector<TimeHistory>& a,
-                 const std::vector<TimeHistory>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (a[i].t != b[i].t || a[i].phi != b[i].phi || a[i].theta != b[i].theta ||
-        a[i].psi != b[i].psi) {
-      return false;
-    }
-  }
-  return true;
-}
-
 namespace {
 
 struct FitKey {
@@ -46,9 +34,6 @@ FitResult MemoizedFitSamples(const Case& c,
   return fit;
 }
 
-FitMemoCounts GetFitMemoCounts() {
-  const MemoCounts counts = TheMemo().Counts();
-  return FitMemoCounts{counts.calls, counts.hits};
-}
+FitMemoCounts GetFitMemoCounts() { return TheMemo().Counts(); }
 
 }  // namespace fit3dof

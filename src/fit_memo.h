@@ -20,6 +20,7 @@
 #include "fit3dof/case.h"
 #include "fit3dof/fit.h"
 #include "fit3dof/time_history.h"
+#include "recent_memo.h"
 
 namespace fit3dof {
 
@@ -38,10 +39,7 @@ FitResult MemoizedFitSamples(const Case& c,
 inline constexpr int kFitMemoCapacity = 256;
 
 // Calls and hits since the process started (for tests and benchmarks).
-struct FitMemoCounts {
-  long calls = 0;
-  long hits = 0;
-};
+using FitMemoCounts = MemoCounts;
 FitMemoCounts GetFitMemoCounts();
 
 }  // namespace fit3dof
