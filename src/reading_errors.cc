@@ -12,6 +12,7 @@
 
 #include "line_statistics.h"
 #include "spectral_lines.h"
+#include "symmetric_eigen.h"
 
 namespace fit3dof {
 namespace {
@@ -25,6 +26,19 @@ constexpr double kMaxTwinCorrelation = 0.5;
 // chance kFalseLineChance per series over the two powers).
 constexpr int kCalibrationPowers[2] = {2, 3};
 constexpr double kCalibrationZ = 4.06;
+
+// The least lambda with a x = lambda b x (a symmetric, b positive
+// definite), as Eigen's GeneralizedSelfAdjointEigenSolver finds it: the
+// eigenvalues of L^-1 a L^-T, b = L L^T. Through SymmetricEigen, compiled
+// once, rather than another instantiation of Eigen's solver here.
+double LeastGeneralizedEigenvalue(const Eigen::MatrixXd& a,
+                                  const Eigen::MatrixXd& b) {
+  const Eigen::LLT<Eigen::MatrixXd> cholesky(b);
+  Eigen::MatrixXd c = a.selfadjointView<Eigen::Lower>();
+  cholesky.matrixL().solveInPlace<Eigen::OnTheLeft>(c);
+  cholesky.matrixU().solveInPlace<Eigen::OnTheRight>(c);
+  return SymmetricEigen(c).values()(0);
+}
 
 // The spin rate (Hz, signed) over samples [from, to] of the roll angle.
 double SpinHz(const Eigen::VectorXd& t,
@@ -311,9 +325,8 @@ Eigen::MatrixXd JointBracket(const std::vector<ResidualSeries>& series,
     for (int l = 0; l < m; ++l) {
       const int c = found[l].u.cols();
       const Eigen::MatrixXd utu = found[l].u.transpose() * found[l].u;
-      share[l] = Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(
-                     ktk.block(first[l], first[l], c, c), utu)
-                     .eigenvalues()(0);
+      share[l] =
+          LeastGeneralizedEigenvalue(ktk.block(first[l], first[l], c, c), utu);
       if (share[l] < share[worst]) worst = l;
     }
     if (share[worst] < kMinKeptShare) {
