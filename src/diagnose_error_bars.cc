@@ -227,6 +227,26 @@ bool SetInPlace(const CompleteModel& m,
       *c, *m.fit, data, "the effects not excluded for " + step.effect, fit);
 }
 
+// The model `c`, fitted as `fit`, without the effect `e` (its terms
+// `terms`) into *without, fitted from `fit` as *without_fit; false when
+// the fit fails.
+bool FitWithout(const Case& c,
+                const FitResult& fit,
+                const Effect& e,
+                const std::vector<std::string>& terms,
+                const std::vector<TimeHistory>& data,
+                Case* without,
+                FitResult* without_fit) {
+  DiagnosisStep member;
+  member.effect = e.id;
+  for (const std::string& name : terms) {
+    member.step_parameters.push_back(ParameterEstimate());
+    member.step_parameters.back().name = name;
+  }
+  *without = WithoutStep(CaseAtSolution(c, fit), member);
+  return FitFrom(*without, fit, data, "the set without " + e.id, without_fit);
+}
+
 // The members of `set` (their terms `added`) that the model `c`, fitted
 // as `fit`, needs, found by taking them out one at a time: each round the
 // member whose absence costs least goes, as long as the residuals stay at
@@ -254,18 +274,13 @@ std::vector<const Effect*> Needed(
     std::vector<FitResult> without(n);
     std::vector<char> fitted(n, false);  // written in parallel
     ParallelFor(n, [&](int j) {
-      DiagnosisStep member;
-      member.effect = set[kept[j]]->id;
-      for (const std::string& name : added[kept[j]]) {
-        member.step_parameters.push_back(ParameterEstimate());
-        member.step_parameters.back().name = name;
-      }
-      cases[j] = WithoutStep(CaseAtSolution(at, at_fit), member);
-      fitted[j] = FitFrom(cases[j],
-                          at_fit,
-                          data,
-                          "the set without " + member.effect,
-                          &without[j]);
+      fitted[j] = FitWithout(at,
+                             at_fit,
+                             *set[kept[j]],
+                             added[kept[j]],
+                             data,
+                             &cases[j],
+                             &without[j]);
     });
     int least = -1;
     for (int j = 0; j < n; ++j) {
