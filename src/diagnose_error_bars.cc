@@ -929,17 +929,28 @@ struct InPlace {
   bool fitted = false;
 };
 
-// Fits each of `trials` in its step's place in the complete model `m` of
-// `d`, in parallel.
+// Fits the trial *t in its step's place in the complete model `m` of `d`.
+void FitInPlace(const CompleteModel& m,
+                const Diagnosis& d,
+                const std::vector<TimeHistory>& data,
+                InPlace* t) {
+  t->fitted = SetInPlace(m,
+                         d.steps[t->step],
+                         t->members,
+                         data,
+                         &t->c,
+                         &t->fit,
+                         &t->added,
+                         t->held);
+}
+
+// FitInPlace for each of `trials`, in parallel.
 void FitInPlace(const CompleteModel& m,
                 const Diagnosis& d,
                 const std::vector<TimeHistory>& data,
                 std::vector<InPlace>* trials) {
-  ParallelFor(static_cast<int>(trials->size()), [&](int i) {
-    InPlace& t = (*trials)[i];
-    t.fitted = SetInPlace(
-        m, d.steps[t.step], t.members, data, &t.c, &t.fit, &t.added, t.held);
-  });
+  ParallelFor(static_cast<int>(trials->size()),
+              [&](int i) { FitInPlace(m, d, data, &(*trials)[i]); });
 }
 
 // Out of its bounds on Eq. 43's ridge, a tunnel term runs along it as far
@@ -993,19 +1004,19 @@ double RiseOfTrial(const CompleteModel& m,
 // (HeldOnTunnelRidge; appended to *trials). Returns the trial least in BIC
 // above `m` (RiseOfTrial), its rise in *least, if below ambiguity_bic;
 // else nullptr.
-const InPlace* FitLeast(const CompleteModel& m,
-                        const Diagnosis& d,
-                        const std::vector<TimeHistory>& data,
-                        const DiagnoseOptions& options,
-                        std::vector<InPlace>* trials,
-                        double* least) {
+InPlace* FitLeast(const CompleteModel& m,
+                  const Diagnosis& d,
+                  const std::vector<TimeHistory>& data,
+                  const DiagnoseOptions& options,
+                  std::vector<InPlace>* trials,
+                  double* least) {
   FitInPlace(m, d, data, trials);
   std::vector<InPlace> held = HeldOnTunnelRidge(*trials);
   FitInPlace(m, d, data, &held);
   std::move(held.begin(), held.end(), std::back_inserter(*trials));
-  const InPlace* best = nullptr;
+  InPlace* best = nullptr;
   *least = options.ambiguity_bic;
-  for (const InPlace& t : *trials) {
+  for (InPlace& t : *trials) {
     const double rise = RiseOfTrial(m, d, t, options);
     if (rise < *least) {
       *least = rise;
@@ -1152,11 +1163,11 @@ std::string FindSetReplacements(const std::vector<Case>& models,
     trials[i].members = set;
   }
   double least = 0.0;
-  const InPlace* best = FitLeast(m, *d, data, options, &trials, &least);
+  InPlace* best = FitLeast(m, *d, data, options, &trials, &least);
   if (best == nullptr) return "";
   // Only the members the replacement needs; one alone is a swap's
   // (Unresolved), not a set's.
-  InPlace t = *best;
+  InPlace& t = *best;
   const std::vector<const Effect*> needed =
       Needed(t.c, t.fit, set, t.added, data, options);
   VLOG(1) << "the set in " << d->steps[t.step].effect << "'s place needs "
@@ -1170,9 +1181,7 @@ std::string FindSetReplacements(const std::vector<Case>& models,
     };
     if (std::none_of(needed.begin(), needed.end(), holds)) t.held.clear();
     t.members = needed;
-    std::vector<InPlace> refit = {t};
-    FitInPlace(m, *d, data, &refit);
-    t = std::move(refit[0]);
+    FitInPlace(m, *d, data, &t);
     least = RiseOfTrial(m, *d, t, options);
     if (!(least < options.ambiguity_bic)) return "";
   }
@@ -1217,11 +1226,17 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
     }
   }
   double least = 0.0;
-  const InPlace* best = FitLeast(m, *d, data, options, &trials, &least);
+  InPlace* best = FitLeast(m, *d, data, options, &trials, &least);
   if (best == nullptr) return "";
-  InPlace t = *best;
-  return StandIn(
-      data, options, t.step, t.members, least, &t.c, &t.fit, d, outdone_tie);
+  return StandIn(data,
+                 options,
+                 best->step,
+                 best->members,
+                 least,
+                 &best->c,
+                 &best->fit,
+                 d,
+                 outdone_tie);
 }
 
 }  // namespace fit3dof
