@@ -110,6 +110,7 @@ PipelineOutcome RunPipeline(const Case& c,
     settings.max_iterations = last ? c.solver.max_iterations : 50;
     settings.bic_tolerance = c.solver.bic_tolerance;
     settings.stop_below = c.solver.stop_below;
+    settings.out_of_reach = last && c.solver.stop_below > 0.0;
     if (c.solver.from_solution) {
       settings.initial_radius = kFromSolutionRadius;
       settings.coarser_jacobians = true;

@@ -733,8 +733,8 @@ struct JointRound {
 
 // The lead with its whole `pool` (indices into the round's contenders)
 // fitted as one model from the round's fit into *model and *union_fit,
-// stopped once below the noise limit. False when it cannot be built or
-// fitted.
+// stopped once below the noise limit or out of its reach. False when it cannot
+// be built or fitted.
 bool FitUnion(int lead,
               const std::vector<int>& pool,
               const JointRound& r,
@@ -745,7 +745,8 @@ bool FitUnion(int lead,
   int terms = 0;
   if (!WithEffects(r.at, r.contenders, all, model, &terms)) return false;
   // Below the noise it has answered: no need to go further down (a union
-  // with a trim moment had crawled 34 iterations there).
+  // with a trim moment had crawled 34 iterations there); far above, out of
+  // its reach, it has answered too (kOutOfReachMargin).
   model->c.solver.stop_below = CheckResiduals(r.fit, r.options).noise_limit;
   return FitFrom(
       model->c, r.fit, r.data, "with a joint set's union", union_fit);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <sstream>
 
 #include "assembly.h"
@@ -47,6 +48,8 @@ class ReportIterationCallback : public ceres::IterationCallback {
   bool stopped_by_bic() const { return stopped_by_bic_; }
   // Whether it ended below StageSettings::stop_below.
   bool stopped_below() const { return stopped_below_; }
+  // Whether it ended out of reach of it (StageSettings::out_of_reach).
+  bool stopped_out_of_reach() const { return stopped_out_of_reach_; }
 
   ceres::CallbackReturnType operator()(
       const ceres::IterationSummary& summary) override {
@@ -87,6 +90,8 @@ class ReportIterationCallback : public ceres::IterationCallback {
     VLOG(1) << log.str();
     const double change = std::abs(e - old_e_);
     const double bic_drop = residuals_ * std::log(old_ressum_ / ressum);
+    falls_.push_back(old_e_ - e);
+    if (static_cast<int>(falls_.size()) > kOutOfReachPace) falls_.pop_front();
     old_e_ = e;
     old_ressum_ = ressum;
     previous_ = values;
@@ -102,10 +107,23 @@ class ReportIterationCallback : public ceres::IterationCallback {
       stopped_below_ = true;
       return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     }
+    if (settings_.out_of_reach && OutOfReach(e, summary.iteration)) {
+      stopped_out_of_reach_ = true;
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
     return ceres::SOLVER_CONTINUE;
   }
 
  private:
+  // Whether StageSettings::stop_below is out of reach from `e` after
+  // `iteration` (kOutOfReachMargin).
+  bool OutOfReach(double e, int iteration) const {
+    if (static_cast<int>(falls_.size()) < kOutOfReachPace) return false;
+    const double pace = *std::max_element(falls_.begin(), falls_.end());
+    const int remaining = settings_.max_iterations - iteration;
+    return e - settings_.stop_below > kOutOfReachMargin * remaining * pace;
+  }
+
   const Assembly* assembly_;
   const FreeLayout* free_;
   const std::vector<double>* scale_;
@@ -117,6 +135,9 @@ class ReportIterationCallback : public ceres::IterationCallback {
   double old_ressum_ = 0.0;
   bool stopped_by_bic_ = false;
   bool stopped_below_ = false;
+  bool stopped_out_of_reach_ = false;
+  // The falls of the probable error in the last successful iterations.
+  std::deque<double> falls_;
   std::vector<double> previous_;
 };
 
@@ -259,6 +280,10 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
              callback.stopped_below()) {
     outcome.termination =
         kBelowTermination + FormatNumber("%g", settings.stop_below);
+  } else if (summary.termination_type == ceres::USER_SUCCESS &&
+             callback.stopped_out_of_reach()) {
+    outcome.termination =
+        kOutOfReachTermination + FormatNumber("%g", settings.stop_below);
   } else if (summary.termination_type == ceres::USER_SUCCESS) {
     outcome.termination =
         "probable error changed by less than " +

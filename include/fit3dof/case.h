@@ -177,7 +177,10 @@ struct SolverOptions {
   double bic_tolerance = 0.0;
   // Also stop once the probable error falls below this (0: never). Not a
   // config key: diagnose asks of some fits only whether they reach the
-  // noise level (diagnose_round.cc, UnionMayReachTheNoise).
+  // noise level (diagnose_round.cc, UnionMayReachTheNoise). The whole
+  // record's run also stops once it is out of reach of it: at the pace of
+  // its last iterations, even kept up, the remaining ones would leave it
+  // far above (stage_solver.h, kOutOfReachMargin).
   double stop_below = 0.0;
 };
 
