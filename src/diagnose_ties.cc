@@ -1026,39 +1026,56 @@ void WithoutPrunedBeforeTie(const std::vector<TimeHistory>& data,
   if (!d->steps.empty()) d->steps.back().after = *check;
 }
 
+// Each complete model of `d`, an ambiguous answer (Diagnosis::alternatives),
+// refitted without each of its steps: model m without step i in
+// (*without)[m * n + i] (n steps), and what that costs in *rises (the same
+// order): its BIC's rise, infinity where the refit fails or leaves the
+// residuals above the noise level. False when a complete model was not
+// fitted, or with fewer than two or no steps.
+bool RisesWithoutEach(const std::vector<TimeHistory>& data,
+                      const DiagnoseOptions& options,
+                      const Diagnosis& d,
+                      std::vector<FitResult>* without,
+                      std::vector<double>* rises) {
+  std::vector<const Case*> cases;
+  std::vector<const FitResult*> fits;
+  for (const AlternativeModel& a : d.alternatives) {
+    if (a.fit < 0) return false;
+    cases.push_back(&a.model);
+    fits.push_back(&d.fits[a.fit]);
+  }
+  if (cases.size() < 2 || d.steps.empty()) return false;
+  std::vector<char> fitted;
+  FitWithoutEach(data, cases, fits, d.steps, without, &fitted);
+  rises->assign(without->size(), std::numeric_limits<double>::infinity());
+  for (size_t k = 0; k < without->size(); ++k) {
+    if (fitted[k] && CheckResiduals((*without)[k], options).at_noise_level) {
+      (*rises)[k] = Bic((*without)[k]) - Bic(*fits[k / d.steps.size()]);
+    }
+  }
+  return true;
+}
+
 // The step of `d`, an ambiguous answer, that none of its complete models
-// (Diagnosis::alternatives) needs, by Prune's rule: without it each stays
-// at the noise level and its BIC rises by less than min_bic_drop (the
-// step whose greatest rise is least, that rise in *least_rise, each
-// complete model without it in *without), or -1 (also when a complete
-// model was not fitted).
+// needs, by Prune's rule: without it each stays at the noise level and its
+// BIC rises by less than min_bic_drop (RisesWithoutEach; the step whose
+// greatest rise is least, that rise in *least_rise, each complete model
+// without it in *without), or -1.
 int RedundantInEach(const std::vector<TimeHistory>& data,
                     const DiagnoseOptions& options,
                     const Diagnosis& d,
                     std::vector<FitResult>* without,
                     double* least_rise) {
-  std::vector<const Case*> cases;
-  std::vector<const FitResult*> fits;
-  for (const AlternativeModel& a : d.alternatives) {
-    if (a.fit < 0) return -1;
-    cases.push_back(&a.model);
-    fits.push_back(&d.fits[a.fit]);
-  }
-  if (cases.size() < 2 || d.steps.empty()) return -1;
-  std::vector<FitResult> each;  // each complete model without each step
-  std::vector<char> fitted;
-  FitWithoutEach(data, cases, fits, d.steps, &each, &fitted);
+  std::vector<FitResult> each;
+  std::vector<double> rises;
+  if (!RisesWithoutEach(data, options, d, &each, &rises)) return -1;
   const size_t n = d.steps.size();
+  const size_t models = d.alternatives.size();
   int redundant = -1;
   double least = options.min_bic_drop;
   for (size_t i = 0; i < n; ++i) {
     double rise = -std::numeric_limits<double>::infinity();
-    for (size_t m = 0; m < cases.size(); ++m) {
-      const size_t k = m * n + i;
-      rise = !fitted[k] || !CheckResiduals(each[k], options).at_noise_level
-                 ? std::numeric_limits<double>::infinity()
-                 : std::max(rise, Bic(each[k]) - Bic(*fits[m]));
-    }
+    for (size_t m = 0; m < models; ++m) rise = std::max(rise, rises[m * n + i]);
     VLOG(1) << d.steps[i].effect << " in every complete model: BIC "
             << FormatNumber("%+.1f", rise) << " at most without it";
     if (rise < least) {
@@ -1068,18 +1085,83 @@ int RedundantInEach(const std::vector<TimeHistory>& data,
   }
   if (redundant < 0) return -1;
   without->clear();
-  for (size_t m = 0; m < cases.size(); ++m) {
+  for (size_t m = 0; m < models; ++m) {
     without->push_back(std::move(each[m * n + redundant]));
   }
   *least_rise = least;
   return redundant;
 }
 
+// The step `step` of *d taken out of the final model *current (*check its
+// residual check) and of the complete models (d->alternatives) marked in
+// `out_of`, each refitted from its fit without it in `without` (the same
+// order; Reported) and the final model from its own: all at once. With a
+// stand-in the final model is the first complete one (taken out of it:
+// out_of[0]). The step's fit_before and fit_after name the final model's
+// fits with and without it. False, and *d unchanged, when the final
+// model's refit fails.
+bool OutOfModels(const std::vector<TimeHistory>& data,
+                 const DiagnoseOptions& options,
+                 const std::vector<bool>& out_of,
+                 std::vector<FitResult>* without,
+                 DiagnosisStep* step,
+                 Diagnosis* d,
+                 Case* current,
+                 ResidualCheck* check) {
+  const bool stand_in = !d->stand_in.empty();
+  CHECK(!stand_in || out_of[0]);
+  const int n = static_cast<int>(d->alternatives.size());
+  std::vector<Case> cases(n);
+  for (int m = 0; m < n; ++m) {
+    if (!out_of[m]) continue;
+    const AlternativeModel& a = d->alternatives[m];
+    cases[m] = WithoutStep(CaseAtSolution(a.model, d->fits[a.fit]), *step);
+  }
+  Case final_case =
+      stand_in ? cases[0]
+               : WithoutStep(CaseAtSolution(*current, d->FinalFit()), *step);
+  FitResult final_fit;
+  bool final_fitted = stand_in;
+  ParallelFor(n + (stand_in ? 0 : 1), [&](int m) {
+    if (m == n) {
+      final_fitted = FitFrom(final_case,
+                             d->FinalFit(),
+                             data,
+                             "without " + step->effect,
+                             &final_fit);
+    } else if (out_of[m]) {
+      Reported(cases[m], data, &(*without)[m]);
+    }
+  });
+  if (!final_fitted) return false;
+  for (int m = 0; m < n; ++m) {
+    if (!out_of[m]) continue;
+    AlternativeModel& a = d->alternatives[m];
+    a.check = CheckResiduals((*without)[m], options);
+    a.parameters = (*without)[m].parameters;
+    a.model = cases[m];
+    d->fits.push_back(std::move((*without)[m]));
+    a.fit = static_cast<int>(d->fits.size()) - 1;
+  }
+  step->fit_before = static_cast<int>(d->final_fit);
+  if (!stand_in) {
+    d->fits.push_back(std::move(final_fit));
+    d->final_fit = d->fits.size() - 1;
+  } else {
+    d->final_fit = d->alternatives[0].fit;
+  }
+  step->fit_after = static_cast<int>(d->final_fit);
+  *check = CheckResiduals(d->FinalFit(), options);
+  *current = std::move(final_case);
+  step->after = *check;
+  return true;
+}
+
 // The steps of an ambiguous answer that none of its complete models needs
 // (RedundantInEach) taken out of *d, one at a time, as Prune takes them out
-// of an explained one: the complete models (d->alternatives) and the final
-// model *current (*check its residual check) refitted without it, the step
-// moved to d->pruned. Unchanged when a refit fails. On a 3-s run with a
+// of an explained one: out of the complete models and the final model
+// *current (OutOfModels), the step moved to d->pruned. Unchanged when a
+// refit fails. On a 3-s run with a
 // tunnel stiffness, a nonlinear damping and a body asymmetry (suite draw
 // 39), a Magnus moment taken first ended 1.6 +- 3.4 in the final model,
 // every complete model at the noise level without it and its BIC 4.8
@@ -1096,57 +1178,94 @@ void PruneWithinTie(const std::vector<TimeHistory>& data,
     const int i = RedundantInEach(data, options, *d, &without, &rise);
     if (i < 0) return;
     DiagnosisStep step = d->steps[i];
-    std::vector<Case> cases;
-    for (const AlternativeModel& a : d->alternatives) {
-      cases.push_back(
-          WithoutStep(CaseAtSolution(a.model, d->fits[a.fit]), step));
+    const std::vector<bool> all(d->alternatives.size(), true);
+    if (!OutOfModels(data, options, all, &without, &step, d, current, check)) {
+      return;
     }
-    // With a stand-in the final model is the first complete one.
-    const bool stand_in = !d->stand_in.empty();
-    Case final_case =
-        stand_in ? cases[0]
-                 : WithoutStep(CaseAtSolution(*current, d->FinalFit()), step);
-    // The final model without the step (its own fit, unless a stand-in's
-    // is final) and each complete model reported, all at once.
-    FitResult final_fit;
-    bool final_fitted = stand_in;
-    const int n = static_cast<int>(cases.size());
-    ParallelFor(n + (stand_in ? 0 : 1), [&](int m) {
-      if (m < n) {
-        Reported(cases[m], data, &without[m]);
-      } else {
-        final_fitted = FitFrom(final_case,
-                               d->FinalFit(),
-                               data,
-                               "without " + step.effect,
-                               &final_fit);
-      }
-    });
-    if (!final_fitted) return;
-    for (size_t m = 0; m < cases.size(); ++m) {
-      AlternativeModel& a = d->alternatives[m];
-      a.check = CheckResiduals(without[m], options);
-      a.parameters = without[m].parameters;
-      a.model = cases[m];
-      d->fits.push_back(std::move(without[m]));
-      a.fit = static_cast<int>(d->fits.size()) - 1;
-    }
-    step.fit_before = static_cast<int>(d->final_fit);
-    if (!stand_in) {
-      d->fits.push_back(std::move(final_fit));
-      d->final_fit = d->fits.size() - 1;
-    } else {
-      d->final_fit = d->alternatives[0].fit;
-    }
-    step.fit_after = static_cast<int>(d->final_fit);
-    *check = CheckResiduals(d->FinalFit(), options);
-    *current = std::move(final_case);
-    step.after = *check;
     step.note =
         "needed in none of the complete models of the tie: without it each "
         "stays at the noise level and its BIC changes by " +
         FormatNumber("%.1f", rise) + " at most";
     d->pruned.push_back(std::move(step));
+    d->steps.erase(d->steps.begin() + i);
+    if (!d->steps.empty()) d->steps.back().after = *check;
+  }
+}
+
+// The step of `d`, an ambiguous answer without a stand-in, that goes with
+// the tied effect the search followed: its complete model (the first)
+// needs it, and a rival's does not (RisesWithoutEach: below min_bic_drop);
+// the one with the least such rise (in *rise), each complete model without
+// it in *without and those that do not need it marked in *out_of; or -1.
+int CompanionOfFollowed(const std::vector<TimeHistory>& data,
+                        const DiagnoseOptions& options,
+                        const Diagnosis& d,
+                        std::vector<FitResult>* without,
+                        std::vector<bool>* out_of,
+                        double* rise) {
+  std::vector<FitResult> each;
+  std::vector<double> rises;
+  if (!d.stand_in.empty() ||
+      !RisesWithoutEach(data, options, d, &each, &rises)) {
+    return -1;
+  }
+  const size_t n = d.steps.size();
+  const size_t models = d.alternatives.size();
+  int companion = -1;
+  *rise = options.min_bic_drop;
+  for (size_t i = 0; i < n; ++i) {
+    if (rises[i] < options.min_bic_drop) continue;  // the first's need
+    for (size_t m = 1; m < models; ++m) {
+      if (rises[m * n + i] < *rise) {
+        *rise = rises[m * n + i];
+        companion = static_cast<int>(i);
+      }
+    }
+  }
+  if (companion < 0) return -1;
+  without->clear();
+  out_of->assign(models, false);
+  for (size_t m = 0; m < models; ++m) {
+    without->push_back(std::move(each[m * n + companion]));
+    (*out_of)[m] = rises[m * n + companion] < options.min_bic_drop;
+  }
+  return companion;
+}
+
+// The steps of an ambiguous answer that go with the tied effect the search
+// followed (CompanionOfFollowed) taken out of *d, one at a time: out of the
+// final model and the complete models that do not need them
+// (OutOfModels), the step moved to d->partial beside the tied effect
+// (after it, as TieCompanions' are). The search had found them with that
+// effect in the model; a rival explains the record without them, so they
+// are part of one explanation, not of the answer. On draw 56's pair of
+// 3-s runs with a tunnel stiffness, a nonlinear damping and a body
+// asymmetry, a roll torque tied with the stiffness and a Magnus moment
+// adopted after it was "needed with each": the set of effects after the
+// tie was, but the Magnus moment alone raised BIC by 18.8 without it
+// beside the torque and lowered it by 5.6 beside the stiffness.
+void CompanionsWithinTie(const std::vector<TimeHistory>& data,
+                         const DiagnoseOptions& options,
+                         Diagnosis* d,
+                         Case* current,
+                         ResidualCheck* check) {
+  std::vector<FitResult> without;
+  std::vector<bool> out_of;
+  double rise = 0.0;
+  while (d->steps.size() >= 2 && !d->partial.empty()) {
+    const int i =
+        CompanionOfFollowed(data, options, *d, &without, &out_of, &rise);
+    if (i < 0) return;
+    DiagnosisStep step = d->steps[i];
+    if (!OutOfModels(
+            data, options, out_of, &without, &step, d, current, check)) {
+      return;
+    }
+    step.note = "goes with " + d->alternatives[0].effect +
+                ": needed beside it, not beside a rival (BIC " +
+                FormatNumber("%+.1f", rise) + " without it)";
+    VLOG(1) << step.effect << " " << step.note;
+    d->partial.insert(d->partial.begin() + 1, std::move(step));
     d->steps.erase(d->steps.begin() + i);
     if (!d->steps.empty()) d->steps.back().after = *check;
   }
@@ -1189,6 +1308,7 @@ ResidualCheck SettleFinalModel(
   if (tie >= 0 &&
       AdoptAfterTie(data, options, models, tie, tied, d, current, &adopted)) {
     PruneWithinTie(data, options, d, current, &adopted);
+    CompanionsWithinTie(data, options, d, current, &adopted);
     return adopted;
   }
   if (tie >= 0) {

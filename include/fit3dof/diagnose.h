@@ -165,7 +165,10 @@
 // (without it each stays at the noise level, BIC rising by less than
 // `min_bic_drop`) is searched without too, and that answer is taken when
 // it explains the record with no effect the first did not add or tie and
-// a complete model no more than `min_bic_drop` above.
+// a complete model no more than `min_bic_drop` above. A step that the
+// complete model with the followed tied effect needs and a rival's does
+// not (by the same rule) goes with that effect: reported after it among
+// the partial steps, not added.
 // A roll-locked effect (Effect::roll_locked) on records that span less
 // than a revolution of roll ties with a drift in time (`drift_in_time`,
 // outside the catalog): the record is then `ambiguous` at best, and a
