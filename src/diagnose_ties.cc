@@ -1092,22 +1092,24 @@ int RedundantInEach(const std::vector<TimeHistory>& data,
   return redundant;
 }
 
-// The step `step` of *d taken out of the final model *current (*check its
-// residual check) and of the complete models (d->alternatives) marked in
-// `out_of`, each refitted from its fit without it in `without` (the same
-// order; Reported) and the final model from its own: all at once. With a
-// stand-in the final model is the first complete one (taken out of it:
-// out_of[0]). The step's fit_before and fit_after name the final model's
-// fits with and without it. False, and *d unchanged, when the final
-// model's refit fails.
-bool OutOfModels(const std::vector<TimeHistory>& data,
+// Step i of *d taken out of the final model *current (*check its residual
+// check), of the complete models (d->alternatives) marked in `out_of`,
+// each refitted from its fit without it in `without` (the same order;
+// Reported) and the final model from its own, all at once, and out of the
+// steps into *step. With a stand-in the final model is the first complete
+// one (taken out of it: out_of[0]). The step's fit_before and fit_after
+// name the final model's fits with and without it. False, and *d
+// unchanged, when the final model's refit fails.
+bool TakeStepOut(const std::vector<TimeHistory>& data,
                  const DiagnoseOptions& options,
+                 int i,
                  const std::vector<bool>& out_of,
                  std::vector<FitResult>* without,
-                 DiagnosisStep* step,
                  Diagnosis* d,
                  Case* current,
-                 ResidualCheck* check) {
+                 ResidualCheck* check,
+                 DiagnosisStep* step) {
+  *step = d->steps[i];
   const bool stand_in = !d->stand_in.empty();
   CHECK(!stand_in || out_of[0]);
   const int n = static_cast<int>(d->alternatives.size());
@@ -1154,13 +1156,15 @@ bool OutOfModels(const std::vector<TimeHistory>& data,
   *check = CheckResiduals(d->FinalFit(), options);
   *current = std::move(final_case);
   step->after = *check;
+  d->steps.erase(d->steps.begin() + i);
+  if (!d->steps.empty()) d->steps.back().after = *check;
   return true;
 }
 
 // The steps of an ambiguous answer that none of its complete models needs
 // (RedundantInEach) taken out of *d, one at a time, as Prune takes them out
-// of an explained one: out of the complete models and the final model
-// *current (OutOfModels), the step moved to d->pruned. Unchanged when a
+// of an explained one: out of the complete models, the final model
+// *current and the steps (TakeStepOut), into d->pruned. Unchanged when a
 // refit fails. On a 3-s run with a
 // tunnel stiffness, a nonlinear damping and a body asymmetry (suite draw
 // 39), a Magnus moment taken first ended 1.6 +- 3.4 in the final model,
@@ -1177,9 +1181,10 @@ void PruneWithinTie(const std::vector<TimeHistory>& data,
   while (true) {
     const int i = RedundantInEach(data, options, *d, &without, &rise);
     if (i < 0) return;
-    DiagnosisStep step = d->steps[i];
     const std::vector<bool> all(d->alternatives.size(), true);
-    if (!OutOfModels(data, options, all, &without, &step, d, current, check)) {
+    DiagnosisStep step;
+    if (!TakeStepOut(
+            data, options, i, all, &without, d, current, check, &step)) {
       return;
     }
     step.note =
@@ -1187,8 +1192,6 @@ void PruneWithinTie(const std::vector<TimeHistory>& data,
         "stays at the noise level and its BIC changes by " +
         FormatNumber("%.1f", rise) + " at most";
     d->pruned.push_back(std::move(step));
-    d->steps.erase(d->steps.begin() + i);
-    if (!d->steps.empty()) d->steps.back().after = *check;
   }
 }
 
@@ -1234,8 +1237,8 @@ int CompanionOfFollowed(const std::vector<TimeHistory>& data,
 
 // The steps of an ambiguous answer that go with the tied effect the search
 // followed (CompanionOfFollowed) taken out of *d, one at a time: out of the
-// final model and the complete models that do not need them
-// (OutOfModels), the step moved to d->partial beside the tied effect
+// final model, the complete models that do not need them and the steps
+// (TakeStepOut), into d->partial beside the tied effect
 // (after it, as TieCompanions' are). The search had found them with that
 // effect in the model; a rival explains the record without them, so they
 // are part of one explanation, not of the answer. On draw 56's pair of
@@ -1256,9 +1259,9 @@ void CompanionsWithinTie(const std::vector<TimeHistory>& data,
     const int i =
         CompanionOfFollowed(data, options, *d, &without, &out_of, &rise);
     if (i < 0) return;
-    DiagnosisStep step = d->steps[i];
-    if (!OutOfModels(
-            data, options, out_of, &without, &step, d, current, check)) {
+    DiagnosisStep step;
+    if (!TakeStepOut(
+            data, options, i, out_of, &without, d, current, check, &step)) {
       return;
     }
     step.note = "goes with " + d->alternatives[0].effect +
@@ -1266,8 +1269,6 @@ void CompanionsWithinTie(const std::vector<TimeHistory>& data,
                 FormatNumber("%+.1f", rise) + " without it)";
     VLOG(1) << step.effect << " " << step.note;
     d->partial.insert(d->partial.begin() + 1, std::move(step));
-    d->steps.erase(d->steps.begin() + i);
-    if (!d->steps.empty()) d->steps.back().after = *check;
   }
 }
 
