@@ -2366,6 +2366,25 @@ void ExpectStiffnessAlternativeCovers(const Diagnosis& d,
                text);
 }
 
+// `d`, ambiguous, names the body asymmetry and the nonlinear damping and
+// ties the tunnel stiffness, its models covering the truth: Cm_alpha and
+// Cm_q, the damping (the asymmetric program's Cm_q_alpha2) and, in the
+// stiffness's complete model, t1 and t3.
+void ExpectAsymmetryAndDampingBesideAStiffnessTie(const Diagnosis& d,
+                                                  double damping,
+                                                  double t1,
+                                                  double t3) {
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"asymmetric_body", "nonlinear_damping"}))
+      << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+  ExpectCovers(d.final_parameters, {{"Cm_q_alpha2", damping}}, text);
+  ExpectStiffnessAlternativeCovers(d, t1, t3, text);
+}
+
 // The same case on draw 40 (t1 1.02e-3, t3 -3.6e-4, Cm_q_delta2 806, body
 // yaw -0.30%), kept as tests/data/short_stiffness_damping_asymmetry_draw40
 // .csv. A Magnus moment led the first round by 0.9 over the stiffness and
@@ -2435,15 +2454,7 @@ TEST(Diagnose, ASetsTunnelTermOnTheRidgeIsHeldAtZeroInTurn) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw53.yaml");
-  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
-  EXPECT_EQ(EffectIds(d.steps),
-            (std::set<std::string>{"asymmetric_body", "nonlinear_damping"}))
-      << text;
-  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
-  ExpectFinalCovers(d, kShortCoefficients, text);
-  ExpectCovers(d.final_parameters, {{"Cm_q_alpha2", 518.6}}, text);
-  ExpectStiffnessAlternativeCovers(d, 6.22e-4, -2.18e-4, text);
+  ExpectAsymmetryAndDampingBesideAStiffnessTie(d, 518.6, 6.22e-4, -2.18e-4);
 }
 
 // The same case on draw 56's pair of runs (t1 1.02e-3, t3 -3.57e-4,
@@ -2484,15 +2495,7 @@ TEST(Diagnose, TheCatalogIsSearchedWithoutWhatTheProbesAnswerDoesWithout) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw56.yaml");
-  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
-  EXPECT_EQ(EffectIds(d.steps),
-            (std::set<std::string>{"asymmetric_body", "nonlinear_damping"}))
-      << text;
-  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
-  ExpectFinalCovers(d, kShortCoefficients, text);
-  ExpectCovers(d.final_parameters, {{"Cm_q_alpha2", 660.8}}, text);
-  ExpectStiffnessAlternativeCovers(d, 6.56e-4, -2.30e-4, text);
+  ExpectAsymmetryAndDampingBesideAStiffnessTie(d, 660.8, 6.56e-4, -2.30e-4);
 }
 
 // tools/diagnose_suite's `short` tunnel damping (t2 1.65, t4 -2.24) +
