@@ -52,10 +52,12 @@ TEST(ThreadBudget, NestedLoopsShareOneBudget) {
 // thread.
 TEST(ThreadBudget, AnExhaustedBudgetRunsOnTheCallingThread) {
   SetThreadBudget(2);
-  std::atomic<int> sum{0}, arrived{0};
+  std::atomic<int> sum{0}, arrived{0}, finished{0};
   ParallelFor(2, [&](int outer) {
     // Both outer tasks are running (the budget is all lent) before either
-    // starts its inner loop.
+    // starts its inner loop, and neither ends before both inner loops have:
+    // a borrowed thread goes back as soon as its outer task ends, and the
+    // other inner loop, started later, could take it.
     ++arrived;
     while (arrived.load() < 2) std::this_thread::yield();
     const std::thread::id caller = std::this_thread::get_id();
@@ -63,6 +65,8 @@ TEST(ThreadBudget, AnExhaustedBudgetRunsOnTheCallingThread) {
       EXPECT_EQ(std::this_thread::get_id(), caller);
       sum += 10 * outer + i;
     });
+    ++finished;
+    while (finished.load() < 2) std::this_thread::yield();
   });
   EXPECT_EQ(sum.load(), 2 * (0 + 1 + 2 + 3 + 4) + 5 * 10);
 }
