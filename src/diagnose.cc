@@ -668,7 +668,7 @@ Diagnosis SearchAnswer(const Case& c,
     fits.push_back(&d.fits[d.partial_fit]);
   }
   ReportedAll(reported, data, fits);
-  WidenForTie(&d);
+  WidenForTie(options, &d);
   // What the search was run without is tried beside its model too: the
   // record may not exclude it there (DiagnoseOptions::searched_without;
   // catalog effects only, as contenders are).

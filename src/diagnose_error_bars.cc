@@ -469,7 +469,32 @@ std::string ImplausibleAmongAsJudged(const std::vector<const Effect*>& effects,
   });
 }
 
-void WidenForTie(Diagnosis* d) {
+namespace {
+
+// The tie models of `d` (Diagnosis::tie_models) into *models, but those
+// more than ambiguity_bic above its lowest complete model (alternatives):
+// fitted where the tie was judged, they stopped short of where that model
+// fits once the sides were fitted from each other (AlignedSides). On a
+// Table 6 record a roll damping swapped in for a roll torque kept a
+// bearing angle stuck on its ridge (+- 437 deg) and widened the final
+// bearing moment's error to 6, 4000 times its own.
+void AddTieModels(const Diagnosis& d,
+                  const DiagnoseOptions& options,
+                  std::vector<const std::vector<ParameterEstimate>*>* models) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const AlternativeModel& a : d.alternatives) {
+    if (a.fit >= 0) lowest = std::min(lowest, Bic(d.fits[a.fit]));
+  }
+  for (const Diagnosis::TieModel& m : d.tie_models) {
+    if (!(m.bic > lowest + options.ambiguity_bic)) {
+      models->push_back(&m.parameters);
+    }
+  }
+}
+
+}  // namespace
+
+void WidenForTie(const DiagnoseOptions& options, Diagnosis* d) {
   if (d->ambiguous.empty()) return;
   std::vector<const std::vector<ParameterEstimate>*> models;
   auto add_fit = [&](size_t k) {
@@ -478,8 +503,12 @@ void WidenForTie(Diagnosis* d) {
   for (const AlternativeModel& a : d->alternatives) {
     if (a.fit >= 0) add_fit(a.fit);
   }
-  if (!d->partial.empty()) add_fit(d->partial_fit);
-  for (const auto& m : d->tie_models) models.push_back(&m);
+  // The search's last model is the first complete one, unless an adopted
+  // tie's (d->alternatives) took steps out of it that none of them needs:
+  // on a Table 6 record a nonlinear stiffness pruned so had left the bearing
+  // moment's terms stuck on its ridge, and widened to +- 1900.
+  if (!d->partial.empty() && d->alternatives.empty()) add_fit(d->partial_fit);
+  AddTieModels(*d, options, &models);
   WidenErrorBars(models,
                  {},
                  "the tie's complete models",
@@ -487,13 +516,15 @@ void WidenForTie(Diagnosis* d) {
                  &d->model_standard_errors);
 }
 
-void WidenForCatalogAlike(const Diagnosis& other, Diagnosis* d) {
+void WidenForCatalogAlike(const Diagnosis& other,
+                          const DiagnoseOptions& options,
+                          Diagnosis* d) {
   std::vector<const std::vector<ParameterEstimate>*> models = {
       &other.FinalFit().parameters};
   for (const AlternativeModel& a : other.alternatives) {
     if (a.fit >= 0) models.push_back(&other.fits[a.fit].parameters);
   }
-  for (const auto& m : other.tie_models) models.push_back(&m);
+  AddTieModels(other, options, &models);
   WidenErrorBars(models,
                  {},
                  "the catalog's effects that explain the record alike",

@@ -433,13 +433,15 @@ bool HoldAtZero(const std::string& name, Case* c);
 // place of the weighted sum (the tied models' weights are alike): where a
 // tied tunnel stiffness leaves only Cm_alpha + t1 determined (Eq. 43),
 // the final Cm_alpha is as uncertain as in that model.
-void WidenForTie(Diagnosis* d);
+void WidenForTie(const DiagnoseOptions& options, Diagnosis* d);
 
 // The final error bars of `d`, left `not_explained` by a probe outside
 // the catalog, widened to cover the complete models of `other`, the
 // catalog's answer that explains the record alike (within ambiguity_bic
 // of the probe's model; Diagnosis::catalog_alike), as a tie's are.
-void WidenForCatalogAlike(const Diagnosis& other, Diagnosis* d);
+void WidenForCatalogAlike(const Diagnosis& other,
+                          const DiagnoseOptions& options,
+                          Diagnosis* d);
 
 // The contenders of the search's rounds (`contended`: each lowered BIC by
 // more than min_bic_drop where it was tried) that the record cannot

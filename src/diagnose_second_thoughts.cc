@@ -212,7 +212,7 @@ void KeepCatalogAlike(const Diagnosis& other,
   }
   d->catalog_alike = ExplainedIds(other);
   d->catalog_alike_bic = margin;
-  WidenForCatalogAlike(other, d);
+  WidenForCatalogAlike(other, options, d);
   FinalValues(d);
   d->verdict_text += "; but " + ExplainedBy(other) +
                      " explain the record alike (the probe's model BIC " +

@@ -2962,6 +2962,53 @@ TEST(Diagnose, ALeadPoolsMemberThatDoesNotShowIsNotAdopted) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
 }
 
+// The same case on draw 58 (Cm_bearing -0.00145 at 1 deg, theta_cal3
+// 0.0711, psi_cal3 -0.0847; tests/data/table6_bearing_calibration_roll_
+// torque_draw58.yaml). After the roll torque (tied with the roll
+// damping) a joint set of three, led by a nonlinear stiffness, reached the
+// noise with the bearing moment and the calibration error; in the explained
+// model the stiffness was redundant (pruned), and it ended the steps adopted
+// after the tie: nothing was added, the three left partial. A redundant step
+// no longer ends them (the stiffness then needed in no complete model is
+// pruned within the tie). The torque's complete model had stopped 23 in BIC
+// above the damping's, its bearing angle stuck where the stiffness had left
+// it (0.28 +- 437 deg); fitted from the damping's side it reaches it.
+TEST(Diagnose, ARedundantStepDoesNotEndWhatIsAdoptedAfterATie) {
+  if (testing::kSanitized) GTEST_SKIP() << "48-s record; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("table6_bearing_calibration_roll_torque_draw58.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.ambiguous),
+            (std::set<std::string>{"roll_damping", "roll_torque"}))
+      << text;
+  EXPECT_EQ(
+      EffectIds(d.steps),
+      (std::set<std::string>{"bearing_moment", "calibration_nonlinearity"}))
+      << text;
+  EXPECT_TRUE(d.final.at_noise_level) << text;
+  ExpectFinalCovers(d,
+                    {{"Cm_alpha", -0.236},
+                     {"Cm_q", -4.0},
+                     {"theta_cal3", 0.0711},
+                     {"psi_cal3", -0.0847}},
+                    text);
+  // The sides of the tie alike, and each with the bearing moment's terms
+  // determined and covering the truth.
+  ASSERT_EQ(d.alternatives.size(), 2u) << text;
+  EXPECT_NEAR(d.alternatives[0].check.probable_error,
+              d.alternatives[1].check.probable_error,
+              1e-3)
+      << text;
+  for (const AlternativeModel& a : d.alternatives) {
+    ExpectCovers(
+        a.parameters, {{"Cm_bearing", -0.00145}, {"bearing_angle", 1.0}}, text);
+    EXPECT_LT(SharedEstimate(a.parameters, "bearing_angle")->standard_error,
+              0.5)
+        << text;
+  }
+}
+
 // The Table 6 record of the same three (draw 33; tests/data/table6_magnus_
 // damping_calibration_draw33.yaml): the damping leads a joint set, and a
 // roll torque and a roll damping, score twins (44.4466), filled its pool

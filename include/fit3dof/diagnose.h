@@ -624,10 +624,16 @@ struct Diagnosis {
   // The fit whose values the partial steps report: the last model the
   // search had them in.
   size_t partial_fit = 0;
-  // The parameters of each complete model that kept a tie open (a rival
-  // swapped in for a tied effect, the other effects in): the final model's
-  // error bars cover their values too (diagnose_error_bars.cc, WidenForTie).
-  std::vector<std::vector<ParameterEstimate>> tie_models;
+  // Each complete model that kept a tie open (a rival swapped in for a
+  // tied effect, the other effects in): the final model's error bars cover
+  // its values too (diagnose_error_bars.cc, WidenForTie), unless a complete
+  // model of the tie (alternatives) is lower in BIC by more than
+  // ambiguity_bic: then it stopped short of where its model fits.
+  struct TieModel {
+    double bic = 0.0;
+    std::vector<ParameterEstimate> parameters;
+  };
+  std::vector<TieModel> tie_models;
   // The contenders of the search's rounds that the record cannot exclude
   // beside a complete model (the final one, or the last of the search when
   // steps stayed partial): added to it, BIC rises by less than
