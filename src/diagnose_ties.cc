@@ -1322,7 +1322,7 @@ Case FromOtherSide(const AlternativeModel& a,
 // ambiguity_bic, and taken when that is lower; the final model with them
 // when it is a stand-in (*current, *check). Roll torque and roll damping are
 // twins at constant spin, yet on a Table 6 record with a bearing moment and a
-// calibration error the torque's complete model stopped 24 above the
+// calibration error the torque's complete model stopped 23 above the
 // damping's: its bearing angle had been fitted beside a nonlinear stiffness
 // later pruned (0.28 deg +- 437, truth 1.0), the damping's from its own start
 // (1.05). From the damping's values the torque's reaches it (1.05 +- 0.08),
