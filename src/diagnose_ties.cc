@@ -425,9 +425,9 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
         pruned.steps.begin(), pruned.steps.end(), [&](const DiagnosisStep& s) {
           return s.effect == d->steps[i].effect;
         });
-    // A step pruned away is not in doubt; nor adopted, though it does not
-    // end the steps adopted after a tie (StartAdoption): PruneWithinTie
-    // takes it out of them.
+    // A step pruned away is not in doubt. Nor does it end the steps
+    // adopted after a tie (StartAdoption): adopted with them, it is taken
+    // out again where no complete model needs it (PruneWithinTie).
     (*tied)[i] = true;
     (*redundant)[i] = kept == pruned.steps.end();
     if ((*redundant)[i]) continue;
