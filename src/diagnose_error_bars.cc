@@ -481,10 +481,10 @@ namespace {
 void AddTieModels(const Diagnosis& d,
                   const DiagnoseOptions& options,
                   std::vector<const std::vector<ParameterEstimate>*>* models) {
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const AlternativeModel& a : d.alternatives) {
-    if (a.fit >= 0) lowest = std::min(lowest, Bic(d.fits[a.fit]));
-  }
+  const FitResult* complete = LowestCompleteFit(d);
+  const double lowest = complete == nullptr
+                            ? std::numeric_limits<double>::infinity()
+                            : Bic(*complete);
   for (const Diagnosis::TieModel& m : d.tie_models) {
     if (!(m.bic > lowest + options.ambiguity_bic)) {
       models->push_back(&m.parameters);

@@ -349,6 +349,10 @@ std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
                         const FitResult& fit,
                         const std::vector<TimeHistory>& data);
 
+// The fit of the complete model of `d`'s tie (Diagnosis::alternatives) with
+// the least BIC, or null when none was fitted.
+const FitResult* LowestCompleteFit(const Diagnosis& d);
+
 // Which model the search ends with (diagnose.h), given `check`, the
 // residual check of its last fit, `models`, the case of each of d->fits,
 // `tie`, the step of the first tie or -1, and `rivals`, each step's

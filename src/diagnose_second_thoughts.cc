@@ -91,10 +91,8 @@ CandidateFit FollowedFirst(const Diagnosis& d, const std::string& first) {
 double CompleteBic(const Diagnosis& d) {
   double bic = std::min(Bic(d.FinalFit()), Bic(d.fits[d.partial_fit]));
   bic = std::min(bic, d.least_beside_bic);
-  for (const AlternativeModel& a : d.alternatives) {
-    if (a.fit >= 0) bic = std::min(bic, Bic(d.fits[a.fit]));
-  }
-  return bic;
+  const FitResult* complete = LowestCompleteFit(d);
+  return complete == nullptr ? bic : std::min(bic, Bic(*complete));
 }
 
 // The effects a diagnosis that explains its record holds, in words: the

@@ -1295,26 +1295,23 @@ void CompanionsWithinTie(const std::vector<TimeHistory>& data,
 
 // The case of complete model `a` (fitted as `own`) started from `best`, the
 // fit of another side of the tie: its own solution with every parameter free
-// in both, and the initial conditions, at best's values.
+// in both, and the initial conditions, at best's values (CaseAtSolution of
+// best with only those parameters).
 Case FromOtherSide(const AlternativeModel& a,
                    const FitResult& own,
                    const FitResult& best) {
-  Case c = CaseAtSolution(a.model, own);
-  for (const ParameterEstimate& e : best.parameters) {
-    CHECK_LT(e.position, static_cast<int>(c.parameters.size()));
-    ParameterSetting& p = c.parameters[e.position];
-    if (e.free && e.segment.empty() && p.free && !p.tied() &&
-        !IsInitialCondition(c.model, e.position)) {
-      p.value = e.value;
-    }
-  }
-  c.SettleTies();
-  for (size_t s = 0; s < c.segments.size() && s < best.segments.size(); ++s) {
-    for (int j = 0; j < 6; ++j) {
-      c.segments[s].initial[j].value = best.segments[s].initial[j];
-    }
-  }
-  return c;
+  const Case at = CaseAtSolution(a.model, own);
+  FitResult shared = best;
+  std::vector<ParameterEstimate>& terms = shared.parameters;
+  terms.erase(std::remove_if(terms.begin(),
+                             terms.end(),
+                             [&](const ParameterEstimate& e) {
+                               const ParameterSetting& p =
+                                   at.parameters[e.position];
+                               return !(e.free && p.free && !p.tied());
+                             }),
+              terms.end());
+  return CaseAtSolution(at, shared);
 }
 
 // The complete models of an adopted tie (d->alternatives) each fitted again
@@ -1332,17 +1329,10 @@ void AlignedSides(const std::vector<TimeHistory>& data,
                   Diagnosis* d,
                   Case* current,
                   ResidualCheck* check) {
+  const FitResult* least = LowestCompleteFit(*d);
+  if (least == nullptr) return;
+  const FitResult& lowest = *least;
   const int n = static_cast<int>(d->alternatives.size());
-  int best = -1;
-  for (int m = 0; m < n; ++m) {
-    const int fit = d->alternatives[m].fit;
-    if (fit >= 0 && (best < 0 || Bic(d->fits[fit]) <
-                                     Bic(d->fits[d->alternatives[best].fit]))) {
-      best = m;
-    }
-  }
-  if (best < 0) return;
-  const FitResult& lowest = d->fits[d->alternatives[best].fit];
   std::vector<Case> cases(n);
   std::vector<FitResult> fits(n);
   std::vector<char> refit(n, false);
@@ -1378,6 +1368,17 @@ void AlignedSides(const std::vector<TimeHistory>& data,
 }
 
 }  // namespace
+
+const FitResult* LowestCompleteFit(const Diagnosis& d) {
+  const FitResult* lowest = nullptr;
+  for (const AlternativeModel& a : d.alternatives) {
+    if (a.fit >= 0 &&
+        (lowest == nullptr || Bic(d.fits[a.fit]) < Bic(*lowest))) {
+      lowest = &d.fits[a.fit];
+    }
+  }
+  return lowest;
+}
 
 ResidualCheck SettleFinalModel(
     const Case& user,
