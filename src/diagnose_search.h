@@ -627,7 +627,8 @@ Diagnosis Search(const Case& c,
 // The search from `nominal`, the fit of `c`, and its second thoughts: an
 // effect past the noise, a step outdone, the other branch of a tie, a
 // first step that led nowhere, joint sets led by an effect out of its
-// bounds, a near or outdone tie (diagnose_second_thoughts.cc).
+// bounds, a near or outdone tie, an effect a swap outdid in a tie the
+// search left open (diagnose_second_thoughts.cc).
 Diagnosis DiagnoseFrom(const Case& c,
                        const FitResult& nominal,
                        const DiagnoseOptions& options);

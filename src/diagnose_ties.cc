@@ -435,7 +435,8 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
     const std::vector<CandidateFit> open = Unresolved(
         rivals[i], *kept, pruned.steps, at, fit, data, options, &swapped);
     for (const FitResult& f : swapped) {
-      d->tie_models.push_back({Bic(f), f.parameters});
+      d->tie_models.push_back(
+          {Bic(f), f.parameters, kept->effect, Bic(f) - Bic(fit)});
     }
     (*tied)[i] = !open.empty();
     if (open.empty()) continue;

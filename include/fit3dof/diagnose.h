@@ -632,6 +632,8 @@ struct Diagnosis {
   struct TieModel {
     double bic = 0.0;
     std::vector<ParameterEstimate> parameters;
+    std::string in_place_of;  // the tied step's effect the rival replaced
+    double rise = 0.0;        // BIC against the model with that step
   };
   std::vector<TieModel> tie_models;
   // The contenders of the search's rounds that the record cannot exclude
