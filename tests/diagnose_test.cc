@@ -2366,15 +2366,13 @@ void ExpectStiffnessAlternativeCovers(const Diagnosis& d,
                text);
 }
 
-// `d`, ambiguous, names the body asymmetry and the nonlinear damping and
-// ties the tunnel stiffness, its models covering the truth: Cm_alpha and
-// Cm_q, the damping (the asymmetric program's Cm_q_alpha2) and, in the
-// stiffness's complete model, t1 and t3.
-void ExpectAsymmetryAndDampingBesideAStiffnessTie(const Diagnosis& d,
-                                                  double damping,
-                                                  double t1,
-                                                  double t3) {
-  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+// `d` (`text` its report), ambiguous, names the body asymmetry and the
+// nonlinear damping and ties the tunnel stiffness, the final model
+// covering the truth: Cm_alpha and Cm_q, and the damping (the asymmetric
+// program's Cm_q_alpha2).
+void ExpectAsymmetryAndDampingNamed(const Diagnosis& d,
+                                    double damping,
+                                    const std::string& text) {
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   EXPECT_EQ(EffectIds(d.steps),
             (std::set<std::string>{"asymmetric_body", "nonlinear_damping"}))
@@ -2382,6 +2380,16 @@ void ExpectAsymmetryAndDampingBesideAStiffnessTie(const Diagnosis& d,
   EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
   ExpectFinalCovers(d, kShortCoefficients, text);
   ExpectCovers(d.final_parameters, {{"Cm_q_alpha2", damping}}, text);
+}
+
+// As ExpectAsymmetryAndDampingNamed, and the stiffness's complete model
+// covers t1 and t3.
+void ExpectAsymmetryAndDampingBesideAStiffnessTie(const Diagnosis& d,
+                                                  double damping,
+                                                  double t1,
+                                                  double t3) {
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectAsymmetryAndDampingNamed(d, damping, text);
   ExpectStiffnessAlternativeCovers(d, t1, t3, text);
 }
 
@@ -3209,14 +3217,8 @@ TEST(Diagnose, AnEffectOutdoneInASwapIsSearchedWithout) {
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw62.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
-  EXPECT_EQ(EffectIds(d.steps),
-            (std::set<std::string>{"asymmetric_body", "nonlinear_damping"}))
-      << text;
-  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
+  ExpectAsymmetryAndDampingNamed(d, 895.7, text);
   EXPECT_FALSE(EffectIds(d.ambiguous).count("bearing_moment")) << text;
-  ExpectFinalCovers(d, kShortCoefficients, text);
-  ExpectCovers(d.final_parameters, {{"Cm_q_alpha2", 895.7}}, text);
   EXPECT_NE(text.find("a Magnus moment, followed in a tie"), std::string::npos)
       << text;
 }
