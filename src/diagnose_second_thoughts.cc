@@ -776,7 +776,11 @@ Diagnosis FromBounds(const Case& c,
 // effect made redundant is pruned: the answer need not be longer);
 // otherwise (`d` or the second answer ambiguous), explains it (a tie of its
 // own allowed) with a complete model below `d`'s, counting what lowers BIC
-// beside it (CompleteBic). An explained `d` gives way to a tie so: on draw
+// beside it (CompleteBic), or the same (within a fit's tolerance: the
+// second search named what `d` left beside it; on draw 35's record below,
+// once its first tie was adopted, the complete model with the tunnel
+// stiffness beside it was the second answer's final one, and the first
+// answer had been kept). An explained `d` gives way to a tie so: on draw
 // 60's 3-s run with a tunnel stiffness, a nonlinear damping and a body yaw
 // asymmetry, the first search named the asymmetry and a tunnel damping
 // (t2 4.4 +- 2.6, false), the nonlinear damping 22.7 lower beside them;
@@ -816,7 +820,8 @@ Diagnosis PastNoise(const Case& c,
   const bool better =
       d.verdict == Verdict::kExplained && other.verdict == Verdict::kExplained
           ? Bic(other.FinalFit()) < Bic(d.FinalFit())
-          : ExplainsRecord(other) && CompleteBic(other) < CompleteBic(d);
+          : ExplainsRecord(other) &&
+                CompleteBic(other) < CompleteBic(d) + kSearchBicTolerance;
   if (!adds || !better) return d;
   *notes = std::move(again);
   return other;

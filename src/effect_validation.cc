@@ -123,20 +123,33 @@ constexpr double kMostNonlinear = 4.0;
 
 // A nonlinear term's change of its linear coefficient at the record's
 // largest angle against that coefficient: terms (name, power of the angle).
+// With Eq. 39's tunnel term on the same axis (`tunnel`) in the model, the
+// motion determines their sum and the body-fixed coefficient alone slides
+// along Eq. 43's ridge: the larger of the two is weighed against. On draw
+// 64's 3-s run with a tunnel stiffness, a nonlinear damping and a body yaw
+// asymmetry, a tunnel damping swapped in for the roll damping the search
+// had followed took Cm_q to -0.33, and the nonlinear damping, 11.8 over
+// the record, was out of its bounds in that complete model only: the tie
+// was not adopted, the damping and the asymmetry left partial.
 std::string Nonlinear(
     const BoundContext& v,
     const char* linear,
+    const char* tunnel,
     std::initializer_list<std::pair<const char*, int>> terms) {
   const double d = v.largest_rad();
   double change = 0.0;
   for (const auto& [name, power] : terms) {
     change += std::abs(v(name)) * std::pow(d, power);
   }
-  if (change > kMostNonlinear * std::abs(v(linear))) {
+  const double reference =
+      std::max(std::abs(v(linear)), std::abs(v(linear) + v(tunnel)));
+  if (change > kMostNonlinear * reference) {
+    const bool summed = reference > std::abs(v(linear));
     return std::string("it changes ") + linear + " by " +
            FormatNumber("%.3g", change) + " over the record, more than " +
            FormatNumber("%g", kMostNonlinear) + " times |" + linear +
-           "| = " + FormatNumber("%.3g", std::abs(v(linear)));
+           (summed ? std::string(" + ") + tunnel : std::string()) +
+           "| = " + FormatNumber("%.3g", reference);
   }
   return "";
 }
@@ -236,18 +249,33 @@ const std::map<std::string, Bound>& Bounds() {
        }},
       {"nonlinear_stiffness",
        [](const BoundContext& v) {
-         std::string why = Nonlinear(
-             v, "Cm_alpha", {{"Cm_alpha_delta", 1}, {"Cm_alpha_delta2", 2}});
-         if (why.empty()) why = Nonlinear(v, "Cm_alpha", {{"Cm_alpha3", 2}});
-         if (why.empty()) why = Nonlinear(v, "Cn_beta", {{"Cn_beta3", 2}});
+         std::string why =
+             Nonlinear(v,
+                       "Cm_alpha",
+                       "tunnel_Cm_theta",
+                       {{"Cm_alpha_delta", 1}, {"Cm_alpha_delta2", 2}});
+         if (why.empty()) {
+           why =
+               Nonlinear(v, "Cm_alpha", "tunnel_Cm_theta", {{"Cm_alpha3", 2}});
+         }
+         if (why.empty()) {
+           why = Nonlinear(v, "Cn_beta", "tunnel_Cn_psi", {{"Cn_beta3", 2}});
+         }
          return why;
        }},
       {"nonlinear_damping",
        [](const BoundContext& v) {
-         std::string why =
-             Nonlinear(v, "Cm_q", {{"Cm_q_delta", 1}, {"Cm_q_delta2", 2}});
-         if (why.empty()) why = Nonlinear(v, "Cm_q", {{"Cm_q_alpha2", 2}});
-         if (why.empty()) why = Nonlinear(v, "Cn_r", {{"Cn_r_beta2", 2}});
+         std::string why = Nonlinear(v,
+                                     "Cm_q",
+                                     "tunnel_Cm_thetadot",
+                                     {{"Cm_q_delta", 1}, {"Cm_q_delta2", 2}});
+         if (why.empty()) {
+           why =
+               Nonlinear(v, "Cm_q", "tunnel_Cm_thetadot", {{"Cm_q_alpha2", 2}});
+         }
+         if (why.empty()) {
+           why = Nonlinear(v, "Cn_r", "tunnel_Cn_psidot", {{"Cn_r_beta2", 2}});
+         }
          return why;
        }},
       {"bearing_moment",

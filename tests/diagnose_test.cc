@@ -3223,6 +3223,21 @@ TEST(Diagnose, AnEffectOutdoneInASwapIsSearchedWithout) {
       << text;
 }
 
+// The same case on draw 64 (t1 -9.69e-4, t3 3.39e-4, Cm_q_delta2 -640.6,
+// body yaw -0.30%; tests/data/short_stiffness_damping_asymmetry_draw64
+// .yaml). A roll damping tied four ways (a roll torque, a tunnel damping,
+// the tunnel stiffness); after it the asymmetry and the damping reached
+// the noise, but were not adopted: with the tunnel damping in the roll
+// damping's place Cm_q slid along Eq. 43's ridge to -0.33, and the
+// nonlinear damping's bound, 4 times |Cm_q|, refused it there. The bound
+// weighs against Cm_q plus the tunnel term when that is larger.
+TEST(Diagnose, ANonlinearTermsBoundFollowsTheTunnelRidge) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_stiffness_damping_asymmetry_draw64.yaml");
+  ExpectAsymmetryAndDampingBesideAStiffnessTie(d, -640.6, -9.69e-4, 3.39e-4);
+}
+
 // tools/diagnose_suite's `coning` tunnel stiffness + nonlinear damping +
 // body yaw asymmetry (draw 43, --vary; tests/data/coning_stiffness_damping_
 // asymmetry_draw43.yaml). After the asymmetry a tunnel damping led the

@@ -110,6 +110,36 @@ TEST(Implausible, NonlinearTermAgainstItsLinearOne) {
       << why;
 }
 
+// With Eq. 39's tunnel damping in the model the motion determines Cm_q +
+// t2, and Cm_q alone slides along Eq. 43's ridge: the bound weighs against
+// the larger of the two. A damping of 11.8 over the record with Cm_q at
+// -0.33 along the ridge and t2 = -7 is plausible; with the tunnel term at
+// zero it is not.
+TEST(Implausible, NonlinearTermAlongTheTunnelRidge) {
+  const double d2 = std::pow(8.0 * kDegree, 2);
+  const auto damping = [&](double tunnel) {
+    return Verdict("nonlinear_damping",
+                   Fitted({{"Cm_q", -0.33},
+                           {"tunnel_Cm_thetadot", tunnel},
+                           {"Cm_q_delta2", 11.8 / d2}},
+                          8.0,
+                          1.0));
+  };
+  EXPECT_EQ(damping(-7.0), "");
+  const std::string why = damping(0.0);
+  EXPECT_NE(why.find("more than 4 times |Cm_q| = 0.33"), std::string::npos)
+      << why;
+  // A tunnel term that takes the sum toward zero does not tighten it.
+  EXPECT_NE(damping(0.3), "");
+  EXPECT_EQ(Verdict("nonlinear_damping",
+                    Fitted({{"Cm_q", -5.5},
+                            {"tunnel_Cm_thetadot", 5.0},
+                            {"Cm_q_delta2", 3.0 * 5.5 / d2}},
+                           8.0,
+                           1.0)),
+            "");
+}
+
 // A roll damping damps: Cl_p positive by more than 2 standard errors is
 // refused, within them (or negative) accepted.
 TEST(Implausible, RollDampingThatDrivesTheRoll) {

@@ -63,9 +63,11 @@
 //     errors up to 0.2 deg, a calibration error up to 0.2 deg or 3% of the
 //     channel's largest angle (a determined one up to 3% or three noise
 //     sigmas where 0.2 deg is more), |I_zx| up to 5% of I_y, a trim angle
-//     up to 2 deg, tunnel terms up to half the aerodynamic ones, nonlinear
-//     terms that change the linear ones by at most twice their size over
-//     the record; EffectCatalog lists each), and so are, in its fit, the
+//     up to 2 deg, a tunnel stiffness up to half and a tunnel damping up
+//     to twice the record's stiffness or damping, nonlinear terms that
+//     change the linear ones (or these plus Eq. 39's tunnel term on their
+//     axis, where larger) by at most 4 times their size over the record;
+//     EffectCatalog lists each), and so are, in its fit, the
 //     effects added before it (a newcomer that pushes one of them past
 //     its bound makes a model no more plausible than that);
 //   - not dragging the coefficients: unless it explains the record down
