@@ -123,9 +123,11 @@ constexpr double kMostNonlinear = 4.0;
 
 // A nonlinear term's change of its linear coefficient at the record's
 // largest angle against that coefficient: terms (name, power of the angle).
-// With Eq. 39's tunnel term on the same axis (`tunnel`) in the model, the
-// motion determines their sum and the body-fixed coefficient alone slides
-// along Eq. 43's ridge: the larger of the two is weighed against. On draw
+// With Eq. 39's tunnel term on the same axis (`tunnel`, times `sign`: the
+// yaw stiffness Cn_beta acts on the sideslip, -psi, t3 on psi) in the
+// model, the motion determines their sum and the body-fixed coefficient
+// alone slides along Eq. 43's ridge: the larger of the two is weighed
+// against. On draw
 // 64's 3-s run with a tunnel stiffness, a nonlinear damping and a body yaw
 // asymmetry, a tunnel damping swapped in for the roll damping the search
 // had followed took Cm_q to -0.33, and the nonlinear damping, 11.8 over
@@ -135,6 +137,7 @@ std::string Nonlinear(
     const BoundContext& v,
     const char* linear,
     const char* tunnel,
+    double sign,
     std::initializer_list<std::pair<const char*, int>> terms) {
   const double d = v.largest_rad();
   double change = 0.0;
@@ -142,13 +145,14 @@ std::string Nonlinear(
     change += std::abs(v(name)) * std::pow(d, power);
   }
   const double reference =
-      std::max(std::abs(v(linear)), std::abs(v(linear) + v(tunnel)));
+      std::max(std::abs(v(linear)), std::abs(v(linear) + sign * v(tunnel)));
   if (change > kMostNonlinear * reference) {
     const bool summed = reference > std::abs(v(linear));
     return std::string("it changes ") + linear + " by " +
            FormatNumber("%.3g", change) + " over the record, more than " +
            FormatNumber("%g", kMostNonlinear) + " times |" + linear +
-           (summed ? std::string(" + ") + tunnel : std::string()) +
+           (summed ? std::string(sign > 0.0 ? " + " : " - ") + tunnel
+                   : std::string()) +
            "| = " + FormatNumber("%.3g", reference);
   }
   return "";
@@ -253,13 +257,15 @@ const std::map<std::string, Bound>& Bounds() {
              Nonlinear(v,
                        "Cm_alpha",
                        "tunnel_Cm_theta",
+                       1.0,
                        {{"Cm_alpha_delta", 1}, {"Cm_alpha_delta2", 2}});
          if (why.empty()) {
-           why =
-               Nonlinear(v, "Cm_alpha", "tunnel_Cm_theta", {{"Cm_alpha3", 2}});
+           why = Nonlinear(
+               v, "Cm_alpha", "tunnel_Cm_theta", 1.0, {{"Cm_alpha3", 2}});
          }
          if (why.empty()) {
-           why = Nonlinear(v, "Cn_beta", "tunnel_Cn_psi", {{"Cn_beta3", 2}});
+           why = Nonlinear(
+               v, "Cn_beta", "tunnel_Cn_psi", -1.0, {{"Cn_beta3", 2}});
          }
          return why;
        }},
@@ -268,13 +274,15 @@ const std::map<std::string, Bound>& Bounds() {
          std::string why = Nonlinear(v,
                                      "Cm_q",
                                      "tunnel_Cm_thetadot",
+                                     1.0,
                                      {{"Cm_q_delta", 1}, {"Cm_q_delta2", 2}});
          if (why.empty()) {
-           why =
-               Nonlinear(v, "Cm_q", "tunnel_Cm_thetadot", {{"Cm_q_alpha2", 2}});
+           why = Nonlinear(
+               v, "Cm_q", "tunnel_Cm_thetadot", 1.0, {{"Cm_q_alpha2", 2}});
          }
          if (why.empty()) {
-           why = Nonlinear(v, "Cn_r", "tunnel_Cn_psidot", {{"Cn_r_beta2", 2}});
+           why = Nonlinear(
+               v, "Cn_r", "tunnel_Cn_psidot", 1.0, {{"Cn_r_beta2", 2}});
          }
          return why;
        }},

@@ -140,6 +140,26 @@ TEST(Implausible, NonlinearTermAlongTheTunnelRidge) {
             "");
 }
 
+// In yaw the stiffness Cn_beta acts on the sideslip (-psi) and t3 on psi:
+// their sum is Cn_beta - t3. A cubic term changing Cn_beta by 0.28 over
+// the record passes beside Cn_beta = 0.05 and t3 = -0.04 (0.09), not
+// beside t3 = +0.04 (0.01; Cn_beta's own 0.05 is the larger).
+TEST(Implausible, NonlinearYawStiffnessAlongTheTunnelRidge) {
+  const double d2 = std::pow(8.0 * kDegree, 2);
+  const auto stiffness = [&](double t3) {
+    return Verdict(
+        "nonlinear_stiffness",
+        Fitted(
+            {{"Cn_beta", 0.05}, {"tunnel_Cn_psi", t3}, {"Cn_beta3", 0.28 / d2}},
+            8.0,
+            1.0));
+  };
+  EXPECT_EQ(stiffness(-0.04), "");
+  const std::string why = stiffness(0.04);
+  EXPECT_NE(why.find("more than 4 times |Cn_beta| = 0.05"), std::string::npos)
+      << why;
+}
+
 // A roll damping damps: Cl_p positive by more than 2 standard errors is
 // refused, within them (or negative) accepted.
 TEST(Implausible, RollDampingThatDrivesTheRoll) {
