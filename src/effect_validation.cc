@@ -8,10 +8,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <initializer_list>
 #include <limits>
 #include <map>
+#include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "diagnose_internal.h"
 #include "fit3dof/angles.h"
@@ -133,12 +135,11 @@ constexpr double kMostNonlinear = 4.0;
 // had followed took Cm_q to -0.33, and the nonlinear damping, 11.8 over
 // the record, was out of its bounds in that complete model only: the tie
 // was not adopted, the damping and the asymmetry left partial.
-std::string Nonlinear(
-    const BoundContext& v,
-    const char* linear,
-    const char* tunnel,
-    double sign,
-    std::initializer_list<std::pair<const char*, int>> terms) {
+std::string Nonlinear(const BoundContext& v,
+                      const char* linear,
+                      const char* tunnel,
+                      double sign,
+                      const std::vector<std::pair<const char*, int>>& terms) {
   const double d = v.largest_rad();
   double change = 0.0;
   for (const auto& [name, power] : terms) {
@@ -154,6 +155,26 @@ std::string Nonlinear(
            (summed ? std::string(sign > 0.0 ? " + " : " - ") + tunnel
                    : std::string()) +
            "| = " + FormatNumber("%.3g", reference);
+  }
+  return "";
+}
+
+// One axis's nonlinear terms for Nonlinear: the linear coefficient, Eq.
+// 39's tunnel term on its axis with its sign in their sum, and the terms
+// (name, power of the angle).
+struct NonlinearCheck {
+  const char* linear;
+  const char* tunnel;
+  double sign;
+  std::vector<std::pair<const char*, int>> terms;
+};
+
+// The first of `checks` whose terms leave their bound (Nonlinear), or "".
+std::string FirstNonlinear(const BoundContext& v,
+                           const std::vector<NonlinearCheck>& checks) {
+  for (const NonlinearCheck& c : checks) {
+    const std::string why = Nonlinear(v, c.linear, c.tunnel, c.sign, c.terms);
+    if (!why.empty()) return why;
   }
   return "";
 }
@@ -253,38 +274,25 @@ const std::map<std::string, Bound>& Bounds() {
        }},
       {"nonlinear_stiffness",
        [](const BoundContext& v) {
-         std::string why =
-             Nonlinear(v,
-                       "Cm_alpha",
-                       "tunnel_Cm_theta",
-                       1.0,
-                       {{"Cm_alpha_delta", 1}, {"Cm_alpha_delta2", 2}});
-         if (why.empty()) {
-           why = Nonlinear(
-               v, "Cm_alpha", "tunnel_Cm_theta", 1.0, {{"Cm_alpha3", 2}});
-         }
-         if (why.empty()) {
-           why = Nonlinear(
-               v, "Cn_beta", "tunnel_Cn_psi", -1.0, {{"Cn_beta3", 2}});
-         }
-         return why;
+         return FirstNonlinear(
+             v,
+             {{"Cm_alpha",
+               "tunnel_Cm_theta",
+               1.0,
+               {{"Cm_alpha_delta", 1}, {"Cm_alpha_delta2", 2}}},
+              {"Cm_alpha", "tunnel_Cm_theta", 1.0, {{"Cm_alpha3", 2}}},
+              {"Cn_beta", "tunnel_Cn_psi", -1.0, {{"Cn_beta3", 2}}}});
        }},
       {"nonlinear_damping",
        [](const BoundContext& v) {
-         std::string why = Nonlinear(v,
-                                     "Cm_q",
-                                     "tunnel_Cm_thetadot",
-                                     1.0,
-                                     {{"Cm_q_delta", 1}, {"Cm_q_delta2", 2}});
-         if (why.empty()) {
-           why = Nonlinear(
-               v, "Cm_q", "tunnel_Cm_thetadot", 1.0, {{"Cm_q_alpha2", 2}});
-         }
-         if (why.empty()) {
-           why = Nonlinear(
-               v, "Cn_r", "tunnel_Cn_psidot", 1.0, {{"Cn_r_beta2", 2}});
-         }
-         return why;
+         return FirstNonlinear(
+             v,
+             {{"Cm_q",
+               "tunnel_Cm_thetadot",
+               1.0,
+               {{"Cm_q_delta", 1}, {"Cm_q_delta2", 2}}},
+              {"Cm_q", "tunnel_Cm_thetadot", 1.0, {{"Cm_q_alpha2", 2}}},
+              {"Cn_r", "tunnel_Cn_psidot", 1.0, {{"Cn_r_beta2", 2}}}});
        }},
       {"bearing_moment",
        [](const BoundContext& v) {
