@@ -60,6 +60,12 @@ void NoteDropped(CandidateFit dropped,
   other->rejected.push_back(std::move(dropped));
 }
 
+// What a followed effect dropped for the search without it
+// (OutdoneTieBranch, OutdoneSwapBranch) did, after its description.
+constexpr char kFollowedInATie[] =
+    ", followed in a tie, explains the record worse than the effects found "
+    "without it";
+
 // The tied effect `first` as the search that followed it found it: its
 // record from the first step that had it among the contenders.
 CandidateFit FollowedFirst(const Diagnosis& d, const std::string& first) {
@@ -710,8 +716,7 @@ Diagnosis OutdoneTieBranch(const Case& c,
                   " lower in BIC; without it the search explains the "
                   "record as well (BIC " +
                   FormatNumber("%+.1f", -margin) + ")",
-              ", followed in a tie, explains the record worse than the "
-              "effects found without it",
+              kFollowedInATie,
               &other);
   return other;
 }
@@ -930,8 +935,7 @@ Diagnosis OutdoneSwapBranch(const Case& c,
                   "; without it the diagnosis explains the record better "
                   "(BIC " +
                   FormatNumber("%+.1f", least - first_least) + ")",
-              ", followed in a tie, explains the record worse than the "
-              "effects found without it",
+              kFollowedInATie,
               &other);
   return other;
 }
@@ -950,11 +954,14 @@ Diagnosis DiagnoseFrom(const Case& c,
   const std::string outdone = options.searched_without.empty()
                                   ? OutdoneBySwap(first, options)
                                   : std::string();
+  if (outdone.empty()) {
+    return SecondThoughts(
+        c, nominal, options, std::move(notes), std::move(first));
+  }
   const CandidateFit followed = FollowedFirst(first, outdone);
   const double first_least = LeastTieBic(first);
   Diagnosis d =
       SecondThoughts(c, nominal, options, std::move(notes), std::move(first));
-  if (outdone.empty()) return d;
   return OutdoneSwapBranch(
       c, nominal, options, followed, first_least, std::move(d));
 }

@@ -129,12 +129,12 @@ constexpr double kMostNonlinear = 4.0;
 // yaw stiffness Cn_beta acts on the sideslip, -psi, t3 on psi) in the
 // model, the motion determines their sum and the body-fixed coefficient
 // alone slides along Eq. 43's ridge: the larger of the two is weighed
-// against. On draw
-// 64's 3-s run with a tunnel stiffness, a nonlinear damping and a body yaw
-// asymmetry, a tunnel damping swapped in for the roll damping the search
-// had followed took Cm_q to -0.33, and the nonlinear damping, 11.8 over
-// the record, was out of its bounds in that complete model only: the tie
-// was not adopted, the damping and the asymmetry left partial.
+// against. On draw 64's 3-s run with a tunnel stiffness, a nonlinear
+// damping and a body yaw asymmetry, a tunnel damping swapped in for the
+// roll damping the search had followed took Cm_q to -0.33, and the
+// nonlinear damping, 11.8 over the record, was out of its bounds in that
+// complete model only: the tie was not adopted, the damping and the
+// asymmetry left partial.
 std::string Nonlinear(const BoundContext& v,
                       const char* linear,
                       const char* tunnel,
