@@ -37,13 +37,20 @@ double Aic(const FitResult& r);
 
 // A catalog effect (or a probe) as a candidate: the current model with the
 // effect's terms free at zero (their names in `added`), and its score at
-// the current solution.
+// the current solution. `form`: the effect's other form (Effect::other_form)
+// whose terms these are, or nullptr for the effect's own.
 struct Candidate {
   const Effect* effect;
   Case c;
   std::vector<std::string> added;
   CandidateScore score;
+  const Effect* form = nullptr;
 };
+
+// The entry whose terms the candidate frees: its form, or its effect.
+inline const Effect& TermsOf(const Candidate& k) {
+  return k.form != nullptr ? *k.form : *k.effect;
+}
 
 // A candidate refitted in full.
 struct Contender {

@@ -153,7 +153,8 @@ const std::vector<Effect>& EffectCatalog() {
        false,
        false,
        false,
-       {"reading_gain", "calibration_square"}},
+       {"reading_gain", "calibration_square"},
+       "calibration_signed_square"},
   };
   return catalog;
 }
@@ -170,6 +171,22 @@ const std::vector<Effect>& OpenForms() {
        {"theta_cal2", "psi_cal2"},
        false,
        {},
+       "",
+       ""},
+      // The report's calibration factors come from a linear least-squares
+      // fit, which takes a straight line's worth of any error into each
+      // reading's gain: what is left of a signed square is the square less
+      // its line over the calibration's range, one range for both readings
+      // (Effect::other_form). The range starts at the calibration's
+      // reference angle, 5 deg.
+      {"calibration_signed_square",
+       "the calibration nonlinearity as the angle's signed square less the "
+       "straight line a linear calibration over +-cal_range took of it "
+       "(another form of Section 5.2's)",
+       {"theta_cal2", "psi_cal2", "cal_range"},
+       {"theta_cal2", "psi_cal2", "cal_range"},
+       false,
+       {{"cal_range", 5.0}},
        "",
        ""},
   };

@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -29,7 +30,8 @@ namespace {
 struct BoundContext {
   std::map<std::string, double> values;
   std::map<std::string, double> errors;
-  double largest_deg = 0.0;  // total angle
+  std::set<std::string> free;  // the fit's free parameters
+  double largest_deg = 0.0;    // total angle
   double largest_theta_deg = 0.0, largest_psi_deg = 0.0;
   double theta_sigma_deg = 0.0, psi_sigma_deg = 0.0;  // largest weights
 
@@ -50,6 +52,7 @@ BoundContext ContextOf(const FitResult& fit) {
     if (!e.segment.empty()) continue;
     b.values[e.name] = e.value;
     b.errors[e.name] = e.standard_error;
+    if (e.free) b.free.insert(e.name);
   }
   for (const SegmentFit& s : fit.segments) {
     b.theta_sigma_deg = std::max(b.theta_sigma_deg, s.sigma_deg.theta);
@@ -81,31 +84,79 @@ std::string ReadingError(const BoundContext& v) {
   return "";
 }
 
-// Each channel's error at its own largest angle, up to 0.2 deg or 3% of
-// that angle if more: a cubic error is only seen near the largest angles,
-// so a detectable one is larger there than an error present at every
-// angle (a 3% error at 8 deg, 0.24 deg, is 0.06 deg at 5). A channel that
-// stays near zero leaves its term undetermined, and harmless. A term the
-// record determines (over two standard errors from zero) is held to 3% of
-// the angle or three noise sigmas where 0.2 deg is more: 0.2 deg on a yaw
-// reading that never leaves half a degree is a 40% error, no instrument's
-// (such a term, 0.047 deg there, had joined a nonlinear damping to stand
-// in for a dry friction on the pitch axis alone, Cm_q dragged from 11.6
-// to 21.3 of its errors); below three sigmas it is noise's size.
+// A channel's calibration error at `x` deg: the cube, the signed square
+// less its line over +-cal_range (motion_model.h), and a straight line
+// (the reading's gain), as the fit holds them.
+double CalibrationError(const BoundContext& v,
+                        const std::string& axis,
+                        double x) {
+  const double u = x / 5.0;
+  const double slope = 0.75 * v("cal_range") / 5.0;
+  return v(axis + "_cal3") * u * u * u +
+         v(axis + "_cal2") * (u * std::abs(u) - slope * u) +
+         v(axis + "_gain") * x;
+}
+
+// The largest |CalibrationError| over the channel's range (odd in x: 0 to
+// `largest`).
+double LargestCalibrationError(const BoundContext& v,
+                               const std::string& axis,
+                               double largest) {
+  constexpr int kPoints = 64;
+  double most = std::abs(CalibrationError(v, axis, largest));
+  for (int i = 1; i < kPoints; ++i) {
+    most = std::max(most,
+                    std::abs(CalibrationError(v, axis, largest * i / kPoints)));
+  }
+  return most;
+}
+
+// Whether the fit determines `name` (free, over two standard errors).
+bool Determined(const BoundContext& v, const std::string& name) {
+  const double error = v.error(name);
+  return std::isfinite(error) && std::abs(v(name)) > 2.0 * error;
+}
+
+// Each channel's largest error over its range, up to 0.2 deg or 3% of the
+// channel's largest angle if more: a cubic error is only seen near the
+// largest angles, so a detectable one is larger there than an error
+// present at every angle (a 3% error at 8 deg, 0.24 deg, is 0.06 deg at
+// 5). A channel that stays near zero leaves its terms undetermined, and
+// harmless. Terms the record determines (one over two standard errors
+// from zero) are held to 3% of the angle or three noise sigmas where 0.2
+// deg is more: 0.2 deg on a yaw reading that never leaves half a degree
+// is a 40% error, no instrument's (such a term, 0.047 deg there, had
+// joined a nonlinear damping to stand in for a dry friction on the pitch
+// axis alone, Cm_q dragged from 11.6 to 21.3 of its errors); below three
+// sigmas it is noise's size. With a straight line in it (the signed
+// square's calibration range, Effect::other_form, or a reading's gain) a
+// nonlinear term must be determined: a line alone is a gain error, the
+// reading_gain probe's, no nonlinearity. A range is a width: below zero
+// (past two of its errors) the line is no calibration's.
 std::string Calibration(const BoundContext& v) {
-  for (const auto& [name, largest, sigma] :
-       {std::tuple<const char*, double, double>{
-            "theta_cal3", v.largest_theta_deg, v.theta_sigma_deg},
-        std::tuple<const char*, double, double>{
-            "psi_cal3", v.largest_psi_deg, v.psi_sigma_deg}}) {
-    const double error = std::abs(v(name)) * std::pow(largest / 5.0, 3);
+  const bool line = v.free.count("theta_gain") || v.free.count("cal_range");
+  if (line && !Determined(v, "theta_cal3") && !Determined(v, "psi_cal3") &&
+      !Determined(v, "theta_cal2") && !Determined(v, "psi_cal2")) {
+    return "no nonlinear term over two of its errors: a straight line, a "
+           "reading's gain error";
+  }
+  if (v("cal_range") < 0.0 && Determined(v, "cal_range")) {
+    return "a calibration range of " + FormatNumber("%.3g", v("cal_range")) +
+           " deg: below zero";
+  }
+  for (const auto& [axis, largest, sigma] :
+       {std::tuple<std::string, double, double>{
+            "theta", v.largest_theta_deg, v.theta_sigma_deg},
+        std::tuple<std::string, double, double>{
+            "psi", v.largest_psi_deg, v.psi_sigma_deg}}) {
+    const double error = LargestCalibrationError(v, axis, largest);
     double bound = std::max(0.2, 0.03 * largest);
-    if (std::abs(v(name)) > 2.0 * v.error(name)) {
+    if (Determined(v, axis + "_cal3") || Determined(v, axis + "_cal2")) {
       bound = std::min(bound, std::max(0.03 * largest, 3.0 * sigma));
     }
     if (error > bound) {
-      return Exceeds(std::string("a calibration error at the largest angle "
-                                 "of ") +
+      return Exceeds(std::string("a calibration error over the range to "
+                                 "the largest angle of ") +
                          FormatNumber("%.3g", largest) + " deg of",
                      error,
                      bound) +

@@ -71,6 +71,7 @@ const std::vector<CoefficientImage>& SymmetricImages() {
       {"psi_sin_2phi", "psi_sin_2phi", 1.0},
       {"theta_cal2", "theta_cal2", 1.0},
       {"psi_cal2", "psi_cal2", 1.0},
+      {"cal_range", "cal_range", 1.0},
   };
   return images;
 }

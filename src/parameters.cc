@@ -218,6 +218,16 @@ std::vector<ParameterInfo> BearingAndFaults(int first) {
            S::kAngle,
            "calibration nonlinearity: yaw reading error at 5 deg, signed "
            "square"},
+          // The range of the linear calibration fit that took a straight
+          // line out of the signed square (diagnose's other form of the
+          // calibration nonlinearity); 0: none taken.
+          {0,
+           "cal_range",
+           "",
+           "deg",
+           S::kAngle,
+           "calibration nonlinearity: the signed square less its straight "
+           "line over +-cal_range"},
       });
 }
 
@@ -652,9 +662,9 @@ std::string SuggestParameter(ModelKind model, std::string_view name) {
 
 const ParameterLayout& Layout(ModelKind model) {
   static const ParameterLayout symmetric{
-      22, 23, 24, -1, 30, 36, 38, 40, 42, 43, 44, 46, 51, 55};
+      22, 23, 24, -1, 30, 36, 38, 40, 42, 43, 44, 46, 51, 55, 57};
   static const ParameterLayout asymmetric{
-      64, 65, 66, 59, 72, 76, 78, 80, 82, 83, 84, 86, 91, 95};
+      64, 65, 66, 59, 72, 76, 78, 80, 82, 83, 84, 86, 91, 95, 97};
   return model == ModelKind::kSymmetric ? symmetric : asymmetric;
 }
 

@@ -57,8 +57,8 @@ TEST(Implausible, CalibrationAtEachChannelsLargestAngle) {
   EXPECT_EQ(calibration("theta_cal3", 0.02, 6.0, 1.0), "");
   EXPECT_EQ(calibration("theta_cal3", 0.02, 10.0, 1.0), "");
   const std::string why = calibration("theta_cal3", 0.02, 20.0, 1.0);
-  EXPECT_NE(why.find("calibration error at the largest angle of 20 deg of 1.28 "
-                     "exceeds 0.6"),
+  EXPECT_NE(why.find("calibration error over the range to the largest angle "
+                     "of 20 deg of 1.28 exceeds 0.6"),
             std::string::npos)
       << why;
   // A large term in a channel that stays near zero is harmless.
@@ -90,6 +90,37 @@ TEST(Implausible, DeterminedCalibrationOnAQuietChannel) {
   // On a channel that reaches 5 deg the bound is 0.15 deg, not 0.2.
   EXPECT_NE(calibration("theta_cal3", 0.18, 0.01, 5.0), "");
   EXPECT_EQ(calibration("theta_cal3", 0.14, 0.01, 5.0), "");
+}
+
+// In its other form (Effect::other_form) the calibration error is the
+// signed square less its straight line over the calibration's range R:
+// judged at its largest over the channel's range, which the line can move
+// inside it (0.5 (u |u| - 1.6 u), u = x / 5 deg, R = 32/3 deg, is 0 at 8
+// deg and -0.32 at 4), only with a nonlinear term the record determines
+// (a line alone is the reading_gain probe's), and with a range above zero.
+TEST(Implausible, CalibrationAsASignedSquareLessItsLine) {
+  const auto calibration =
+      [](double cal2, double cal2_error, double range, double range_error) {
+        FitResult fit = Fitted(
+            {{"theta_cal2", cal2}, {"psi_cal2", 0.0}, {"cal_range", range}},
+            8.0,
+            8.0);
+        fit.parameters[0].standard_error = cal2_error;
+        fit.parameters[1].standard_error = 0.006;
+        fit.parameters[2].standard_error = range_error;
+        fit.segments[0].sigma_deg = {0.01, 0.01, 0.01};
+        return Verdict("calibration_nonlinearity", fit);
+      };
+  // The suite's draw 52: 0.071 +- 0.006 deg over +-8 deg, 0.045 deg at
+  // most.
+  EXPECT_EQ(calibration(0.071, 0.006, 8.0, 1.0), "");
+  const std::string inside = calibration(0.5, 0.01, 32.0 / 3.0, 1.0);
+  EXPECT_NE(inside.find("of 8 deg of 0.32 exceeds 0.24"), std::string::npos)
+      << inside;
+  const std::string line = calibration(0.01, 0.01, 40.0, 5.0);
+  EXPECT_NE(line.find("a straight line"), std::string::npos) << line;
+  const std::string below = calibration(0.071, 0.006, -5.0, 1.0);
+  EXPECT_NE(below.find("below zero"), std::string::npos) << below;
 }
 
 // A nonlinear damping may change Cm_q by up to 4 times its size at the

@@ -77,7 +77,8 @@ Case SymmetricCase(Incidence incidence, double step) {
       {"psi_cos_2phi", 0.01},
       {"psi_sin_2phi", 0.025},
       {"theta_cal2", 0.02},
-      {"psi_cal2", -0.015}};
+      {"psi_cal2", -0.015},
+      {"cal_range", 6.0}};
   for (const auto& [name, value] : values) {
     c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = value;
   }
@@ -170,7 +171,8 @@ TEST(ModelEquivalence, TheExtensionTermsMoveTheMotion) {
                            "psi_cos_2phi",
                            "psi_sin_2phi",
                            "theta_cal2",
-                           "psi_cal2"}) {
+                           "psi_cal2",
+                           "cal_range"}) {
     Case without = all;
     without.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.0;
     const std::vector<double> other = motion(without);

@@ -39,11 +39,12 @@ TEST(Parameters, TablesHaveTheReportsSizeAndOrder) {
   // readings' lag (2), the pitch reading's gain (1) and the bearing's dry
   // friction: against the rate vector, about each axis, about the pitch
   // axis alone and the yaw axis alone (4), the readings' second roll
-  // harmonic (4) and the calibration error's signed square (2).
+  // harmonic (4), the calibration error's signed square (2) and its
+  // calibration range (1).
   EXPECT_EQ(kReportParameters[0], 30);
   EXPECT_EQ(kReportParameters[1], 72);
-  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 57);
-  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 97);
+  EXPECT_EQ(NumParameters(ModelKind::kSymmetric), 58);
+  EXPECT_EQ(NumParameters(ModelKind::kAsymmetric), 98);
   for (ModelKind model : {ModelKind::kSymmetric, ModelKind::kAsymmetric}) {
     const auto& table = ParameterTable(model);
     std::set<std::string> names;
@@ -104,6 +105,7 @@ TEST(Parameters, LayoutPointsAtTheRightEntries) {
     EXPECT_EQ(table[Layout(model).roll_harmonic2 + 3].name, "psi_sin_2phi");
     EXPECT_EQ(table[Layout(model).calibration_square].name, "theta_cal2");
     EXPECT_EQ(table[Layout(model).calibration_square + 1].name, "psi_cal2");
+    EXPECT_EQ(table[Layout(model).cal_range].name, "cal_range");
   }
   EXPECT_TRUE(IsInitialCondition(ModelKind::kSymmetric, 29));
   EXPECT_FALSE(IsInitialCondition(ModelKind::kSymmetric, 23));

@@ -315,6 +315,17 @@ struct Effect {
   // holds it, and where the record cannot exclude it, the final error
   // bars cover that fit (Diagnosis::open_terms).
   std::vector<std::string> leaves_open = {};
+  // Another form of the effect (OpenForms()) that a round of the search
+  // tries in its place, taken where the record favors it by more than
+  // DiagnoseOptions::min_bic_drop (the score test's BIC): a calibration
+  // error growing as the angle's signed square, with the straight line a
+  // linear calibration fit took of it in each reading (theta_gain,
+  // psi_gain). On a coning run, the cube in its place left a difference
+  // of the two readings' gains: an elliptical look that a tunnel
+  // stiffness, a flow stiffer in one plane or a body asymmetry gives a
+  // circular cone, and one was named beside it (4 draws of 14). Named by
+  // the effect's own id; its terms are the form's.
+  std::string other_form = {};
 
   // Its parameters in the program `model` (symmetric or asymmetric).
   const std::vector<std::string>& Terms(ModelKind model) const {
@@ -374,6 +385,8 @@ struct DiagnoseOptions {
   // pitch_friction or yaw_friction): never fitted.
   std::vector<std::string> absent;
   bool probes = true;  // fit the probes outside the catalog
+  // Try an effect's other form in its place (Effect::other_form).
+  bool other_forms = true;
   // Fit a contender refused for its drag with the next ones (a joint set).
   bool joint_sets = true;
   // Let a contender refused for leaving its bounds lead a joint set too.

@@ -343,9 +343,13 @@ void MotionModel::Measure(const Tx* x,
       psi += internal[cal + 1] * (v * v * v);
     }
     if (calibration_square_) {
+      // Less the straight line a linear least-squares calibration over
+      // +-R took of it: the slope of u |u| on u over a uniform u in
+      // [-rho, rho] is 3 rho / 4 (rho = R / 5 deg; R = 0 takes none).
       const int cal = layout_.calibration_square;
-      theta += internal[cal] * (u * abs(u));
-      psi += internal[cal + 1] * (v * abs(v));
+      const auto slope = 0.75 * internal[layout_.cal_range] / kCalibrationAngle;
+      theta += internal[cal] * (u * abs(u) - slope * u);
+      psi += internal[cal + 1] * (v * abs(v) - slope * v);
     }
   }
   // A reading that drifts in time (a zero creeping with temperature).

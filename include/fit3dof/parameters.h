@@ -57,7 +57,13 @@
 //   - the calibration nonlinearity's signed square (symmetric 56-57,
 //     asymmetric 96-97): theta_m += theta_cal2 (theta / 5 deg) |theta /
 //     5 deg|, the same for psi (another form of Section 5.2's error,
-//     which diagnose frees beside the cube).
+//     which diagnose frees beside the cube);
+//   - the range of the calibration fit (symmetric 58, asymmetric 98):
+//     with cal_range R > 0 the signed square is taken less the straight
+//     line a linear least-squares calibration over -R to R deg took of it,
+//     theta_m += theta_cal2 (u |u| - 3 R / (4 x 5 deg) u), u = theta / 5
+//     deg, the same for psi (diagnose's other form of the calibration
+//     nonlinearity; 0 takes none).
 //
 // Every parameter is given and reported in the report's units (degrees,
 // deg/s, derivatives per radian). Inside the equations of motion the
@@ -74,7 +80,7 @@
 namespace fit3dof {
 
 // Upper bound on the number of parameters of any model; sizes fixed arrays.
-inline constexpr int kMaxParameters = 97;
+inline constexpr int kMaxParameters = 98;
 // The report's own lists: 30 (symmetric) and 72 (asymmetric) entries, the
 // indices a NAMELIST deck may use.
 inline constexpr int kReportParameters[2] = {30, 72};
@@ -155,6 +161,7 @@ struct ParameterLayout {
   int roll_harmonic2;      // first of theta_cos_2phi, theta_sin_2phi,
                            // psi_cos_2phi, psi_sin_2phi
   int calibration_square;  // theta_cal2, then psi_cal2
+  int cal_range;           // cal_range
 };
 const ParameterLayout& Layout(ModelKind model);
 
