@@ -455,11 +455,8 @@ SearchState StartSearch(const Case& c,
   return s;
 }
 
-// A round's start: Polish (diagnose_search.h) takes the model as it stands
-// further down where it can, and the steps' record follows it. Returns
-// whether it moved.
-bool PolishRound(const DiagnoseOptions& options, SearchState* s) {
-  if (!Polish(s->current, s->data, &s->fit)) return false;
+// The steps' record follows the model as it stands, s->fit.
+void Restated(const DiagnoseOptions& options, SearchState* s) {
   s->d.fits.back() = s->fit;
   s->check = CheckResiduals(s->fit, options);
   if (s->d.steps.empty()) {
@@ -467,6 +464,27 @@ bool PolishRound(const DiagnoseOptions& options, SearchState* s) {
   } else {
     s->d.steps.back().after = s->check;
   }
+}
+
+// An effect a step added in its other form back in its own where the
+// record no longer favors the other (BackToOwnForms); returns whether one
+// went back.
+bool ReformRound(const DiagnoseOptions& options, SearchState* s) {
+  if (!BackToOwnForms(s->data, &s->current, &s->fit, &s->d.steps)) {
+    return false;
+  }
+  s->models.back() = s->current;
+  Restated(options, s);
+  return true;
+}
+
+// A round's start: ReformRound, then Polish (diagnose_search.h) takes the
+// model as it stands further down where it can. Returns whether either
+// moved it.
+bool PolishRound(const DiagnoseOptions& options, SearchState* s) {
+  const bool reformed = ReformRound(options, s);
+  if (!Polish(s->current, s->data, &s->fit)) return reformed;
+  Restated(options, s);
   return true;
 }
 
@@ -742,6 +760,8 @@ Diagnosis Search(const Case& c,
       break;
     }
   }
+  // The last step's effects beside a step in its other form.
+  ReformRound(options, &s);
   return SearchAnswer(c, options, notes, std::move(s));
 }
 

@@ -512,7 +512,49 @@ void KeepBetterForms(const FitResult& fit,
   *candidates = std::move(kept);
 }
 
+// Whether `step` added its effect in the effect's other form.
+bool InOtherForm(const DiagnosisStep& step, ModelKind model) {
+  const Effect* effect = FindEffect(step.effect);
+  if (effect == nullptr || effect->other_form.empty()) return false;
+  const std::vector<std::string>& own = effect->Terms(model);
+  return std::any_of(step.step_parameters.begin(),
+                     step.step_parameters.end(),
+                     [&](const ParameterEstimate& e) {
+                       return std::find(own.begin(), own.end(), e.name) ==
+                              own.end();
+                     });
+}
+
 }  // namespace
+
+bool BackToOwnForms(const std::vector<TimeHistory>& data,
+                    Case* current,
+                    FitResult* fit,
+                    std::vector<DiagnosisStep>* steps) {
+  bool changed = false;
+  for (DiagnosisStep& step : *steps) {
+    if (!InOtherForm(step, current->model)) continue;
+    const Effect& effect = *FindEffect(step.effect);
+    Case own;
+    std::vector<std::string> added;
+    FitResult refit;
+    if (!CandidateCase(WithoutStep(CaseAtSolution(*current, *fit), step),
+                       effect,
+                       &own,
+                       &added) ||
+        !FitFrom(own, *fit, data, step.effect + " in its own form", &refit)) {
+      continue;
+    }
+    VLOG(1) << step.effect << " in its own form beside the later steps: BIC "
+            << FormatNumber("%+.1f", Bic(refit) - Bic(*fit));
+    if (!(Bic(refit) < Bic(*fit) + kOtherFormBic)) continue;
+    *current = own;
+    *fit = refit;
+    step.step_parameters = Own(refit, added);
+    changed = true;
+  }
+  return changed;
+}
 
 std::vector<Candidate> ScoredCandidates(const Case& current,
                                         const FitResult& fit,

@@ -131,6 +131,20 @@ void ReportedAll(const std::vector<const Case*>& models,
                  const std::vector<TimeHistory>& data,
                  const std::vector<FitResult*>& fits);
 
+// Each effect a step of `steps` added in its other form (Effect::other_form)
+// back in its own form in the model `current` (fitted as *fit), where the
+// record no longer favors the other form by the margin a round asked of it
+// once the later steps are in: the round that took it saw only the effects
+// before it. On a pair of runs with a Magnus moment, a nonlinear damping
+// and a cubic calibration error (suite draw 52) the signed square had come
+// 11.2 ahead of the cube with the Magnus moment alone beside it. Replaces
+// *current and *fit, and the step's step_parameters, and returns true when
+// it changed one.
+bool BackToOwnForms(const std::vector<TimeHistory>& data,
+                    Case* current,
+                    FitResult* fit,
+                    std::vector<DiagnosisStep>* steps);
+
 // The case `c` fitted from `from`, its solution, into *fit; false (and a
 // warning naming the refit, `what`) when the fit fails.
 bool FitFrom(const Case& c,
