@@ -453,6 +453,21 @@ bool FormHeld(const Case& at, const Effect& effect) {
   return true;
 }
 
+// The calibration's range held at the readings' largest angle (pitch or
+// yaw, over every segment): the other form's straight line is the one a
+// linear calibration over the range the model flew took of the square.
+void HoldCalibrationRange(const std::vector<TimeHistory>& data, Case* c) {
+  double largest = 0.0;
+  for (const TimeHistory& h : data) {
+    for (int i = 0; i < h.size(); ++i) {
+      largest = std::max({largest, std::abs(h.theta[i]), std::abs(h.psi[i])});
+    }
+  }
+  ParameterSetting& range = c->parameters[Layout(c->model).cal_range];
+  range.value = largest;
+  range.free = false;
+}
+
 // How much lower in BIC the record must put an effect's other form than
 // the effect's own for a round to try the other (the search's
 // min_bic_drop): the catalog's form is the report's.
@@ -580,6 +595,8 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
                              : nullptr;
     Candidate f{&e, Case(), {}, {}, form};
     if (form != nullptr && CandidateCase(at, *form, &f.c, &f.added)) {
+      // The catalog's one other form, the calibration's.
+      HoldCalibrationRange(data, &f.c);
       all.push_back(std::move(f));
     }
   }

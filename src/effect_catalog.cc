@@ -176,17 +176,20 @@ const std::vector<Effect>& OpenForms() {
       // The report's calibration factors come from a linear least-squares
       // fit, which takes a straight line's worth of any error into each
       // reading's gain: what is left of a signed square is the square less
-      // its line over the calibration's range, one range for both readings
-      // (Effect::other_form). The range starts at the calibration's
-      // reference angle, 5 deg.
+      // its line over the calibration's range (Effect::other_form), taken
+      // as the range the readings span (ScoredCandidates sets cal_range,
+      // held). Freed, the range made the line a gain of any size, which
+      // stood in for a bearing moment's stiffness on a pair of runs (suite
+      // draw 59: a range of 17.5 +- 106 deg, Cm_alpha 34 of its errors
+      // off).
       {"calibration_signed_square",
        "the calibration nonlinearity as the angle's signed square less the "
-       "straight line a linear calibration over +-cal_range took of it "
-       "(another form of Section 5.2's)",
-       {"theta_cal2", "psi_cal2", "cal_range"},
-       {"theta_cal2", "psi_cal2", "cal_range"},
+       "straight line a linear calibration over the readings' range took "
+       "of it (another form of Section 5.2's)",
+       {"theta_cal2", "psi_cal2"},
+       {"theta_cal2", "psi_cal2"},
        false,
-       {{"cal_range", 5.0}},
+       {},
        "",
        ""},
   };
