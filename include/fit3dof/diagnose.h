@@ -316,15 +316,16 @@ struct Effect {
   // bars cover that fit (Diagnosis::open_terms).
   std::vector<std::string> leaves_open = {};
   // Another form of the effect (OpenForms()) that a round of the search
-  // tries in its place, taken where the record favors it by more than
-  // DiagnoseOptions::min_bic_drop (the score test's BIC): a calibration
-  // error growing as the angle's signed square, with the straight line a
-  // linear calibration fit took of it in each reading (theta_gain,
-  // psi_gain). On a coning run, the cube in its place left a difference
-  // of the two readings' gains: an elliptical look that a tunnel
-  // stiffness, a flow stiffer in one plane or a body asymmetry gives a
-  // circular cone, and one was named beside it (4 draws of 14). Named by
-  // the effect's own id; its terms are the form's.
+  // tries in its place, taken where the refits put it 10 lower in BIC
+  // than the effect's own (and sent back where later steps no longer
+  // do): a calibration error growing as the angle's signed square, less
+  // the straight line a linear calibration over the readings' range took
+  // of it (theta_cal2, psi_cal2; cal_range held at the largest angle). On
+  // a coning run, the cube in its place left a difference of the two
+  // readings' gains: an elliptical look that a tunnel stiffness, a flow
+  // stiffer in one plane or a body asymmetry gives a circular cone, and
+  // one was named beside it (4 draws of 14). Named by the effect's own
+  // id; its terms are the form's.
   std::string other_form = {};
 
   // Its parameters in the program `model` (symmetric or asymmetric).
