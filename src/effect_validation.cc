@@ -90,8 +90,8 @@ std::string ReadingError(const BoundContext& v) {
 double CalibrationError(const BoundContext& v,
                         const std::string& axis,
                         double x) {
-  const double u = x / 5.0;
-  const double slope = 0.75 * v("cal_range") / 5.0;
+  const double u = x * kDegree / kCalibrationAngle;
+  const double slope = SignedSquareLineSlope(v("cal_range") * kDegree);
   return v(axis + "_cal3") * u * u * u +
          v(axis + "_cal2") * (u * std::abs(u) - slope * u) +
          v(axis + "_gain") * x;

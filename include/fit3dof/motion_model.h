@@ -57,6 +57,15 @@ void CheckIntegrationSteps(double steps,
 // The angle (rad) at which theta_cal3 and psi_cal3 give the reading error.
 inline constexpr double kCalibrationAngle = 5.0 * kDegree;
 
+// The slope, per unit of u = angle / kCalibrationAngle, of the straight
+// line a linear least-squares calibration over +-range (rad) takes of the
+// signed square u |u|: over a uniform u in [-rho, rho] it is 3 rho / 4
+// (rho = range / kCalibrationAngle; a range of 0 takes none).
+template <typename T>
+T SignedSquareLineSlope(const T& range) {
+  return 0.75 * range / kCalibrationAngle;
+}
+
 class MotionModel {
  public:
   // `active` marks the parameters whose terms are evaluated; see
@@ -343,11 +352,10 @@ void MotionModel::Measure(const Tx* x,
       psi += internal[cal + 1] * (v * v * v);
     }
     if (calibration_square_) {
-      // Less the straight line a linear least-squares calibration over
-      // +-R took of it: the slope of u |u| on u over a uniform u in
-      // [-rho, rho] is 3 rho / 4 (rho = R / 5 deg; R = 0 takes none).
+      // Less the straight line a linear calibration over +-cal_range took
+      // of it.
       const int cal = layout_.calibration_square;
-      const auto slope = 0.75 * internal[layout_.cal_range] / kCalibrationAngle;
+      const auto slope = SignedSquareLineSlope(internal[layout_.cal_range]);
       theta += internal[cal] * (u * abs(u) - slope * u);
       psi += internal[cal + 1] * (v * abs(v) - slope * v);
     }
