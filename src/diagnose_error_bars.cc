@@ -377,7 +377,7 @@ std::string ImplausibleOpen(const Beside& t) {
       continue;
     }
     const std::string why =
-        ImplausibleWithin(*e, t.c, t.fit, e->Terms(t.c.model), kBoundErrors);
+        ImplausibleWithin(*e, t.c, t.fit, TermsIn(t.c, *e), kBoundErrors);
     if (!why.empty()) return e->id + " (added before): " + why;
   }
   return ImplausibleWithin(*t.effect, t.c, t.fit, t.added, kBoundErrors);
@@ -465,7 +465,7 @@ std::string ImplausibleAmongAsJudged(const std::vector<const Effect*>& effects,
                                      const FitResult& fit,
                                      const DiagnoseOptions& options) {
   return FirstImplausible(effects, [&](const Effect& e) {
-    return ImplausibleAsJudged(e, c, fit, e.Terms(c.model), options);
+    return ImplausibleAsJudged(e, c, fit, TermsIn(c, e), options);
   });
 }
 
@@ -561,7 +561,7 @@ std::string BesideWords(const std::string& model, bool at_noise, double rise) {
 Case EffectsHeld(const CompleteModel& m) {
   Case held = CaseAtSolution(m.c, *m.fit);
   for (const Effect* e : m.effects) {
-    for (const std::string& name : e->Terms(held.model)) {
+    for (const std::string& name : TermsIn(m.c, *e)) {
       const int position = FindParameter(held.model, name);
       if (position >= 0 && !held.parameters[position].tied()) {
         held.parameters[position].free = false;
@@ -1206,9 +1206,19 @@ std::string FindSetReplacements(const std::vector<Case>& models,
   if (needed.size() < 2) return "";
   if (needed.size() < set.size()) {
     // A term held at zero goes with its member when that is not needed.
+    // (The term held is not free: its form is not held, so both forms'
+    // terms are looked through.)
     const auto holds = [&](const Effect* e) {
-      const std::vector<std::string>& terms = e->Terms(t.c.model);
-      return std::find(terms.begin(), terms.end(), t.held) != terms.end();
+      const Effect* form =
+          e->other_form.empty() ? nullptr : FindOpenForm(e->other_form);
+      for (const Effect* f : {e, form}) {
+        if (f == nullptr) continue;
+        const std::vector<std::string>& terms = f->Terms(t.c.model);
+        if (std::find(terms.begin(), terms.end(), t.held) != terms.end()) {
+          return true;
+        }
+      }
+      return false;
     };
     if (std::none_of(needed.begin(), needed.end(), holds)) t.held.clear();
     t.members = needed;

@@ -440,19 +440,6 @@ RecentMemo<ScoreKey, std::vector<Candidate>>& TheScoreMemo() {
   return *memo;
 }
 
-// Whether the effect's other form (Effect::other_form) is in the model
-// `at`: every one of its terms free.
-bool FormHeld(const Case& at, const Effect& effect) {
-  const Effect* form =
-      effect.other_form.empty() ? nullptr : FindOpenForm(effect.other_form);
-  if (form == nullptr) return false;
-  for (const std::string& name : form->Terms(at.model)) {
-    const int position = FindParameter(at.model, name);
-    if (position < 0 || !at.parameters[position].free) return false;
-  }
-  return true;
-}
-
 // The calibration's range held at the readings' largest angle (pitch or
 // yaw, over every segment): the other form's straight line is the one a
 // linear calibration over the range the model flew took of the square.
@@ -541,6 +528,22 @@ bool InOtherForm(const DiagnosisStep& step, ModelKind model) {
 }
 
 }  // namespace
+
+bool FormHeld(const Case& at, const Effect& effect) {
+  const Effect* form =
+      effect.other_form.empty() ? nullptr : FindOpenForm(effect.other_form);
+  if (form == nullptr) return false;
+  for (const std::string& name : form->Terms(at.model)) {
+    const int position = FindParameter(at.model, name);
+    if (position < 0 || !at.parameters[position].free) return false;
+  }
+  return true;
+}
+
+const std::vector<std::string>& TermsIn(const Case& at, const Effect& effect) {
+  return FormHeld(at, effect) ? FindOpenForm(effect.other_form)->Terms(at.model)
+                              : effect.Terms(at.model);
+}
 
 bool BackToOwnForms(const std::vector<TimeHistory>& data,
                     Case* current,
@@ -944,7 +947,7 @@ bool MembersShow(const std::vector<int>& set,
                  const FitResult& fit,
                  const std::vector<Contender>& contenders) {
   for (size_t m = 1; m < set.size(); ++m) {
-    const Effect& e = *contenders[set[m]].candidate->effect;
+    const Effect& e = TermsOf(*contenders[set[m]].candidate);
     bool shows = false;
     for (const std::string& name : e.Terms(fit.model)) {
       const ParameterEstimate* p = SharedEstimate(fit, name);

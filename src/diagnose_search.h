@@ -131,6 +131,16 @@ void ReportedAll(const std::vector<const Case*>& models,
                  const std::vector<TimeHistory>& data,
                  const std::vector<FitResult*>& fits);
 
+// Whether `effect`'s other form (Effect::other_form) is in the model `at`:
+// every one of its terms free.
+bool FormHeld(const Case& at, const Effect& effect);
+
+// The terms by which `effect` is in the model `at`: its other form's where
+// that is held (FormHeld), its own otherwise. Judging, shrinking or holding
+// a calibration added as the signed square by its cube's terms touches
+// nothing of it.
+const std::vector<std::string>& TermsIn(const Case& at, const Effect& effect);
+
 // Each effect a step of `steps` added in its other form (Effect::other_form)
 // back in its own form in the model `current` (fitted as *fit), where the
 // record no longer favors the other form by the margin a round asked of it

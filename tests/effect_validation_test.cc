@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "diagnose_internal.h"
+#include "diagnose_search.h"
 #include "fit3dof/angles.h"
 #include "fit3dof/diagnose.h"
 #include "gtest/gtest.h"
@@ -121,6 +122,37 @@ TEST(Implausible, CalibrationAsASignedSquareLessItsLine) {
   EXPECT_NE(line.find("a straight line"), std::string::npos) << line;
   const std::string below = calibration(0.071, 0.006, -5.0, 1.0);
   EXPECT_NE(below.find("below zero"), std::string::npos) << below;
+}
+
+// A calibration added as the signed square (Effect::other_form) is
+// judged, where every bound is judged within its errors, by the square's
+// own terms: 0.45 deg over +-8 deg (0.29 deg at most, bound 0.24) is within
+// two errors of 0.1 of its bound, not within two of 0.01. Judged by the
+// cube's terms, absent from the model, it had been shrunk by nothing.
+TEST(ImplausibleAmongAsJudged, ACalibrationInItsOtherFormByItsOwnTerms) {
+  Case c;
+  c.parameters.assign(NumParameters(ModelKind::kSymmetric), {});
+  for (const char* name : {"theta_cal2", "psi_cal2"}) {
+    c.parameters[FindParameter(c.model, name)].free = true;
+  }
+  c.parameters[FindParameter(c.model, "cal_range")].value = 8.0;
+  const Effect* calibration = FindEffect("calibration_nonlinearity");
+  ASSERT_TRUE(FormHeld(c, *calibration));
+  DiagnoseOptions options;
+  options.bounds_within_errors = true;
+  options.every_bound_within_errors = true;
+  const auto judged = [&](double error) {
+    FitResult fit = Fitted(
+        {{"theta_cal2", 0.45}, {"psi_cal2", 0.0}, {"cal_range", 8.0}}, 8.0, 8.0);
+    fit.parameters[0].standard_error = error;
+    fit.parameters[1].standard_error = error;
+    fit.parameters[2].free = false;
+    fit.segments[0].sigma_deg = {0.01, 0.01, 0.01};
+    EXPECT_NE(Implausible(*calibration, c, fit), "");
+    return ImplausibleAmongAsJudged({calibration}, c, fit, options);
+  };
+  EXPECT_EQ(judged(0.1), "");
+  EXPECT_NE(judged(0.01), "");
 }
 
 // A nonlinear damping may change Cm_q by up to 4 times its size at the
