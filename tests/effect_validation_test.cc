@@ -142,8 +142,10 @@ TEST(ImplausibleAmongAsJudged, ACalibrationInItsOtherFormByItsOwnTerms) {
   options.bounds_within_errors = true;
   options.every_bound_within_errors = true;
   const auto judged = [&](double error) {
-    FitResult fit = Fitted(
-        {{"theta_cal2", 0.45}, {"psi_cal2", 0.0}, {"cal_range", 8.0}}, 8.0, 8.0);
+    FitResult fit =
+        Fitted({{"theta_cal2", 0.45}, {"psi_cal2", 0.0}, {"cal_range", 8.0}},
+               8.0,
+               8.0);
     fit.parameters[0].standard_error = error;
     fit.parameters[1].standard_error = error;
     fit.parameters[2].free = false;
