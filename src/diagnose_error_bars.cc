@@ -1209,9 +1209,7 @@ std::string FindSetReplacements(const std::vector<Case>& models,
     // (The term held is not free: its form is not held, so both forms'
     // terms are looked through.)
     const auto holds = [&](const Effect* e) {
-      const Effect* form =
-          e->other_form.empty() ? nullptr : FindOpenForm(e->other_form);
-      for (const Effect* f : {e, form}) {
+      for (const Effect* f : {e, OtherForm(*e)}) {
         if (f == nullptr) continue;
         const std::vector<std::string>& terms = f->Terms(t.c.model);
         if (std::find(terms.begin(), terms.end(), t.held) != terms.end()) {

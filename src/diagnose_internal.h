@@ -52,6 +52,8 @@ const Effect* FindProbe(const std::string& id);
 // (nullptr if none).
 const std::vector<Effect>& OpenForms();
 const Effect* FindOpenForm(const std::string& id);
+// The effect's other form (Effect::other_form), nullptr if it has none.
+const Effect* OtherForm(const Effect& effect);
 
 // The case `at` with the effect's parameters free at zero (converted to the
 // asymmetric program when the effect needs it), their names in `added`;

@@ -530,8 +530,7 @@ bool InOtherForm(const DiagnosisStep& step, ModelKind model) {
 }  // namespace
 
 bool FormHeld(const Case& at, const Effect& effect) {
-  const Effect* form =
-      effect.other_form.empty() ? nullptr : FindOpenForm(effect.other_form);
+  const Effect* form = OtherForm(effect);
   if (form == nullptr) return false;
   for (const std::string& name : form->Terms(at.model)) {
     const int position = FindParameter(at.model, name);
@@ -541,7 +540,7 @@ bool FormHeld(const Case& at, const Effect& effect) {
 }
 
 const std::vector<std::string>& TermsIn(const Case& at, const Effect& effect) {
-  return FormHeld(at, effect) ? FindOpenForm(effect.other_form)->Terms(at.model)
+  return FormHeld(at, effect) ? OtherForm(effect)->Terms(at.model)
                               : effect.Terms(at.model);
 }
 
@@ -593,9 +592,7 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
     Candidate k{&e, Case(), {}, {}};
     if (!CandidateCase(at, e, &k.c, &k.added)) continue;
     all.push_back(std::move(k));
-    const Effect* form = options.other_forms && !e.other_form.empty()
-                             ? FindOpenForm(e.other_form)
-                             : nullptr;
+    const Effect* form = options.other_forms ? OtherForm(e) : nullptr;
     Candidate f{&e, Case(), {}, {}, form};
     if (form != nullptr && CandidateCase(at, *form, &f.c, &f.added)) {
       // The catalog's one other form, the calibration's.

@@ -351,6 +351,10 @@ const Effect* FindOpenForm(const std::string& id) {
   return FindIn(OpenForms(), id);
 }
 
+const Effect* OtherForm(const Effect& effect) {
+  return effect.other_form.empty() ? nullptr : FindOpenForm(effect.other_form);
+}
+
 bool OutsideCatalog(const std::string& id) {
   return id == kDriftInTime || FindProbe(id) != nullptr;
 }
