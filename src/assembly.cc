@@ -18,9 +18,11 @@ Assembly Assemble(const std::vector<PreparedSegment>& segments,
                   const FreeLayout& free,
                   const std::shared_ptr<const MotionModel>& model,
                   const std::vector<double>& values,
-                  const std::vector<double>& scale) {
+                  const std::vector<double>& scale,
+                  ceres::EvaluationCallback* evaluation_callback) {
   Assembly a;
   ceres::Problem::Options options;
+  options.evaluation_callback = evaluation_callback;
   a.problem = std::make_unique<ceres::Problem>(options);
   const int ks = static_cast<int>(free.shared.size());
   a.u.resize(free.size());

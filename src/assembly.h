@@ -33,12 +33,14 @@ struct Assembly {
 };
 
 // The problem for physical values `values` (global free order) of
-// `segments` laid out as `free`, in coordinates u = value / scale.
+// `segments` laid out as `free`, in coordinates u = value / scale; its
+// evaluation callback, if any, `evaluation_callback` (not owned).
 Assembly Assemble(const std::vector<PreparedSegment>& segments,
                   const FreeLayout& free,
                   const std::shared_ptr<const MotionModel>& model,
                   const std::vector<double>& values,
-                  const std::vector<double>& scale);
+                  const std::vector<double>& scale,
+                  ceres::EvaluationCallback* evaluation_callback = nullptr);
 
 // Physical values of the free coordinates (global order) from the blocks.
 std::vector<double> FreeValues(const Assembly& a,

@@ -7,8 +7,10 @@
 
 #include <glog/logging.h>
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "fit3dof/angles.h"
 #include "segment_cost_function_lanes.h"
@@ -244,7 +246,16 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
       if (jacobians[block] != nullptr) lanes.push_back(j);
     }
   }
-  if (lanes.empty()) return EvaluateResiduals(u.data(), residuals);
+  if (lanes.empty()) {
+    const bool ok = EvaluateResiduals(u.data(), residuals);
+    if (remembered_.on) {
+      remembered_.u = ok ? u : std::vector<double>();
+      remembered_.residuals.assign(residuals, residuals + num_residuals());
+    }
+    return ok;
+  }
+  if (SkippedJacobian(u, residuals, jacobians)) return true;
+  ++jacobians_;
   if (jacobian_model_ == nullptr || innovation_weights_ != nullptr) {
     return EvaluateJacobian(*model_, u.data(), lanes, residuals, jacobians);
   }
@@ -311,6 +322,36 @@ bool SegmentCostFunction::EvaluateJacobian(const MotionModel& model,
                       residuals,
                       jacobians)) {
       return false;
+    }
+  }
+  return true;
+}
+
+void SegmentCostFunction::set_remember_residuals(bool on) {
+  remembered_ = Remembered();
+  remembered_.on = on;
+}
+
+double SegmentCostFunction::remembered_cost() const {
+  if (remembered_.u.empty()) return std::numeric_limits<double>::quiet_NaN();
+  // As Ceres computes a block's cost (ResidualBlock::Evaluate).
+  return 0.5 * Eigen::Map<const Eigen::VectorXd>(remembered_.residuals.data(),
+                                                 num_residuals())
+                   .squaredNorm();
+}
+
+bool SegmentCostFunction::SkippedJacobian(const std::vector<double>& u,
+                                          double* residuals,
+                                          double** jacobians) const {
+  const bool skip = remembered_.skip && u == remembered_.u;
+  remembered_.skip = false;
+  if (!skip) return false;
+  std::copy(
+      remembered_.residuals.begin(), remembered_.residuals.end(), residuals);
+  const std::vector<int32_t>& sizes = parameter_block_sizes();
+  for (size_t b = 0; b < sizes.size(); ++b) {
+    if (jacobians[b] != nullptr) {
+      std::fill_n(jacobians[b], num_residuals() * sizes[b], 0.0);
     }
   }
   return true;

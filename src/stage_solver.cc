@@ -27,22 +27,38 @@ namespace {
 // Logs each iteration the way the report's listing prints it and applies its
 // convergence rule: stop when the probable error changes by less than BOUND
 // (or, where the settings ask, when the BIC hardly falls).
-class ReportIterationCallback : public ceres::IterationCallback {
+//
+// Also an evaluation callback, so that the Jacobian at the point where the
+// rule stops the run is not computed (SegmentCostFunction::
+// skip_next_jacobian): Ceres evaluates it for every accepted step before
+// the iteration callback sees the step. The rule needs only the cost, which
+// the trial evaluation has already given: before that Jacobian, the rule is
+// applied to the blocks' remembered cost, and if it stops there the
+// iteration callback follows that verdict.
+class ReportIterationCallback : public ceres::IterationCallback,
+                                public ceres::EvaluationCallback {
  public:
-  ReportIterationCallback(const Assembly* assembly,
-                          const FreeLayout* free,
+  ReportIterationCallback(const FreeLayout* free,
                           const std::vector<double>* scale,
                           const std::vector<std::string>* names,
                           int residuals,
                           int degrees_of_freedom,
                           const StageSettings& settings)
-      : assembly_(assembly),
-        free_(free),
+      : free_(free),
         scale_(scale),
         names_(names),
         residuals_(residuals),
         dof_(degrees_of_freedom),
         settings_(settings) {}
+
+  // The assembly solved (its problem holds this as evaluation callback);
+  // its blocks remember their residuals from here on.
+  void Watch(Assembly* assembly) {
+    assembly_ = assembly;
+    for (SegmentCostFunction* cost : assembly->costs) {
+      cost->set_remember_residuals(true);
+    }
+  }
 
   // Whether the BIC's rule, not the probable error's, ended it.
   bool stopped_by_bic() const { return stopped_by_bic_; }
@@ -51,9 +67,32 @@ class ReportIterationCallback : public ceres::IterationCallback {
   // Whether it ended out of reach of it (StageSettings::out_of_reach).
   bool stopped_out_of_reach() const { return stopped_out_of_reach_; }
 
+  void PrepareForEvaluation(bool evaluate_jacobians,
+                            bool new_evaluation_point) override {
+    // Ceres evaluates the Jacobian at a point it evaluated before only for
+    // an accepted step (TrustRegionMinimizer::HandleSuccessfulStep).
+    if (!evaluate_jacobians || new_evaluation_point || assembly_ == nullptr) {
+      return;
+    }
+    double cost = 0.0;
+    for (const SegmentCostFunction* c : assembly_->costs) {
+      cost += c->remembered_cost();
+    }
+    if (!std::isfinite(cost)) return;
+    const Verdict verdict = Decide(2.0 * cost, last_iteration_ + 1);
+    if (verdict.stop || last_iteration_ + 1 >= settings_.max_iterations) {
+      for (const SegmentCostFunction* c : assembly_->costs) {
+        c->skip_next_jacobian();
+      }
+      skipped_ = verdict;
+      skipped_iteration_ = last_iteration_ + 1;
+    }
+  }
+
   ceres::CallbackReturnType operator()(
       const ceres::IterationSummary& summary) override {
     if (StopRequested()) return ceres::SOLVER_ABORT;  // Ctrl-C in a batch
+    last_iteration_ = summary.iteration;
     const double ressum = 2.0 * summary.cost;
     const double e = std::sqrt(ressum / dof_);
     std::vector<double> values = FreeValues(*assembly_, *free_, *scale_);
@@ -88,43 +127,69 @@ class ReportIterationCallback : public ceres::IterationCallback {
         << "   NEW PROBABLE ERROR = " << e
         << "   OLD PROBABLE ERROR = " << old_e_;
     VLOG(1) << log.str();
-    const double change = std::abs(e - old_e_);
-    const double bic_drop = residuals_ * std::log(old_ressum_ / ressum);
+    // The verdict the Jacobian was skipped on, if it was: Ceres sums the
+    // blocks' costs in its own order, which can differ in the last bit.
+    const Verdict verdict = skipped_iteration_ == summary.iteration
+                                ? skipped_
+                                : Decide(ressum, summary.iteration);
     falls_.push_back(old_e_ - e);
     if (static_cast<int>(falls_.size()) > kOutOfReachPace) falls_.pop_front();
     old_e_ = e;
     old_ressum_ = ressum;
     previous_ = values;
-    if (change <
-        std::max(settings_.tolerance, settings_.relative_tolerance * e)) {
-      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    }
-    if (bic_drop < settings_.bic_tolerance) {
-      stopped_by_bic_ = true;
-      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    }
-    if (e < settings_.stop_below) {
-      stopped_below_ = true;
-      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    }
-    if (settings_.out_of_reach && OutOfReach(e, summary.iteration)) {
-      stopped_out_of_reach_ = true;
-      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    }
-    return ceres::SOLVER_CONTINUE;
+    stopped_by_bic_ = verdict.by_bic;
+    stopped_below_ = verdict.below;
+    stopped_out_of_reach_ = verdict.out_of_reach;
+    return verdict.stop ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                        : ceres::SOLVER_CONTINUE;
   }
 
  private:
-  // Whether StageSettings::stop_below is out of reach from `e` after
-  // `iteration` (kOutOfReachMargin).
-  bool OutOfReach(double e, int iteration) const {
-    if (static_cast<int>(falls_.size()) < kOutOfReachPace) return false;
-    const double pace = *std::max_element(falls_.begin(), falls_.end());
+  struct Verdict {
+    bool stop = false;
+    bool by_bic = false;
+    bool below = false;
+    bool out_of_reach = false;
+  };
+
+  // The rule applied to a successful step of `iteration` to a residual sum
+  // of squares `ressum`, from the state the previous ones left.
+  Verdict Decide(double ressum, int iteration) const {
+    const double e = std::sqrt(ressum / dof_);
+    const double change = std::abs(e - old_e_);
+    const double bic_drop = residuals_ * std::log(old_ressum_ / ressum);
+    Verdict verdict;
+    if (change <
+        std::max(settings_.tolerance, settings_.relative_tolerance * e)) {
+      verdict.stop = true;
+    } else if (bic_drop < settings_.bic_tolerance) {
+      verdict.stop = verdict.by_bic = true;
+    } else if (e < settings_.stop_below) {
+      verdict.stop = verdict.below = true;
+    } else if (settings_.out_of_reach && OutOfReach(e, old_e_ - e, iteration)) {
+      verdict.stop = verdict.out_of_reach = true;
+    }
+    return verdict;
+  }
+
+  // Whether StageSettings::stop_below is out of reach from `e`, reached by
+  // a fall of `fall`, after `iteration` (kOutOfReachMargin).
+  bool OutOfReach(double e, double fall, int iteration) const {
+    // The pace: the largest of the last kOutOfReachPace falls, this one's
+    // among them.
+    const int kept = std::min<int>(falls_.size(), kOutOfReachPace - 1);
+    if (kept + 1 < kOutOfReachPace) return false;
+    double pace = fall;
+    for (int i = static_cast<int>(falls_.size()) - kept;
+         i < static_cast<int>(falls_.size());
+         ++i) {
+      pace = std::max(pace, falls_[i]);
+    }
     const int remaining = settings_.max_iterations - iteration;
     return e - settings_.stop_below > kOutOfReachMargin * remaining * pace;
   }
 
-  const Assembly* assembly_;
+  Assembly* assembly_ = nullptr;
   const FreeLayout* free_;
   const std::vector<double>* scale_;
   const std::vector<std::string>* names_;
@@ -139,6 +204,10 @@ class ReportIterationCallback : public ceres::IterationCallback {
   // The falls of the probable error in the last successful iterations.
   std::deque<double> falls_;
   std::vector<double> previous_;
+  int last_iteration_ = 0;
+  // The iteration whose Jacobian was skipped (-1: none) and its verdict.
+  int skipped_iteration_ = -1;
+  Verdict skipped_;
 };
 
 // The largest relative difference, over the columns not `null`, between
@@ -232,7 +301,11 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
         CoarserJacobiansServe(jacobian, null_columns, jacobian_step, &probe);
   }
   *held = null_columns;
-  Assembly assembly = Assemble(segments, free, model, *values, scale);
+  ReportIterationCallback callback(
+      &free, &scale, &names, 3 * points, 3 * points - k, settings);
+  Assembly assembly =
+      Assemble(segments, free, model, *values, scale, &callback);
+  callback.Watch(&assembly);
   // A coordinate without any effect on the residuals would let
   // Levenberg-Marquardt step without bound along it (the cost never
   // objects); hold it where it is. The covariance names it afterwards.
@@ -261,14 +334,14 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
   // SILENT also keeps Ceres from logging every rejected trial step.
   options.logging_type = ceres::SILENT;
   options.update_state_every_iteration = true;
-  ReportIterationCallback callback(
-      &assembly, &free, &scale, &names, 3 * points, 3 * points - k, settings);
   options.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(options, assembly.problem.get(), &summary);
   outcome.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  outcome.accepted_steps = summary.num_successful_steps - 1;  // less the start
   for (const SegmentCostFunction* cost : assembly.costs) {
     outcome.failed_evaluations += cost->failed_evaluations();
+    outcome.jacobians += cost->jacobian_evaluations();
   }
   outcome.converged = summary.termination_type == ceres::USER_SUCCESS ||
                       summary.termination_type == ceres::CONVERGENCE;
@@ -347,6 +420,8 @@ StageOutcome SolveStage(const std::vector<PreparedSegment>& segments,
     if (!again.integrable) break;
     again.iterations += outcome.iterations;
     again.failed_evaluations += outcome.failed_evaluations;
+    again.accepted_steps += outcome.accepted_steps;
+    again.jacobians += outcome.jacobians;
     outcome = again;
     *values = trial;
   }

@@ -45,7 +45,11 @@ struct StageOutcome {
   bool converged = false;
   int iterations = 0;
   int failed_evaluations = 0;  // rejected trial steps that blew up
-  double ressum = 0.0;         // weighted residual sum of squares at the end
+  // Levenberg-Marquardt's accepted steps, and the Jacobians it integrated
+  // (the start's and each accepted point's but the last's: stage_solver.cc).
+  int accepted_steps = 0;
+  int jacobians = 0;
+  double ressum = 0.0;  // weighted residual sum of squares at the end
   // Whether Levenberg-Marquardt's Jacobians came from the coarser motion
   // (StageSettings::coarser_jacobians; in the last run of SolveStage).
   bool coarser_jacobians = false;

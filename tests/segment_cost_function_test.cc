@@ -392,6 +392,53 @@ TEST(SegmentCostFunction, ACoarserMotionThatBlowsUpGivesTheModelsJacobian) {
   EXPECT_EQ(j_coarse, j_model);
 }
 
+// The Jacobian a solve will not use (set_remember_residuals,
+// skip_next_jacobian; stage_solver.cc): at the point of the last
+// residual-only evaluation, the next evaluation with Jacobians returns
+// those residuals and zero Jacobians without integrating; anywhere else,
+// or a second time, it evaluates in full.
+TEST(SegmentCostFunction, ASkippedJacobianReturnsTheRememberedResiduals) {
+  const std::vector<int> shared = {
+      FindParameter(ModelKind::kSymmetric, "Cm_alpha"),
+      FindParameter(ModelKind::kSymmetric, "Cm_q")};
+  Block s = Make(ModelKind::kSymmetric, shared, {});
+  const int m = s.cost->num_residuals();
+  double* blocks[] = {s.blocks[0].data()};
+  std::vector<double> trial(m), residuals(m), jacobian(2 * m);
+  double* jacobians[] = {jacobian.data()};
+  const auto largest = [&] {
+    double d = 0.0;
+    for (double j : jacobian) d = std::max(d, std::abs(j));
+    return d;
+  };
+  s.cost->set_remember_residuals(true);
+  EXPECT_TRUE(std::isnan(s.cost->remembered_cost()));
+  ASSERT_TRUE(s.cost->Evaluate(blocks, trial.data(), nullptr));
+  double cost = 0.0;
+  for (double r : trial) cost += 0.5 * r * r;
+  EXPECT_NEAR(s.cost->remembered_cost(), cost, 1e-12 * cost);
+
+  s.cost->skip_next_jacobian();
+  ASSERT_TRUE(s.cost->Evaluate(blocks, residuals.data(), jacobians));
+  EXPECT_EQ(residuals, trial);
+  EXPECT_EQ(largest(), 0.0);
+  EXPECT_EQ(s.cost->jacobian_evaluations(), 0);
+
+  // Asked once: the next evaluation integrates it.
+  ASSERT_TRUE(s.cost->Evaluate(blocks, residuals.data(), jacobians));
+  EXPECT_EQ(residuals, trial);
+  EXPECT_GT(largest(), 0.0);
+  EXPECT_EQ(s.cost->jacobian_evaluations(), 1);
+
+  // Elsewhere than the remembered point: in full.
+  s.cost->skip_next_jacobian();
+  s.blocks[0][0] *= 1.01;
+  ASSERT_TRUE(s.cost->Evaluate(blocks, residuals.data(), jacobians));
+  EXPECT_NE(residuals, trial);
+  EXPECT_GT(largest(), 0.0);
+  EXPECT_EQ(s.cost->jacobian_evaluations(), 2);
+}
+
 TEST(SegmentCostFunction, BlowUpReturnsFalse) {
   Block s = Make(ModelKind::kSymmetric, {0}, {});
   std::vector<double> unstable = {+40.0};

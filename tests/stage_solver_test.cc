@@ -83,6 +83,51 @@ TEST(StageSolver, ARefitFromASolutionTakesTheRidgeAtOnce) {
   EXPECT_LE(2 * trusted_iterations, cautious_iterations);
 }
 
+// Ceres integrates the Jacobian at each accepted point before the
+// iteration callback may stop the run there (stage_solver.cc); the run's
+// rule is applied before it, to the trial step's cost, and at the point
+// where the run stops the Jacobian is not integrated: a run integrates the
+// start's and each accepted point's but the last's, one per accepted step
+// (seeds 1-3, from the cautious start: 3, 14 and 13 steps). So too when
+// the iteration limit ends the run.
+TEST(StageSolver, TheJacobianAtThePointARunStopsIsNeverIntegrated) {
+  for (int seed = 1; seed <= 3; ++seed) {
+    const Refit r =
+        RidgeRefit(testing::ScratchDirectory("stage_last_jacobian_" +
+                                             std::to_string(seed)),
+                   seed);
+    const FitProblem problem = PrepareProblem(r.c, r.data);
+    StageSettings settings;
+    settings.tolerance = r.c.solver.tolerance;
+    std::vector<double> values = problem.values;
+    const StageOutcome run = SolveStage(problem.segments,
+                                        problem.free,
+                                        problem.model,
+                                        problem.names,
+                                        settings,
+                                        &values);
+    ASSERT_TRUE(run.converged) << run.termination;
+    EXPECT_EQ(run.termination.rfind("probable error changed", 0), 0u)
+        << run.termination;
+    EXPECT_GE(run.accepted_steps, 1);
+    EXPECT_EQ(run.jacobians, run.accepted_steps) << "seed " << seed;
+    std::cout << "seed " << seed << ": " << run.accepted_steps
+              << " accepted steps, " << run.jacobians << " Jacobians\n";
+
+    settings.max_iterations = 1;
+    values = problem.values;
+    const StageOutcome one = SolveStage(problem.segments,
+                                        problem.free,
+                                        problem.model,
+                                        problem.names,
+                                        settings,
+                                        &values);
+    EXPECT_FALSE(one.converged) << one.termination;
+    EXPECT_EQ(one.accepted_steps, 1);
+    EXPECT_EQ(one.jacobians, 1);
+  }
+}
+
 // A refit from a solution takes Levenberg-Marquardt's Jacobians from the
 // motion at kJacobianStepFactor times the step (StageSettings::
 // coarser_jacobians): its answer is the residuals' minimum, where the run

@@ -141,6 +141,9 @@ class SegmentCostFunction : public ceres::CostFunction {
   // Evaluations that failed because the motion blew up (trial steps that
   // Levenberg-Marquardt then rejects).
   int failed_evaluations() const { return failures_.load(); }
+  // Evaluations that integrated a Jacobian (not those skip_next_jacobian
+  // spared).
+  int jacobian_evaluations() const { return jacobians_.load(); }
   int num_samples() const { return data_.size(); }
   int num_free() const { return static_cast<int>(free_.size()); }
 
@@ -164,6 +167,22 @@ class SegmentCostFunction : public ceres::CostFunction {
   // filter's predictor).
   void set_jacobian_step(double step);
 
+  // The Jacobian Levenberg-Marquardt never uses (stage_solver.cc). Ceres
+  // evaluates the Jacobian at each accepted point before its iteration
+  // callback may stop the run there, and at the point where the run stops
+  // that Jacobian goes unused: a third of a refit's Jacobians, which stop
+  // after two or three steps. With remember_residuals on, each
+  // residual-only evaluation keeps its point and residuals (the trial
+  // point's); after skip_next_jacobian(), the next evaluation with
+  // Jacobians at that same point returns those residuals and zero
+  // Jacobians without integrating (elsewhere it evaluates in full). Ceres
+  // evaluates a block on one thread at a time, which these rely on.
+  void set_remember_residuals(bool on);
+  // Half the sum of squares of the remembered residuals (Ceres' cost of
+  // the block), or NaN when none are remembered.
+  double remembered_cost() const;
+  void skip_next_jacobian() const { remembered_.skip = true; }
+
  private:
   // Evaluates with Jets whose lanes carry the derivatives with respect to
   // free coordinates lanes[0..count).
@@ -177,6 +196,11 @@ class SegmentCostFunction : public ceres::CostFunction {
   bool EvaluateOrFail(double const* const* parameters,
                       double* residuals,
                       double** jacobians) const;
+  // Returns the remembered residuals and zero Jacobians if skip_next_jacobian
+  // was asked and u is the remembered point; clears the request.
+  bool SkippedJacobian(const std::vector<double>& u,
+                       double* residuals,
+                       double** jacobians) const;
   bool EvaluateSensitivities(const MotionModel& model,
                              const double* u,
                              const std::vector<int>& lanes,
@@ -235,6 +259,14 @@ class SegmentCostFunction : public ceres::CostFunction {
   std::vector<ParameterTie> ties_;
   std::vector<double> measured_;  // 3 n, for the filter
   mutable std::atomic<int> failures_{0};
+  mutable std::atomic<int> jacobians_{0};
+  struct Remembered {
+    bool on = false;
+    bool skip = false;
+    std::vector<double> u;  // empty: nothing remembered
+    std::vector<double> residuals;
+  };
+  mutable Remembered remembered_;
 };
 
 }  // namespace fit3dof
