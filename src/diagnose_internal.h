@@ -66,13 +66,38 @@ bool CandidateCase(const Case& at,
 // Whether `name` is one of the effect's companions (Effect::companions).
 bool IsCompanion(const Effect& effect, const std::string& name);
 
+// The Jacobian of the parameters free at a solution (the case `at`, on
+// the samples its fit used), computed once for the score tests of every
+// candidate there: each then integrates only its added terms' columns
+// (2-4 against 20-30). A candidate whose model is not `at`'s, whose other
+// free parameters are not `at`'s, or whose motion with its terms at their
+// start is not the solution's (kSameMotion), is linearized whole.
+struct InformationAtSolution {
+  InformationAtSolution(const Case& at, const std::vector<TimeHistory>& data);
+  bool ok = false;  // false: the motion cannot be integrated
+  ModelKind model = ModelKind::kSymmetric;
+  std::vector<std::string> names;  // of the free coordinates
+  Eigen::MatrixXd jacobian;        // with respect to the values
+  Eigen::VectorXd residuals;
+  Eigen::MatrixXd information;  // J^T J
+};
+
 // The score (Lagrange-multiplier) statistic of the candidate's `added`
 // parameters at the current solution, on the samples the fit used (one
-// record per segment); see diagnose.h.
+// record per segment); see diagnose.h. `at`, if given, the solution's
+// Jacobian, shared (InformationAtSolution).
 CandidateScore Score(const Case& candidate,
                      const std::vector<std::string>& added,
                      const std::string& id,
-                     const std::vector<TimeHistory>& data);
+                     const std::vector<TimeHistory>& data,
+                     const InformationAtSolution* at = nullptr);
+
+// Whether the candidate's score test takes the solution's Jacobian `at`
+// (InformationAtSolution says when it does).
+bool SharesInformation(const Case& candidate,
+                       const std::vector<std::string>& added,
+                       const std::vector<TimeHistory>& data,
+                       const InformationAtSolution& at);
 
 // How the candidate's `added` terms, were they present, would move the
 // model's free coefficients (not a segment's initial conditions) in a fit

@@ -27,14 +27,17 @@ namespace fit3dof {
 
 namespace {
 
-// Each of *candidates scored against `data` (score_test.cc; in parallel,
-// within the process's thread budget, thread_budget.h), largest score
-// first.
-void RankByScore(const std::vector<TimeHistory>& data,
+// Each of *candidates, built from the solution `at`, scored against
+// `data` (score_test.cc; in parallel, within the process's thread budget,
+// thread_budget.h), largest score first.
+void RankByScore(const Case& at,
+                 const std::vector<TimeHistory>& data,
                  std::vector<Candidate>* candidates) {
+  if (candidates->empty()) return;
+  const InformationAtSolution information(at, data);
   ParallelFor(static_cast<int>(candidates->size()), [&](int i) {
     Candidate& k = (*candidates)[i];
-    k.score = Score(k.c, k.added, k.effect->id, data);
+    k.score = Score(k.c, k.added, k.effect->id, data, &information);
   });
   std::sort(candidates->begin(),
             candidates->end(),
@@ -110,7 +113,7 @@ bool FitProbes(const Case& current,
   // 800-sample record costs as much as the scores of all seven; the probes
   // are near-linear in their parameters, where the score ranks as the
   // refits do).
-  RankByScore(data, candidates);
+  RankByScore(at, data, candidates);
   constexpr size_t kProbesRefitted = 2;
   if (candidates->size() > kProbesRefitted) {
     candidates->resize(kProbesRefitted);
@@ -600,7 +603,7 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
       all.push_back(std::move(f));
     }
   }
-  RankByScore(data, &all);
+  RankByScore(at, data, &all);
   KeepBetterForms(fit, data, &all);
   std::vector<Candidate> candidates;
   for (Candidate& k : all) {

@@ -7,9 +7,12 @@
 #include <Eigen/Dense>
 #include <algorithm>
 
+#include "assembly.h"
+#include "ceres/crs_matrix.h"
 #include "diagnose_internal.h"
 #include "fit3dof/fit.h"
 #include "fit3dof/parameters.h"
+#include "fit_problem.h"
 #include "symmetric_eigen.h"
 
 namespace fit3dof {
@@ -19,6 +22,12 @@ namespace {
 // this fraction are spanned by the free parameters: dropped from the
 // score, and an effect no more novel than this is an exact twin.
 constexpr double kRankDrop = 1e-6;
+
+// How close (relative) a candidate's residuals at the solution, its terms
+// at their start, must be to the solution's for the solution's Jacobian to
+// serve its score test: the same motion but for the rounding of terms that
+// add zero.
+constexpr double kSameMotion = 1e-9;
 
 // The share of a near twin's signal a free parameter must carry to be
 // listed among those the twin moves (TwinShifts).
@@ -66,7 +75,7 @@ double Novelty(const Eigen::MatrixXd& icc, const Eigen::MatrixXd& schur) {
 
 // The information of a candidate's `added` terms (c) and of the parameters
 // already free (f) at the current solution, split into blocks.
-struct Information {
+struct ScoreInformation {
   Linearization l;
   std::vector<int> c_index, f_index;  // rows of l.jtj
   Eigen::MatrixXd iff, icf, icc;
@@ -76,7 +85,7 @@ struct Information {
 bool SplitInformation(const Case& candidate,
                       const std::vector<std::string>& added,
                       const std::vector<TimeHistory>& data,
-                      Information* info) {
+                      ScoreInformation* info) {
   Linearization& l = info->l;
   if (!Linearize(candidate, data, &l)) return false;
   const auto& table = ParameterTable(candidate.model);
@@ -108,16 +117,105 @@ bool SplitInformation(const Case& candidate,
   return !info->c_index.empty();
 }
 
-}  // namespace
+// The Jacobian (unit scale: with respect to the values) and the weighted
+// residuals of a problem at its values; false if the motion cannot be
+// integrated.
+bool DenseJacobian(const FitProblem& p,
+                   Eigen::MatrixXd* jacobian,
+                   Eigen::VectorXd* residuals) {
+  const Assembly a = Assemble(p.segments,
+                              p.free,
+                              p.model,
+                              p.values,
+                              std::vector<double>(p.free.size(), 1.0));
+  ceres::CRSMatrix crs;
+  std::vector<double> r;
+  if (!EvaluateJacobian(a, &crs, &r)) return false;
+  *jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int row = 0; row < crs.num_rows; ++row) {
+    for (int e = crs.rows[row]; e < crs.rows[row + 1]; ++e) {
+      (*jacobian)(row, crs.cols[e]) = crs.values[e];
+    }
+  }
+  *residuals = Eigen::Map<const Eigen::VectorXd>(r.data(), r.size());
+  return true;
+}
 
-CandidateScore Score(const Case& candidate,
-                     const std::vector<std::string>& added,
-                     const std::string& id,
-                     const std::vector<TimeHistory>& data) {
+// `p` with only its shared coordinates `kept` (global indices, in order)
+// free, every other one frozen at its value.
+FitProblem OnlyFree(const FitProblem& p, const std::vector<int>& kept) {
+  FitProblem only = p;
+  for (PreparedSegment& segment : only.segments) {
+    for (int g = 0; g < p.free.size(); ++g) {
+      if (p.free.segment[g] < 0) segment.base[p.free.position[g]] = p.values[g];
+    }
+    segment.own.clear();  // their values are in base
+  }
+  only.free.shared.clear();
+  only.free.position.clear();
+  only.free.segment.clear();
+  only.values.clear();
+  only.names.clear();
+  for (int g : kept) {
+    CHECK_LT(p.free.segment[g], 0) << "a segment's own coordinate";
+    only.free.shared.push_back(p.free.position[g]);
+    only.free.position.push_back(p.free.position[g]);
+    only.free.segment.push_back(-1);
+    only.values.push_back(p.values[g]);
+    only.names.push_back(p.names[g]);
+  }
+  only.free.own_offset.assign(p.segments.size(), static_cast<int>(kept.size()));
+  return only;
+}
+
+// The candidate's information from `base`'s Jacobian of the parameters
+// free at the solution and its own of the added terms alone; false where
+// that does not hold (InformationAtSolution says when).
+bool SharedInformation(const Case& candidate,
+                       const std::vector<std::string>& added,
+                       const std::vector<TimeHistory>& data,
+                       const InformationAtSolution& base,
+                       ScoreInformation* info) {
+  if (!base.ok || candidate.model != base.model) return false;
+  const FitProblem p = PrepareProblem(candidate, data);
+  const auto& table = ParameterTable(candidate.model);
+  std::vector<int> c_index;
+  std::vector<std::string> f_names;
+  for (int g = 0; g < p.free.size(); ++g) {
+    const bool is_added =
+        p.free.segment[g] < 0 &&
+        std::find(added.begin(), added.end(), table[p.free.position[g]].name) !=
+            added.end();
+    if (is_added) {
+      c_index.push_back(g);
+    } else {
+      f_names.push_back(p.names[g]);
+    }
+  }
+  if (c_index.empty() || f_names != base.names) return false;
+  Eigen::MatrixXd jc;
+  Eigen::VectorXd r;
+  if (!DenseJacobian(OnlyFree(p, c_index), &jc, &r)) return false;
+  // The terms at their start must leave the motion the solution's.
+  if (r.size() != base.residuals.size() ||
+      (r - base.residuals).norm() > kSameMotion * (1.0 + r.norm())) {
+    return false;
+  }
+  info->l.points = p.points;
+  info->l.ressum = r.squaredNorm();
+  info->c_index = c_index;
+  info->f_index.assign(f_names.size(), 0);  // only their count is read
+  info->iff = base.information;
+  info->icf = jc.transpose() * base.jacobian;
+  info->icc = jc.transpose() * jc;
+  info->gf = base.jacobian.transpose() * r;
+  info->gc = jc.transpose() * r;
+  return true;
+}
+
+CandidateScore ScoreOf(const ScoreInformation& info, const std::string& id) {
   CandidateScore score;
   score.effect = id;
-  Information info;
-  if (!SplitInformation(candidate, added, data, &info)) return score;
   const Eigen::MatrixXd& icf = info.icf;
   const Eigen::MatrixXd& icc = info.icc;
   const Eigen::MatrixXd iff_inverse = PseudoInverse(info.iff, 1e-14, nullptr);
@@ -138,11 +236,47 @@ CandidateScore Score(const Case& candidate,
   return score;
 }
 
+}  // namespace
+
+InformationAtSolution::InformationAtSolution(
+    const Case& at, const std::vector<TimeHistory>& data) {
+  const FitProblem p = PrepareProblem(at, data);
+  model = at.model;
+  names = p.names;
+  ok = DenseJacobian(p, &jacobian, &residuals);
+  if (ok) information = jacobian.transpose() * jacobian;
+}
+
+CandidateScore Score(const Case& candidate,
+                     const std::vector<std::string>& added,
+                     const std::string& id,
+                     const std::vector<TimeHistory>& data,
+                     const InformationAtSolution* at) {
+  ScoreInformation info;
+  if (at == nullptr || !SharedInformation(candidate, added, data, *at, &info)) {
+    info = ScoreInformation();
+    if (!SplitInformation(candidate, added, data, &info)) {
+      CandidateScore none;
+      none.effect = id;
+      return none;
+    }
+  }
+  return ScoreOf(info, id);
+}
+
+bool SharesInformation(const Case& candidate,
+                       const std::vector<std::string>& added,
+                       const std::vector<TimeHistory>& data,
+                       const InformationAtSolution& at) {
+  ScoreInformation info;
+  return SharedInformation(candidate, added, data, at, &info);
+}
+
 std::vector<TwinShift> TwinShifts(const Case& candidate,
                                   const std::vector<std::string>& added,
                                   const std::vector<TimeHistory>& data) {
   std::vector<TwinShift> shifts;
-  Information info;
+  ScoreInformation info;
   if (!SplitInformation(candidate, added, data, &info)) return shifts;
   // Least squares without the terms projects their signal onto the free
   // parameters' sensitivities: a term at m moves them by
