@@ -57,6 +57,13 @@ Refit RidgeRefit(const std::string& dir, std::uint64_t seed) {
   return r;
 }
 
+// SolveStage on the whole of `p` from *values.
+StageOutcome Solve(const FitProblem& p,
+                   const StageSettings& settings,
+                   std::vector<double>* values) {
+  return SolveStage(p.segments, p.free, p.model, p.names, settings, values);
+}
+
 TEST(StageSolver, ARefitFromASolutionTakesTheRidgeAtOnce) {
   int cautious_iterations = 0;
   int trusted_iterations = 0;
@@ -100,12 +107,7 @@ TEST(StageSolver, TheJacobianAtThePointARunStopsIsNeverIntegrated) {
     StageSettings settings;
     settings.tolerance = r.c.solver.tolerance;
     std::vector<double> values = problem.values;
-    const StageOutcome run = SolveStage(problem.segments,
-                                        problem.free,
-                                        problem.model,
-                                        problem.names,
-                                        settings,
-                                        &values);
+    const StageOutcome run = Solve(problem, settings, &values);
     ASSERT_TRUE(run.converged) << run.termination;
     EXPECT_EQ(run.termination.rfind("probable error changed", 0), 0u)
         << run.termination;
@@ -116,12 +118,7 @@ TEST(StageSolver, TheJacobianAtThePointARunStopsIsNeverIntegrated) {
 
     settings.max_iterations = 1;
     values = problem.values;
-    const StageOutcome one = SolveStage(problem.segments,
-                                        problem.free,
-                                        problem.model,
-                                        problem.names,
-                                        settings,
-                                        &values);
+    const StageOutcome one = Solve(problem, settings, &values);
     EXPECT_FALSE(one.converged) << one.termination;
     EXPECT_EQ(one.accepted_steps, 1);
     EXPECT_EQ(one.jacobians, 1);
@@ -148,19 +145,9 @@ TEST(StageSolver, CoarserJacobiansWhereTheyAgreeReachTheSameMinimum) {
     settings.tolerance = at.solver.tolerance;
     settings.initial_radius = kFromSolutionRadius;
     std::vector<double> exact = problem.values, coarse = problem.values;
-    const StageOutcome model_jacobians = SolveStage(problem.segments,
-                                                    problem.free,
-                                                    problem.model,
-                                                    problem.names,
-                                                    settings,
-                                                    &exact);
+    const StageOutcome model_jacobians = Solve(problem, settings, &exact);
     settings.coarser_jacobians = true;
-    const StageOutcome coarser = SolveStage(problem.segments,
-                                            problem.free,
-                                            problem.model,
-                                            problem.names,
-                                            settings,
-                                            &coarse);
+    const StageOutcome coarser = Solve(problem, settings, &coarse);
     std::cout << "seed " << seed << ": " << model_jacobians.iterations << " -> "
               << coarser.iterations << " iterations, sum of squares "
               << model_jacobians.ressum << " -> " << coarser.ressum << "\n";
@@ -175,12 +162,7 @@ TEST(StageSolver, CoarserJacobiansWhereTheyAgreeReachTheSameMinimum) {
     at.solver.step = interval / 4.0;
     const FitProblem sparse = PrepareProblem(at, r.data);
     std::vector<double> values = sparse.values;
-    const StageOutcome kept = SolveStage(sparse.segments,
-                                         sparse.free,
-                                         sparse.model,
-                                         sparse.names,
-                                         settings,
-                                         &values);
+    const StageOutcome kept = Solve(sparse, settings, &values);
     EXPECT_FALSE(kept.coarser_jacobians) << "seed " << seed;
   }
 }
