@@ -248,13 +248,15 @@ def main():
             result["scipy"] = scipy
             result["speedup_vs_scipy"] = ratio
 
-    # The suite's slowest kind of case (tools/diagnose_suite; the issue
-    # allows 5 s a diagnosis): three hidden effects on a pair of 3-s runs.
+    # The suite's slowest kinds of case (tools/diagnose_suite; the issue
+    # allows 5 s a diagnosis): three hidden effects on a pair of 3-s runs,
+    # and on the 48-s Table 6 record (draw 41's slowest).
     print("== fit3dof diagnose against a plain fit of the same record "
           "(median of 3)")
     rows = []
     for name in ("pair_bearing_calibration_roll_torque",
-                 "pair_damping_magnus_angularity_vary15"):
+                 "pair_damping_magnus_angularity_vary15",
+                 "table6_damping_magnus_angularity_draw41"):
         config = os.path.join(root, "tests", "data", name + ".yaml")
         seconds, fit_seconds, d = time_diagnose(root, config)
         rows.append({"record": name, "diagnose_seconds": seconds,
