@@ -170,7 +170,7 @@ FitProblem OnlyFree(const FitProblem& p, const std::vector<int>& kept) {
 
 // The candidate's information from `base`'s Jacobian of the parameters
 // free at the solution and its own of the added terms alone; false where
-// that does not hold (InformationAtSolution says when).
+// that does not hold (InformationAtSolution says when), *info untouched.
 bool SharedInformation(const Case& candidate,
                        const std::vector<std::string>& added,
                        const std::vector<TimeHistory>& data,
@@ -204,7 +204,6 @@ bool SharedInformation(const Case& candidate,
   info->l.points = p.points;
   info->l.ressum = r.squaredNorm();
   info->c_index = c_index;
-  info->f_index.assign(f_names.size(), 0);  // only their count is read
   info->iff = base.information;
   info->icf = jc.transpose() * base.jacobian;
   info->icc = jc.transpose() * jc;
@@ -228,7 +227,7 @@ CandidateScore ScoreOf(const ScoreInformation& info, const std::string& id) {
   Eigen::MatrixXd schur_scaled = schur / std::max(own, 1e-300);
   const Eigen::MatrixXd inverse =
       PseudoInverse(schur_scaled, kRankDrop, &rank) / std::max(own, 1e-300);
-  const int dof = 3 * info.l.points - static_cast<int>(info.f_index.size());
+  const int dof = 3 * info.l.points - static_cast<int>(info.iff.rows());
   const double variance = info.l.ressum / std::max(dof, 1);
   score.score = g.dot(inverse * g) / variance;
   score.dof = rank;
@@ -254,7 +253,6 @@ CandidateScore Score(const Case& candidate,
                      const InformationAtSolution* at) {
   ScoreInformation info;
   if (at == nullptr || !SharedInformation(candidate, added, data, *at, &info)) {
-    info = ScoreInformation();
     if (!SplitInformation(candidate, added, data, &info)) {
       CandidateScore none;
       none.effect = id;

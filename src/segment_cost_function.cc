@@ -249,7 +249,8 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
   if (lanes.empty()) {
     const bool ok = EvaluateResiduals(u.data(), residuals);
     if (remembered_.on) {
-      remembered_.u = ok ? u : std::vector<double>();
+      remembered_.valid = ok;
+      remembered_.u = u;
       remembered_.residuals.assign(residuals, residuals + num_residuals());
     }
     return ok;
@@ -333,7 +334,7 @@ void SegmentCostFunction::set_remember_residuals(bool on) {
 }
 
 double SegmentCostFunction::remembered_cost() const {
-  if (remembered_.u.empty()) return std::numeric_limits<double>::quiet_NaN();
+  if (!remembered_.valid) return std::numeric_limits<double>::quiet_NaN();
   // As Ceres computes a block's cost (ResidualBlock::Evaluate).
   return 0.5 * Eigen::Map<const Eigen::VectorXd>(remembered_.residuals.data(),
                                                  num_residuals())
@@ -343,7 +344,7 @@ double SegmentCostFunction::remembered_cost() const {
 bool SegmentCostFunction::SkippedJacobian(const std::vector<double>& u,
                                           double* residuals,
                                           double** jacobians) const {
-  const bool skip = remembered_.skip && u == remembered_.u;
+  const bool skip = remembered_.skip && remembered_.valid && u == remembered_.u;
   remembered_.skip = false;
   if (!skip) return false;
   std::copy(

@@ -61,11 +61,11 @@ class ReportIterationCallback : public ceres::IterationCallback,
   }
 
   // Whether the BIC's rule, not the probable error's, ended it.
-  bool stopped_by_bic() const { return stopped_by_bic_; }
+  bool stopped_by_bic() const { return ended_.by_bic; }
   // Whether it ended below StageSettings::stop_below.
-  bool stopped_below() const { return stopped_below_; }
+  bool stopped_below() const { return ended_.below; }
   // Whether it ended out of reach of it (StageSettings::out_of_reach).
-  bool stopped_out_of_reach() const { return stopped_out_of_reach_; }
+  bool stopped_out_of_reach() const { return ended_.out_of_reach; }
 
   void PrepareForEvaluation(bool evaluate_jacobians,
                             bool new_evaluation_point) override {
@@ -103,7 +103,7 @@ class ReportIterationCallback : public ceres::IterationCallback,
       VLOG(1) << "start: sum of residuals " << std::sqrt(ressum)
               << "  probable error " << e;
       if (e < settings_.stop_below) {
-        stopped_below_ = true;
+        ended_.stop = ended_.below = true;
         return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
       }
       return ceres::SOLVER_CONTINUE;
@@ -129,19 +129,18 @@ class ReportIterationCallback : public ceres::IterationCallback,
     VLOG(1) << log.str();
     // The verdict the Jacobian was skipped on, if it was: Ceres sums the
     // blocks' costs in its own order, which can differ in the last bit.
-    const Verdict verdict = skipped_iteration_ == summary.iteration
-                                ? skipped_
-                                : Decide(ressum, summary.iteration);
+    ended_ = skipped_iteration_ == summary.iteration
+                 ? skipped_
+                 : Decide(ressum, summary.iteration);
     falls_.push_back(old_e_ - e);
-    if (static_cast<int>(falls_.size()) > kOutOfReachPace) falls_.pop_front();
+    if (static_cast<int>(falls_.size()) > kOutOfReachPace - 1) {
+      falls_.pop_front();
+    }
     old_e_ = e;
     old_ressum_ = ressum;
     previous_ = values;
-    stopped_by_bic_ = verdict.by_bic;
-    stopped_below_ = verdict.below;
-    stopped_out_of_reach_ = verdict.out_of_reach;
-    return verdict.stop ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
-                        : ceres::SOLVER_CONTINUE;
+    return ended_.stop ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                       : ceres::SOLVER_CONTINUE;
   }
 
  private:
@@ -176,15 +175,10 @@ class ReportIterationCallback : public ceres::IterationCallback,
   // a fall of `fall`, after `iteration` (kOutOfReachMargin).
   bool OutOfReach(double e, double fall, int iteration) const {
     // The pace: the largest of the last kOutOfReachPace falls, this one's
-    // among them.
-    const int kept = std::min<int>(falls_.size(), kOutOfReachPace - 1);
-    if (kept + 1 < kOutOfReachPace) return false;
+    // and those falls_ holds.
+    if (static_cast<int>(falls_.size()) < kOutOfReachPace - 1) return false;
     double pace = fall;
-    for (int i = static_cast<int>(falls_.size()) - kept;
-         i < static_cast<int>(falls_.size());
-         ++i) {
-      pace = std::max(pace, falls_[i]);
-    }
+    for (double f : falls_) pace = std::max(pace, f);
     const int remaining = settings_.max_iterations - iteration;
     return e - settings_.stop_below > kOutOfReachMargin * remaining * pace;
   }
@@ -198,10 +192,10 @@ class ReportIterationCallback : public ceres::IterationCallback,
   StageSettings settings_;
   double old_e_ = 0.0;
   double old_ressum_ = 0.0;
-  bool stopped_by_bic_ = false;
-  bool stopped_below_ = false;
-  bool stopped_out_of_reach_ = false;
-  // The falls of the probable error in the last successful iterations.
+  // The verdict the run has ended on, if it has.
+  Verdict ended_;
+  // The falls of the probable error in the last kOutOfReachPace - 1
+  // successful iterations.
   std::deque<double> falls_;
   std::vector<double> previous_;
   int last_iteration_ = 0;

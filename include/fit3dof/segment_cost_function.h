@@ -263,7 +263,8 @@ class SegmentCostFunction : public ceres::CostFunction {
   struct Remembered {
     bool on = false;
     bool skip = false;
-    std::vector<double> u;  // empty: nothing remembered
+    bool valid = false;  // a residual-only evaluation succeeded since
+    std::vector<double> u;
     std::vector<double> residuals;
   };
   mutable Remembered remembered_;
