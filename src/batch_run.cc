@@ -23,6 +23,7 @@
 #include "fit3dof/input_error.h"
 #include "fit3dof/interrupt.h"
 #include "fit3dof/version.h"
+#include "json_values.h"
 #include "report_json.h"
 
 namespace fit3dof {
@@ -32,10 +33,6 @@ namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double FromJson(const json& x) {
-  return x.is_number() ? x.get<double>() : kNaN;
-}
 
 // The run's result from its fit, the parameters in the fit's order (the
 // table's, then each segment's own initial conditions).
@@ -76,13 +73,13 @@ RunResult FromReport(const json& report) {
   if (report.contains("diagnosis")) r.reason = report["diagnosis"];
   r.adequacy = report.value("adequacy", "");
   r.iterations = report.value("iterations", 0);
-  r.probable_error = FromJson(report["probable_error"]);
+  r.probable_error = NumberFromJson(report["probable_error"]);
   r.model = report.value("model", "");
   for (const auto& [name, p] : report["parameters"].items()) {
     const RunParameter parameter{name,
-                                 FromJson(p["value"]),
-                                 FromJson(p["rms_error"]),
-                                 FromJson(p["standard_error"])};
+                                 NumberFromJson(p["value"]),
+                                 NumberFromJson(p["rms_error"]),
+                                 NumberFromJson(p["standard_error"])};
     r.values.push_back(parameter);
     if (p.value("free", false)) r.free.push_back(parameter);
   }
@@ -94,9 +91,9 @@ RunResult FromReport(const json& report) {
     }
     const json& e = report["process_noise"][axis];
     r.free.push_back({std::string("process_noise_") + axis,
-                      FromJson(e["intensity"]),
-                      FromJson(e["standard_error"]),
-                      FromJson(e["standard_error"])});
+                      NumberFromJson(e["intensity"]),
+                      NumberFromJson(e["standard_error"]),
+                      NumberFromJson(e["standard_error"])});
   }
   return r;
 }

@@ -40,10 +40,6 @@ double Round12(double x) {
   std::snprintf(text, sizeof(text), "%.12g", x);
   return std::strtod(text, nullptr);
 }
-double FromJson(const json& x) {
-  return x.is_number() ? x.get<double>()
-                       : std::numeric_limits<double>::quiet_NaN();
-}
 
 std::string CsvNumber(double x) {
   if (!std::isfinite(x)) return "";
@@ -174,13 +170,13 @@ BatchSummary ReadSummary(const std::string& dir) {
     r.reason = run.value("reason", "");
     r.adequacy = run.value("adequacy", "");
     r.iterations = run.value("iterations", 0);
-    r.probable_error = FromJson(run["probable_error"]);
+    r.probable_error = NumberFromJson(run["probable_error"]);
     r.model = run.value("model", "");
     for (const auto& [name, p] : run["parameters"].items()) {
       r.free.push_back({name,
-                        FromJson(p["value"]),
-                        FromJson(p["rms_error"]),
-                        FromJson(p["standard_error"])});
+                        NumberFromJson(p["value"]),
+                        NumberFromJson(p["rms_error"]),
+                        NumberFromJson(p["standard_error"])});
     }
     summary.runs.push_back(r);
   }
