@@ -14,19 +14,26 @@ functions=(
   'fit3dof::MotionModel::EvaluateFiltered<ceres::Jet<double, 4> >('
 )
 
-# The mangled name of the function whose demangled name contains $2.
-mangled() {
+# Each defined symbol of binary $1: its mangled name, a tab, its demangled.
+symbols() {
   paste -d '\t' <(nm --defined-only "$1" | awk '{print $3}') \
-    <(nm --defined-only -C "$1" | cut -d' ' -f3-) |
-    awk -F '\t' -v want="$2" '!found && index($2, want) { print $1; found = 1 }'
+    <(nm --defined-only -C "$1" | cut -d' ' -f3-)
+}
+
+# The mangled name of the first symbol in table $1 whose demangled name
+# contains $2.
+mangled() {
+  awk -F '\t' -v want="$2" '!found && index($2, want) { print $1; found = 1 }' \
+    <<<"$1"
 }
 
 failures=0
 for arg in "$@"; do
   expect="${arg%%:*}"
   binary="${arg#*:}"
+  table="$(symbols "$binary")"
   for f in "${functions[@]}"; do
-    symbol="$(mangled "$binary" "$f")"
+    symbol="$(mangled "$table" "$f")"
     if [ -z "$symbol" ]; then
       echo "FAIL $(basename "$binary"): no function $f"
       failures=$((failures + 1))
