@@ -250,13 +250,18 @@ def main():
 
     # The suite's slowest kinds of case (tools/diagnose_suite; the issue
     # allows 5 s a diagnosis): three hidden effects on a pair of 3-s runs,
-    # and on the 48-s Table 6 record (draw 41's slowest).
+    # and on the 48-s Table 6 record (draw 41's slowest); draw 65's two
+    # over 5 s: a pitch reading's gain error on a pair of runs (outside the
+    # catalog, where sets of a bearing moment crawl along its ridge) and a
+    # bearing moment, calibration error and roll torque on Table 6.
     print("== fit3dof diagnose against a plain fit of the same record "
           "(median of 3)")
     rows = []
     for name in ("pair_bearing_calibration_roll_torque",
                  "pair_damping_magnus_angularity_vary15",
-                 "table6_damping_magnus_angularity_draw41"):
+                 "table6_damping_magnus_angularity_draw41",
+                 "pair_pitch_gain_draw65",
+                 "table6_bearing_calibration_roll_torque_draw65"):
         config = os.path.join(root, "tests", "data", name + ".yaml")
         seconds, fit_seconds, d = time_diagnose(root, config)
         rows.append({"record": name, "diagnose_seconds": seconds,
