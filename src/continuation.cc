@@ -114,6 +114,7 @@ PipelineOutcome RunPipeline(const Case& c,
     if (c.solver.from_solution) {
       settings.initial_radius = kFromSolutionRadius;
       settings.coarser_jacobians = true;
+      settings.bearing_angle_limit = kBearingAngleStop * LargestAngle(problem);
     }
     auto solve = [&](std::vector<double>* trial) {
       return gauss_newton

@@ -7,7 +7,9 @@
 
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <utility>
 
@@ -144,6 +146,16 @@ int CountPoints(const std::vector<PreparedSegment>& segments) {
   int points = 0;
   for (const PreparedSegment& p : segments) points += p.data.size();
   return points;
+}
+
+double LargestAngle(const FitProblem& problem) {
+  double largest = 0.0;
+  for (const PreparedSegment& p : problem.segments) {
+    for (int i = 0; i < p.data.size(); ++i) {
+      largest = std::max(largest, std::hypot(p.data.theta[i], p.data.psi[i]));
+    }
+  }
+  return largest;
 }
 
 FitProblem PrepareProblem(const Case& c, const std::vector<TimeHistory>& data) {

@@ -68,6 +68,10 @@ FitProblem PrepareProblem(const Case& c, const std::vector<TimeHistory>& data);
 // Samples in all segments.
 int CountPoints(const std::vector<PreparedSegment>& segments);
 
+// The largest total angle (deg) of the record's readings, sqrt(theta^2 +
+// psi^2) at the small angles a bearing moment fades over.
+double LargestAngle(const FitProblem& problem);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_SRC_FIT_PROBLEM_H_

@@ -87,18 +87,6 @@ int FreeShared(const Case& c, const FreeLayout& free, const std::string& name) {
   return -1;
 }
 
-// The largest total angle (deg) of the record's readings, sqrt(theta^2 +
-// psi^2) at the small angles a bearing moment fades over.
-double LargestAngle(const FitProblem& problem) {
-  double largest = 0.0;
-  for (const PreparedSegment& p : problem.segments) {
-    for (int i = 0; i < p.data.size(); ++i) {
-      largest = std::max(largest, std::hypot(p.data.theta[i], p.data.psi[i]));
-    }
-  }
-  return largest;
-}
-
 // Each of `starts` through the whole pipeline, in parallel, against
 // `first`: the best, when one beats it.
 MultiStartOutcome BestOf(const Case& c,

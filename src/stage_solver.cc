@@ -66,6 +66,8 @@ class ReportIterationCallback : public ceres::IterationCallback,
   bool stopped_below() const { return ended_.below; }
   // Whether it ended out of reach of it (StageSettings::out_of_reach).
   bool stopped_out_of_reach() const { return ended_.out_of_reach; }
+  // Whether its bearing angle passed StageSettings::bearing_angle_limit.
+  bool stopped_beyond() const { return ended_.beyond; }
 
   void PrepareForEvaluation(bool evaluate_jacobians,
                             bool new_evaluation_point) override {
@@ -132,6 +134,7 @@ class ReportIterationCallback : public ceres::IterationCallback,
     ended_ = skipped_iteration_ == summary.iteration
                  ? skipped_
                  : Decide(ressum, summary.iteration);
+    if (!ended_.stop && Beyond(values)) ended_.stop = ended_.beyond = true;
     falls_.push_back(old_e_ - e);
     if (static_cast<int>(falls_.size()) > kOutOfReachPace - 1) {
       falls_.pop_front();
@@ -149,7 +152,20 @@ class ReportIterationCallback : public ceres::IterationCallback,
     bool by_bic = false;
     bool below = false;
     bool out_of_reach = false;
+    bool beyond = false;
   };
+
+  // Whether a free bearing_angle among `values` lies past the limit.
+  bool Beyond(const std::vector<double>& values) const {
+    if (!(settings_.bearing_angle_limit > 0.0)) return false;
+    for (size_t g = 0; g < values.size(); ++g) {
+      if ((*names_)[g] == "bearing_angle" &&
+          std::abs(values[g]) > settings_.bearing_angle_limit) {
+        return true;
+      }
+    }
+    return false;
+  }
 
   // The rule applied to a successful step of `iteration` to a residual sum
   // of squares `ressum`, from the state the previous ones left.
@@ -351,6 +367,11 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
              callback.stopped_out_of_reach()) {
     outcome.termination =
         kOutOfReachTermination + FormatNumber("%g", settings.stop_below);
+  } else if (summary.termination_type == ceres::USER_SUCCESS &&
+             callback.stopped_beyond()) {
+    outcome.termination = kBearingAngleTermination +
+                          FormatNumber("%g", settings.bearing_angle_limit) +
+                          " deg";
   } else if (summary.termination_type == ceres::USER_SUCCESS) {
     outcome.termination =
         "probable error changed by less than " +

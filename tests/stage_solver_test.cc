@@ -321,5 +321,61 @@ TEST(StageSolver, AFitStopsOnceTheProbableErrorAskedIsOutOfReach) {
   EXPECT_GE(short_of.probable_error, whole.probable_error);
 }
 
+// Without the record's nonlinear stiffness, a bearing moment freed from
+// Cm_bearing = 0 at 1 deg runs toward an infinite angle, where it is a
+// stiffness and a cubic term (stage_solver.h, kBearingAngleStop). With a
+// limit on its angle the run stops at the first accepted point past it,
+// in fewer iterations, and the angle there lies past the limit (outside
+// the record, as the whole run's end does); within the limit nothing
+// changes.
+TEST(StageSolver, ARunStopsOnceItsBearingAngleLeavesTheRecord) {
+  const std::string dir = testing::ScratchDirectory("stage_bearing_limit");
+  Case c = testing::ShortRun(dir,
+                             "  Cm_alpha_delta2: -1.13\n"
+                             "  Cm_bearing: -0.006\n"
+                             "  bearing_angle: 1.0\n",
+                             1);
+  c.parameters[FindParameter(c.model, "Cm_alpha_delta2")] = {0.0, false, false};
+  c.parameters[FindParameter(c.model, "Cm_bearing")] = {0.0, true, false};
+  c.parameters[FindParameter(c.model, "bearing_angle")] = {1.0, true, false};
+  c.solver.continuation = false;
+  c.solver.multi_start = false;
+  std::vector<TimeHistory> data;
+  for (const SegmentFit& f : Fit(c).segments) data.push_back(f.data);
+  const FitProblem problem = PrepareProblem(c, data);
+  int angle = -1;
+  for (size_t g = 0; g < problem.names.size(); ++g) {
+    if (problem.names[g] == "bearing_angle") angle = static_cast<int>(g);
+  }
+  ASSERT_GE(angle, 0);
+  StageSettings settings;
+  settings.tolerance = c.solver.tolerance;
+  std::vector<double> whole = problem.values;
+  const StageOutcome free_run = Solve(problem, settings, &whole);
+  const double largest = LargestAngle(problem);
+  std::cout << "without a limit: " << free_run.iterations
+            << " iterations, bearing angle " << whole[angle]
+            << " deg (the record's largest " << largest << ")\n";
+  ASSERT_GT(std::abs(whole[angle]), kBearingAngleStop * largest);
+
+  settings.bearing_angle_limit = kBearingAngleStop * largest;
+  std::vector<double> stopped = problem.values;
+  const StageOutcome limited = Solve(problem, settings, &stopped);
+  std::cout << "limit " << settings.bearing_angle_limit << ": "
+            << limited.iterations << " iterations, bearing angle "
+            << stopped[angle] << " (" << limited.termination << ")\n";
+  EXPECT_EQ(limited.termination.rfind(kBearingAngleTermination, 0), 0u)
+      << limited.termination;
+  EXPECT_GT(std::abs(stopped[angle]), settings.bearing_angle_limit);
+  EXPECT_LT(limited.iterations, free_run.iterations);
+
+  // A limit the run never reaches leaves it as it was.
+  settings.bearing_angle_limit = 2.0 * std::abs(whole[angle]);
+  std::vector<double> within = problem.values;
+  const StageOutcome unlimited = Solve(problem, settings, &within);
+  EXPECT_EQ(unlimited.iterations, free_run.iterations);
+  EXPECT_EQ(within, whole);
+}
+
 }  // namespace
 }  // namespace fit3dof
