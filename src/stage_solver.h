@@ -37,7 +37,7 @@ inline constexpr char kBearingAngleTermination[] = "bearing angle beyond ";
 // there as outside the record's angles wherever it stops. On draw 65's
 // pair of runs with a pitch reading's gain error (outside the catalog),
 // sets of a bearing moment and one more effect crawled so to their
-// 50-iteration limit 27 times: 2306 -> 1423 iterations, 14.4 -> 8.7 s,
+// 50-iteration limit 27 times: 2306 -> 1548 iterations, 13.8 -> 9.6 s,
 // the diagnoses of draws 65 and 66 (330) answered the same.
 inline constexpr double kBearingAngleStop = 2.0;
 
