@@ -114,7 +114,12 @@ PipelineOutcome RunPipeline(const Case& c,
     if (c.solver.from_solution) {
       settings.initial_radius = kFromSolutionRadius;
       settings.coarser_jacobians = true;
-      settings.bearing_angle_limit = kBearingAngleStop * LargestAngle(problem);
+      const auto angle = std::find(
+          problem.names.begin(), problem.names.end(), "bearing_angle");
+      if (angle != problem.names.end()) {
+        settings.limited = static_cast<int>(angle - problem.names.begin());
+        settings.limit = kBearingAngleStop * LargestAngle(problem);
+      }
     }
     auto solve = [&](std::vector<double>* trial) {
       return gauss_newton

@@ -66,7 +66,7 @@ class ReportIterationCallback : public ceres::IterationCallback,
   bool stopped_below() const { return ended_.below; }
   // Whether it ended out of reach of it (StageSettings::out_of_reach).
   bool stopped_out_of_reach() const { return ended_.out_of_reach; }
-  // Whether its bearing angle passed StageSettings::bearing_angle_limit.
+  // Whether its limited coordinate passed its limit (StageSettings::limited).
   bool stopped_beyond() const { return ended_.beyond; }
 
   void PrepareForEvaluation(bool evaluate_jacobians,
@@ -155,16 +155,10 @@ class ReportIterationCallback : public ceres::IterationCallback,
     bool beyond = false;
   };
 
-  // Whether a free bearing_angle among `values` lies past the limit.
+  // Whether the limited coordinate among `values` lies past its limit.
   bool Beyond(const std::vector<double>& values) const {
-    if (!(settings_.bearing_angle_limit > 0.0)) return false;
-    for (size_t g = 0; g < values.size(); ++g) {
-      if ((*names_)[g] == "bearing_angle" &&
-          std::abs(values[g]) > settings_.bearing_angle_limit) {
-        return true;
-      }
-    }
-    return false;
+    return settings_.limited >= 0 &&
+           std::abs(values[settings_.limited]) > settings_.limit;
   }
 
   // The rule applied to a successful step of `iteration` to a residual sum
@@ -369,9 +363,9 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
         kOutOfReachTermination + FormatNumber("%g", settings.stop_below);
   } else if (summary.termination_type == ceres::USER_SUCCESS &&
              callback.stopped_beyond()) {
-    outcome.termination = kBearingAngleTermination +
-                          FormatNumber("%g", settings.bearing_angle_limit) +
-                          " deg";
+    outcome.termination = kLimitTermination + std::string("|") +
+                          names[settings.limited] + "| > " +
+                          FormatNumber("%g", settings.limit);
   } else if (summary.termination_type == ceres::USER_SUCCESS) {
     outcome.termination =
         "probable error changed by less than " +

@@ -24,12 +24,13 @@ inline constexpr char kBicRuleTermination[] = "BIC fell by less than ";
 inline constexpr char kBelowTermination[] = "probable error below ";
 // That of a run ended out of its reach (StageSettings::out_of_reach).
 inline constexpr char kOutOfReachTermination[] = "out of reach of ";
-// That of a run ended past StageSettings::bearing_angle_limit.
-inline constexpr char kBearingAngleTermination[] = "bearing angle beyond ";
+// That of a run ended with a coordinate past its limit
+// (StageSettings::limited), followed by "|name| > limit".
+inline constexpr char kLimitTermination[] = "beyond its limit: ";
 
 // A refit from a nearby model's solution stops once its bearing angle
 // passes this many times the record's largest angle
-// (StageSettings::bearing_angle_limit): the fade then lies outside the
+// (StageSettings::limited, continuation.cc): the fade then lies outside the
 // record, where the bearing moment is a stiffness and a cubic term, and
 // the fit follows Cm_bearing growing as the angle's square, Cm_alpha taking
 // its linear part, toward a minimum at an infinite angle (the nonlinear
@@ -132,9 +133,11 @@ struct StageSettings {
   // Levenberg-Marquardt's Jacobians from a coarser motion where they serve
   // (kJacobianStepFactor): for refits from a nearby model's solution.
   bool coarser_jacobians = false;
-  // Stop once a free bearing_angle's size passes this (deg; 0: never):
-  // for refits from a nearby model's solution (kBearingAngleStop).
-  double bearing_angle_limit = 0.0;
+  // A free coordinate (global free order; -1: none) whose size, once past
+  // `limit` (in its own units), stops the run: a refit from a nearby
+  // model's solution limits its bearing angle (kBearingAngleStop).
+  int limited = -1;
+  double limit = 0.0;
 };
 
 // One Levenberg-Marquardt run from `values` (global free order, updated in

@@ -15,6 +15,7 @@
 #include "fit3dof/fit.h"
 #include "fit3dof/parameters.h"
 #include "fit_problem.h"
+#include "format.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
 
@@ -358,19 +359,21 @@ TEST(StageSolver, ARunStopsOnceItsBearingAngleLeavesTheRecord) {
             << " deg (the record's largest " << largest << ")\n";
   ASSERT_GT(std::abs(whole[angle]), kBearingAngleStop * largest);
 
-  settings.bearing_angle_limit = kBearingAngleStop * largest;
+  settings.limited = angle;
+  settings.limit = kBearingAngleStop * largest;
   std::vector<double> stopped = problem.values;
   const StageOutcome limited = Solve(problem, settings, &stopped);
-  std::cout << "limit " << settings.bearing_angle_limit << ": "
-            << limited.iterations << " iterations, bearing angle "
-            << stopped[angle] << " (" << limited.termination << ")\n";
-  EXPECT_EQ(limited.termination.rfind(kBearingAngleTermination, 0), 0u)
-      << limited.termination;
-  EXPECT_GT(std::abs(stopped[angle]), settings.bearing_angle_limit);
+  std::cout << "limit " << settings.limit << ": " << limited.iterations
+            << " iterations, bearing angle " << stopped[angle] << " ("
+            << limited.termination << ")\n";
+  EXPECT_EQ(limited.termination,
+            kLimitTermination + std::string("|bearing_angle| > ") +
+                FormatNumber("%g", settings.limit));
+  EXPECT_GT(std::abs(stopped[angle]), settings.limit);
   EXPECT_LT(limited.iterations, free_run.iterations);
 
   // A limit the run never reaches leaves it as it was.
-  settings.bearing_angle_limit = 2.0 * std::abs(whole[angle]);
+  settings.limit = 2.0 * std::abs(whole[angle]);
   std::vector<double> within = problem.values;
   const StageOutcome unlimited = Solve(problem, settings, &within);
   EXPECT_EQ(unlimited.iterations, free_run.iterations);
