@@ -749,6 +749,18 @@ TEST(Diagnose, ANearTwinHiddenAtTheNoiseLevelGetsARound) {
   ExpectFinalCovers(d, {{"Cm_q", -5.5}, {"Cm_q_delta2", 277.19}}, text);
 }
 
+// A clean 48-s Table 6 record whose noise holds a line at the spin
+// frequency: a product of inertia, a near twin of the initial conditions
+// alone (novelty 0.0006), scores 24.2 there, and had been added at 5.0 of
+// its errors. It moves no coefficient (TwinShifts), so the search at the
+// noise level gives it no round: the answer is the noise level.
+TEST(Diagnose, ATwinOfTheInitialConditionsAloneGetsNoRoundAtTheNoise) {
+  const Diagnosis d = DiagnoseConfig("clean_table6_draw67.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("noise_level")) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+}
+
 // `d` (printed as `text`) adds nothing, ends not_explained and names the
 // probe `probe` outside the catalog, each of its parameters in `truths`
 // (name -> true value) within 3 standard errors of its truth.
