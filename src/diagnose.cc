@@ -350,7 +350,7 @@ bool NearTie(const std::vector<Contender>& contenders,
 // reached the noise, and the damping's score (16.0, novelty 0.0014) stood
 // 11 above ln(n): the true model's BIC was 11.4 lower. A twin of the
 // initial conditions alone moves no coefficient: left out at the noise
-// level it biases none, and only the noise can have put it there. On
+// level it biases none, and its score there is as likely the noise's. On
 // clean Table 6 records (suite draw 67) a product of inertia, novelty
 // 0.0006, scored 24.2 (16.4 above ln(n)) on one whose noise held a line
 // at the spin frequency (4.3 times its mean amplitude in theta), and was
