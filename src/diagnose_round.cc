@@ -338,13 +338,12 @@ bool EarnedTogether(const Case& c,
 }
 
 // The lowest BIC of `contenders`, refused or not, but for those refused
-// for leaving their bounds unless `out_of_bounds` (+inf when none):
-// WeighProbes weighs a probe against the others (diagnose_search.h).
-double BestBic(const std::vector<Contender>& contenders,
-               bool out_of_bounds = true) {
+// for leaving their bounds (+inf when none): what WeighProbes weighs a
+// probe against (diagnose_search.h).
+double BestBicWithinBounds(const std::vector<Contender>& contenders) {
   double best = std::numeric_limits<double>::infinity();
   for (const Contender& k : contenders) {
-    if (out_of_bounds || !k.out_of_bounds) best = std::min(best, k.bic);
+    if (!k.out_of_bounds) best = std::min(best, k.bic);
   }
   return best;
 }
@@ -1340,7 +1339,7 @@ bool WeighProbes(const Case& current,
   const bool probed = options.probes &&
                       FitProbes(current, fit, data, options, probes, probe) &&
                       probe->record.bic_drop >= options.min_bic_drop &&
-                      probe->bic < BestBic(*contenders, false);
+                      probe->bic < BestBicWithinBounds(*contenders);
   if (!probed) return false;
   if (earned.empty() ||
       probe->bic <
