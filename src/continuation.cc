@@ -99,6 +99,18 @@ PipelineOutcome RunPipeline(const Case& c,
           ? ContinuationWindows(segments, k)
           : std::vector<double>{std::numeric_limits<double>::infinity()};
   const std::vector<double> start = *values;
+  // A refit from a solution limits its bearing angle (kBearingAngleStop),
+  // the same for every window: found once.
+  int limited = -1;
+  double limit = 0.0;
+  if (c.solver.from_solution) {
+    const auto angle =
+        std::find(problem.names.begin(), problem.names.end(), "bearing_angle");
+    if (angle != problem.names.end()) {
+      limited = static_cast<int>(angle - problem.names.begin());
+      limit = kBearingAngleStop * LargestAngle(problem);
+    }
+  }
   for (size_t w = 0; w < windows.size(); ++w) {
     const bool last = w + 1 == windows.size();
     const std::vector<PreparedSegment> stage =
@@ -114,12 +126,8 @@ PipelineOutcome RunPipeline(const Case& c,
     if (c.solver.from_solution) {
       settings.initial_radius = kFromSolutionRadius;
       settings.coarser_jacobians = true;
-      const auto angle = std::find(
-          problem.names.begin(), problem.names.end(), "bearing_angle");
-      if (angle != problem.names.end()) {
-        settings.limited = static_cast<int>(angle - problem.names.begin());
-        settings.limit = kBearingAngleStop * LargestAngle(problem);
-      }
+      settings.limited = limited;
+      settings.limit = limit;
     }
     auto solve = [&](std::vector<double>* trial) {
       return gauss_newton

@@ -512,7 +512,9 @@ bool RoundCandidates(bool first,
                      std::vector<Candidate>* candidates) {
   *candidates = at_twins ? std::move(*twins)
                          : ScoredCandidates(s.current, s.fit, options);
-  if (s.check.at_noise_level &&
+  // The twins are AtNoiseLevel's first round already, at this fit: not
+  // judged again (HiddenTwin evaluates each one's Jacobian).
+  if (!at_twins && s.check.at_noise_level &&
       (!options.noise_held || !ScoreMayEarn(*candidates, s.fit, options))) {
     *candidates = AtNoiseLevel(
         std::move(*candidates), s.fit, options, first && !options.noise_held);
