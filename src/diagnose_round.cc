@@ -379,6 +379,20 @@ double Aic(const FitResult& r) {
   return Bic(r) - r.free_parameters * (std::log(n) - 2.0);
 }
 
+double TieGap(double rise,
+              const Effect& lead,
+              const FitResult& lead_fit,
+              const Effect& rival,
+              const FitResult& rival_fit,
+              bool roll_separates) {
+  const int extra = rival_fit.free_parameters - lead_fit.free_parameters;
+  if (roll_separates || lead.id != "flow_angularity" || !rival.roll_locked ||
+      extra <= 0) {
+    return rise;
+  }
+  return rise - extra * std::log(3.0 * std::max(1, rival_fit.points));
+}
+
 bool KnownAbsent(const DiagnoseOptions& options, const std::string& id) {
   return std::find(options.absent.begin(), options.absent.end(), id) !=
          options.absent.end();
@@ -757,11 +771,19 @@ std::vector<int> Earned(const FitResult& current,
                         OutOfSample* out_of_sample,
                         std::vector<Contender>* contenders) {
   std::vector<int> earned;
+  const bool roll_separates = RollSeparates(FittedData(current));
   for (size_t i = 0; i < contenders->size(); ++i) {
     Contender& c = (*contenders)[i];
-    if (!earned.empty() &&
-        c.bic - (*contenders)[earned[0]].bic >= options.ambiguity_bic) {
-      break;
+    if (!earned.empty()) {
+      const Contender& lead = (*contenders)[earned[0]];
+      if (TieGap(c.bic - lead.bic,
+                 *lead.candidate->effect,
+                 lead.fit,
+                 *c.candidate->effect,
+                 c.fit,
+                 roll_separates) >= options.ambiguity_bic) {
+        continue;
+      }
     }
     Judge(current, added, options, out_of_sample, &c);
     VLOG(1) << current.name << ": " << c.record.effect << " (BIC drop "

@@ -223,9 +223,26 @@ class OutOfSample {
   double rss_without_ = -1.0;
 };
 
+// How far a fit with `rival`'s effect in place of `lead`'s trails it, as
+// judged for a tie against ambiguity_bic: `rise`, its BIC above the lead's,
+// but for a roll-locked effect behind a flow angularity on records whose
+// roll does not separate them (`roll_separates`, RollSeparates) that rise
+// less the penalty of the rival's extra terms. Over part of a revolution a
+// first harmonic of roll holds an offset, and the two fit alike: a `short`
+// roll reading error (suite draws 47 and 65) was named a flow angularity
+// 11.6 lower in BIC, of which 9.9 were the reading error's two more terms
+// (2 ln 141), the fits 1.7 apart. Only a run at another spin rate, or one
+// that rolls a revolution, tells them apart.
+double TieGap(double rise,
+              const Effect& lead,
+              const FitResult& lead_fit,
+              const Effect& rival,
+              const FitResult& rival_fit,
+              bool roll_separates);
+
 // The contenders judged in BIC order until the best that earns its place
-// and every other within ambiguity_bic of it are known; returns the
-// indices of those that earned it.
+// and every other within ambiguity_bic of it (TieGap) are known; returns
+// the indices of those that earned it.
 std::vector<int> Earned(const FitResult& current,
                         const std::vector<const Effect*>& added,
                         const DiagnoseOptions& options,
@@ -330,7 +347,8 @@ bool WeighProbes(const Case& current,
 // Ties and the final model (diagnose_ties.cc).
 
 // Whatever explains a round's residual as well as contenders[best]
-// (diagnose.h): the other contenders within ambiguity_bic of its BIC, the
+// (diagnose.h): the other contenders within ambiguity_bic of its BIC
+// (TieGap), the
 // probe (when fitted) within it, and for a roll-locked effect on less than
 // a revolution of roll a drift in time. Contenders refused at this round
 // count too: with the effects still missing in, a roll reading error

@@ -357,9 +357,12 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
   };
   fit_all(&swaps);
   const double log_n = std::log(3.0 * std::max(1, fit.points));
-  // A held term counts as fitted.
+  const bool roll_separates = RollSeparates(data);
+  // A held term counts as fitted; judged for a tie by TieGap.
   auto rise = [&](const Swap& w) {
-    return Bic(w.fit) - Bic(fit) + (w.held.empty() ? 0.0 : log_n);
+    const double r = Bic(w.fit) - Bic(fit) + (w.held.empty() ? 0.0 : log_n);
+    if (own == nullptr || w.effect == nullptr) return r;
+    return TieGap(r, *own, fit, *w.effect, w.fit, roll_separates);
   };
   std::vector<Swap> held = HeldOnRidge(swaps);
   fit_all(&held);
@@ -933,10 +936,24 @@ std::vector<CandidateFit> Rivals(const std::vector<Contender>& contenders,
                                  const Contender* probe,
                                  const std::vector<TimeHistory>& data,
                                  const DiagnoseOptions& options) {
-  const double within = contenders[best].bic + options.ambiguity_bic;
-  std::vector<CandidateFit> rivals = Near(contenders, best, within);
-  if (probe != nullptr && probe->bic < within) rivals.push_back(probe->record);
-  if (contenders[best].candidate->effect->roll_locked && !RollSeparates(data)) {
+  const Contender& lead = contenders[best];
+  const bool roll_separates = RollSeparates(data);
+  std::vector<CandidateFit> rivals;
+  for (int i = 0; i < static_cast<int>(contenders.size()); ++i) {
+    const Contender& c = contenders[i];
+    if (i != best && TieGap(c.bic - lead.bic,
+                            *lead.candidate->effect,
+                            lead.fit,
+                            *c.candidate->effect,
+                            c.fit,
+                            roll_separates) < options.ambiguity_bic) {
+      rivals.push_back(c.record);
+    }
+  }
+  if (probe != nullptr && probe->bic < lead.bic + options.ambiguity_bic) {
+    rivals.push_back(probe->record);
+  }
+  if (lead.candidate->effect->roll_locked && !roll_separates) {
     rivals.push_back(DriftInTime());
   }
   return rivals;

@@ -78,6 +78,31 @@ std::string StoodIn(const Diagnosis& d) {
   return text;
 }
 
+// "; ..." when `tie` holds a flow angularity and a roll-locked effect of
+// more terms, which tie only by their fits (TieGap): why BIC drops apart by
+// more than ambiguity_bic are alike.
+std::string OffsetTwinWords(const std::vector<CandidateFit>& tie) {
+  const auto angularity =
+      std::find_if(tie.begin(), tie.end(), [](const CandidateFit& k) {
+        return k.effect == "flow_angularity";
+      });
+  if (angularity == tie.end()) return "";
+  for (const CandidateFit& k : tie) {
+    const Effect* e = FindEffect(k.effect);
+    if (e != nullptr && e->roll_locked &&
+        k.parameters.size() > angularity->parameters.size()) {
+      return "; over less than a revolution of roll a first harmonic of roll "
+             "holds an offset: their BIC drops differ by about the penalty "
+             "of " +
+             k.effect + "'s " +
+             std::to_string(k.parameters.size() -
+                            angularity->parameters.size()) +
+             " more terms";
+    }
+  }
+  return "";
+}
+
 // The verdict text of an open tie (d->ambiguous): the tied effects, what
 // separates them, the later ties and what was added beside them.
 std::string AmbiguousText(const Diagnosis& d) {
@@ -100,7 +125,8 @@ std::string AmbiguousText(const Diagnosis& d) {
                     "change in time)"
               : " explain the record alike (BIC lower by " + drops +
                     " where the first was added, and alike swapped for each "
-                    "other with the other effects in)") +
+                    "other with the other effects in" +
+                    OffsetTwinWords(d.ambiguous) + ")") +
          (n > 2 ? "; none added; " : "; neither added; ") + d.separated_by +
          " would separate them" + later +
          (d.steps.empty() ? "" : "; added: " + Described(d.steps)) +
