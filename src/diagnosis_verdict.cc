@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "diagnose_internal.h"
+#include "diagnose_search.h"
 #include "fit3dof/diagnose.h"
 #include "format.h"
 
@@ -78,10 +79,13 @@ std::string StoodIn(const Diagnosis& d) {
   return text;
 }
 
-// "; ..." when `tie` holds a flow angularity and a roll-locked effect of
-// more terms, which tie only by their fits (TieGap): why BIC drops apart by
-// more than ambiguity_bic are alike.
-std::string OffsetTwinWords(const std::vector<CandidateFit>& tie) {
+// "; ..." when `d`'s tie holds a flow angularity and a roll-locked effect
+// of more terms on records whose roll does not separate them, which tie by
+// their fits alone (TieGap): why BIC drops apart by more than
+// ambiguity_bic are alike.
+std::string OffsetTwinWords(const Diagnosis& d) {
+  const std::vector<CandidateFit>& tie = d.ambiguous;
+  if (d.fits.empty() || RollSeparates(FittedData(d.FinalFit()))) return "";
   const auto angularity =
       std::find_if(tie.begin(), tie.end(), [](const CandidateFit& k) {
         return k.effect == "flow_angularity";
@@ -126,7 +130,7 @@ std::string AmbiguousText(const Diagnosis& d) {
               : " explain the record alike (BIC lower by " + drops +
                     " where the first was added, and alike swapped for each "
                     "other with the other effects in" +
-                    OffsetTwinWords(d.ambiguous) + ")") +
+                    OffsetTwinWords(d) + ")") +
          (n > 2 ? "; none added; " : "; neither added; ") + d.separated_by +
          " would separate them" + later +
          (d.steps.empty() ? "" : "; added: " + Described(d.steps)) +

@@ -1440,7 +1440,7 @@ void ExpectDampingMagnusWithAngularityOrItsTwin(
 // theta 0.0162 cos phi + 0.0097 sin phi, psi -0.0129 cos phi - 0.0065 sin
 // phi deg), kept as tests/data/short_roll_error_draw65.csv: 47 samples over
 // 90 deg of roll. It was named a flow angularity, `explained`: the
-// angularity lowered BIC 11.3 more than the reading error, of which 9.9
+// angularity lowered BIC 11.6 more than the reading error, of which 9.9
 // were the reading error's two more terms. Judged by the fits alone
 // (TieGap), the two tie: `ambiguous`, neither added, a run at another spin
 // rate named to separate them; the reading error's fit holds the truth.
