@@ -57,11 +57,11 @@ BoundContext ContextOf(const FitResult& fit) {
   for (const SegmentFit& s : fit.segments) {
     b.theta_sigma_deg = std::max(b.theta_sigma_deg, s.sigma_deg.theta);
     b.psi_sigma_deg = std::max(b.psi_sigma_deg, s.sigma_deg.psi);
+    b.largest_deg = std::max(b.largest_deg, LargestTotalAngle(s.data));
     for (int i = 0; i < s.data.size(); ++i) {
-      const double theta = s.data.theta[i], psi = s.data.psi[i];
-      b.largest_deg = std::max(b.largest_deg, std::hypot(theta, psi));
-      b.largest_theta_deg = std::max(b.largest_theta_deg, std::abs(theta));
-      b.largest_psi_deg = std::max(b.largest_psi_deg, std::abs(psi));
+      b.largest_theta_deg =
+          std::max(b.largest_theta_deg, std::abs(s.data.theta[i]));
+      b.largest_psi_deg = std::max(b.largest_psi_deg, std::abs(s.data.psi[i]));
     }
   }
   return b;

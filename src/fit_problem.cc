@@ -151,9 +151,7 @@ int CountPoints(const std::vector<PreparedSegment>& segments) {
 double LargestAngle(const FitProblem& problem) {
   double largest = 0.0;
   for (const PreparedSegment& p : problem.segments) {
-    for (int i = 0; i < p.data.size(); ++i) {
-      largest = std::max(largest, std::hypot(p.data.theta[i], p.data.psi[i]));
-    }
+    largest = std::max(largest, LargestTotalAngle(p.data));
   }
   return largest;
 }

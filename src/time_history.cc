@@ -14,6 +14,7 @@
 
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -222,6 +223,14 @@ double CrossingPeriod(const TimeHistory& data, double min_crossings) {
   }
   if (crossings < min_crossings || crossings <= 0.0) return 0.0;
   return 2.0 * (data.t.back() - data.t.front()) / crossings;
+}
+
+double LargestTotalAngle(const TimeHistory& data) {
+  double largest = 0.0;
+  for (int i = 0; i < data.size(); ++i) {
+    largest = std::max(largest, std::hypot(data.theta[i], data.psi[i]));
+  }
+  return largest;
 }
 
 }  // namespace fit3dof

@@ -158,5 +158,16 @@ TEST(CrossingPeriod, FindsTheConingPeriod) {
   EXPECT_EQ(CrossingPeriod(TimeHistory(), 2.0), 0.0);
 }
 
+// The total angle, not either channel's: (3, -4) deg is 5 deg off zero,
+// larger than (4.5, 0); an empty record has none.
+TEST(LargestTotalAngle, IsTheLargestOfTheCombinedAngle) {
+  TimeHistory h;
+  h.Append(0.0, 90.0, 4.5, 0.0);
+  h.Append(0.1, 0.0, 3.0, -4.0);
+  h.Append(0.2, 0.0, -1.0, 1.0);
+  EXPECT_DOUBLE_EQ(LargestTotalAngle(h), 5.0);
+  EXPECT_EQ(LargestTotalAngle(TimeHistory()), 0.0);
+}
+
 }  // namespace
 }  // namespace fit3dof

@@ -65,6 +65,11 @@ void WriteTimeHistory(const std::string& path, const TimeHistory& history);
 // continuation's first window and the epicyclic start's span use it.
 double CrossingPeriod(const TimeHistory& data, double min_crossings);
 
+// The largest total angle (deg) of the record's readings, sqrt(theta^2 +
+// psi^2): the scale a bearing moment's fade and its bounds are set
+// against.
+double LargestTotalAngle(const TimeHistory& data);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_TIME_HISTORY_H_
