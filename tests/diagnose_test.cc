@@ -2326,7 +2326,7 @@ TEST(Diagnose, ANearTieAtAStepIsSearchedWithoutItsLead) {
 // `not_explained` with Cm_q 57 of its errors off. Now the tie's better
 // side counts (CompleteBic), and the search without the followed effect
 // of a tie so outdone is the answer (OutdoneTieBranch): the three effects
-// are named.
+// are named, or the angularity tied with a roll reading error (TieGap).
 TEST(Diagnose, ATieOutdoneOnItsOtherSideIsSearchedWithoutItsLead) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
@@ -2750,7 +2750,8 @@ TEST(Diagnose, ANearTiesFirstStepMatchedWithoutItTiesWithWhatWasFound) {
 // taken; after the angularity a lag of the readings outdid the damping and
 // the Magnus moment and reached the noise: `not_explained`, Cm_q 36 of its
 // errors off. Without the asymmetry the three explain the record, their
-// complete model below the lag's.
+// complete model below the lag's (the angularity named, or tied with a roll
+// reading error: TieGap).
 TEST(Diagnose, AProbeAfterANearTiesFirstStepLosesToTheSearchWithoutIt) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
