@@ -393,6 +393,17 @@ double TieGap(double rise,
   return rise - extra * std::log(3.0 * std::max(1, rival_fit.points));
 }
 
+double TieGap(const Contender& lead,
+              const Contender& rival,
+              bool roll_separates) {
+  return TieGap(rival.bic - lead.bic,
+                *lead.candidate->effect,
+                lead.fit,
+                *rival.candidate->effect,
+                rival.fit,
+                roll_separates);
+}
+
 bool KnownAbsent(const DiagnoseOptions& options, const std::string& id) {
   return std::find(options.absent.begin(), options.absent.end(), id) !=
          options.absent.end();
@@ -774,16 +785,10 @@ std::vector<int> Earned(const FitResult& current,
   const bool roll_separates = RollSeparates(FittedData(current));
   for (size_t i = 0; i < contenders->size(); ++i) {
     Contender& c = (*contenders)[i];
-    if (!earned.empty()) {
-      const Contender& lead = (*contenders)[earned[0]];
-      if (TieGap(c.bic - lead.bic,
-                 *lead.candidate->effect,
-                 lead.fit,
-                 *c.candidate->effect,
-                 c.fit,
-                 roll_separates) >= options.ambiguity_bic) {
-        continue;
-      }
+    if (!earned.empty() &&
+        TieGap((*contenders)[earned[0]], c, roll_separates) >=
+            options.ambiguity_bic) {
+      continue;
     }
     Judge(current, added, options, out_of_sample, &c);
     VLOG(1) << current.name << ": " << c.record.effect << " (BIC drop "

@@ -240,6 +240,11 @@ double TieGap(double rise,
               const FitResult& rival_fit,
               bool roll_separates);
 
+// TieGap of the contender `rival` behind `lead`, refitted at one round.
+double TieGap(const Contender& lead,
+              const Contender& rival,
+              bool roll_separates);
+
 // The contenders judged in BIC order until the best that earns its place
 // and every other within ambiguity_bic of it (TieGap) are known; returns
 // the indices of those that earned it.

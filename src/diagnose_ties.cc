@@ -940,14 +940,9 @@ std::vector<CandidateFit> Rivals(const std::vector<Contender>& contenders,
   const bool roll_separates = RollSeparates(data);
   std::vector<CandidateFit> rivals;
   for (int i = 0; i < static_cast<int>(contenders.size()); ++i) {
-    const Contender& c = contenders[i];
-    if (i != best && TieGap(c.bic - lead.bic,
-                            *lead.candidate->effect,
-                            lead.fit,
-                            *c.candidate->effect,
-                            c.fit,
-                            roll_separates) < options.ambiguity_bic) {
-      rivals.push_back(c.record);
+    if (i != best &&
+        TieGap(lead, contenders[i], roll_separates) < options.ambiguity_bic) {
+      rivals.push_back(contenders[i].record);
     }
   }
   if (probe != nullptr && probe->bic < lead.bic + options.ambiguity_bic) {
