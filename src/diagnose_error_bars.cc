@@ -305,14 +305,24 @@ std::vector<const Effect*> Needed(
 // companion's start (Effect::companions), the bearing moment's angle of 1
 // deg. Toward zero that angle would leave the record's angles on the other
 // side: a bearing moment fitted at 9.0 +- 12.8 deg on a pair of runs
-// reaching 8.0 deg is within its bounds there.
+// reaching 8.0 deg is within its bounds there. `names` may be aliases
+// (an effect's own list names Eq. 39's tunnel terms t1..t4, the fit
+// tunnel_Cm_theta..): each is matched by its place in `model`'s table.
 FitResult Shrunk(FitResult fit,
+                 ModelKind model,
                  const Effect& effect,
                  const std::vector<std::string>& names,
                  double k) {
+  std::vector<int> positions;
+  for (const std::string& name : names) {
+    const int position = FindParameter(model, name);
+    if (position >= 0) positions.push_back(position);
+  }
   for (ParameterEstimate& e : fit.parameters) {
     if (!e.segment.empty() || !(e.standard_error > 0.0) ||
-        std::find(names.begin(), names.end(), e.name) == names.end()) {
+        std::find(positions.begin(),
+                  positions.end(),
+                  FindParameter(model, e.name)) == positions.end()) {
       continue;
     }
     double least = 0.0;
@@ -443,7 +453,7 @@ std::string ImplausibleWithin(const Effect& effect,
                               double k) {
   const std::string why = Implausible(effect, c, fit);
   if (why.empty() ||
-      Implausible(effect, c, Shrunk(fit, effect, added, k)).empty()) {
+      Implausible(effect, c, Shrunk(fit, c.model, effect, added, k)).empty()) {
     return "";
   }
   return why;

@@ -157,6 +157,34 @@ TEST(ImplausibleAmongAsJudged, ACalibrationInItsOtherFormByItsOwnTerms) {
   EXPECT_NE(judged(0.01), "");
 }
 
+// A tunnel stiffness added before is judged within its errors by the
+// terms its own list names t1 and t3 (the fit names them tunnel_Cm_theta
+// and tunnel_Cn_psi). Draw 70's 3-s run with a tunnel stiffness, a
+// nonlinear damping and a body yaw asymmetry: with the damping in, t1 =
+// -0.139 +- 0.127 on Eq. 43's ridge (half of |Cm_alpha + t1| being 0.115),
+// and the aliases had matched nothing, so the stiffness was judged at its
+// point fit and refused the damping beside it.
+TEST(ImplausibleAmongAsJudged, ATunnelStiffnessByItsAliasesWithinItsErrors) {
+  Case c;
+  c.parameters.assign(NumParameters(ModelKind::kSymmetric), {});
+  const Effect* stiffness = FindEffect("tunnel_stiffness");
+  ASSERT_EQ(TermsIn(c, *stiffness), (std::vector<std::string>{"t1", "t3"}));
+  DiagnoseOptions options;
+  options.bounds_within_errors = true;
+  const auto judged = [&](double error) {
+    FitResult fit = Fitted({{"Cm_alpha", -0.092},
+                            {"tunnel_Cm_theta", -0.139},
+                            {"tunnel_Cn_psi", -0.137}},
+                           8.0,
+                           8.0);
+    for (ParameterEstimate& e : fit.parameters) e.standard_error = error;
+    EXPECT_NE(Implausible(*stiffness, c, fit), "");
+    return ImplausibleAmongAsJudged({stiffness}, c, fit, options);
+  };
+  EXPECT_EQ(judged(0.127), "");
+  EXPECT_NE(judged(0.01).find("|t1|"), std::string::npos);
+}
+
 // A nonlinear damping may change Cm_q by up to 4 times its size at the
 // record's largest angle: 3 times (a damping that reverses at 8 deg) is
 // plausible, 5 is not.
