@@ -302,6 +302,7 @@ ResidualCheck TakeJointSteps(JointSet joint,
     for (int k : joint.members) {
       if (k == m) continue;
       others += (others.empty() ? "" : " and ") + contenders[k].record.effect;
+      d->steps.back().adopted_with.push_back(contenders[k].record.effect);
     }
     d->steps.back().joint_set = true;
     d->steps.back().note =

@@ -675,6 +675,9 @@ struct SearchNotes {
   bool bounded_lead = false;
   Case probe_case;
   FitResult probe_fit;
+  // The answer is the catalog's without probes (CatalogAlone), whose
+  // search had its own second thoughts.
+  bool catalog_alone = false;
 };
 
 // The forward search (diagnose.h) from `nominal`, the fit of `c`, with

@@ -503,6 +503,8 @@ struct DiagnosisStep {
   // with others (a joint set).
   std::string note;
   bool joint_set = false;  // adopted together with others
+  // A joint set's other members (ids), which this step was adopted with.
+  std::vector<std::string> adopted_with;
   // Diagnosis::fits of the model before and after the step (for a pruned
   // step: with and without it; `fit3dof diagnose` writes them to stepN/).
   int fit_before = -1;
