@@ -866,8 +866,8 @@ const DiagnosisStep* PartnerTied(const Diagnosis& d) {
 // damping (t2 5.7 +- 5.7, false) came in with the stiffness, which then
 // tied with a roll torque; the nonlinear damping, 46 lower beside that
 // answer, was only "not excluded". Without the tunnel damping the
-// asymmetry and the damping are named, the stiffness tied with the
-// roll torque.
+// asymmetry and the nonlinear damping are named, 13.9 lower, the
+// stiffness tied with a roll effect.
 Diagnosis WithoutTiedPartner(const Case& c,
                              const FitResult& nominal,
                              const DiagnoseOptions& options,
@@ -889,7 +889,7 @@ Diagnosis WithoutTiedPartner(const Case& c,
           << FormatNumber("%+.1f", -margin) << " against the first answer";
   if (!ExplainsRecord(other) || !(margin > 0.0)) return d;
   NoteDropped(AsContender(*step),
-              "adopted together with " + Joined(step->adopted_with, "and") +
+              "adopted together with " + Joined(step->adopted_with, " and ") +
                   ", which then tied with other effects; without it the "
                   "catalog's effects explain the record with a BIC " +
                   FormatNumber("%.1f", margin) + " lower",
