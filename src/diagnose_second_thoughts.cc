@@ -856,8 +856,8 @@ const DiagnosisStep* PartnerTied(const Diagnosis& d) {
   return nullptr;
 }
 
-// A step adopted only in a joint set (each member alone dragged the
-// coefficients or left its bounds) stands on its partner: when the
+// A step adopted in a joint set (its lead refused alone for dragging the
+// coefficients or leaving its bounds) stands on its partners: when a
 // partner then ties with other effects and is not adopted, the step is
 // in the final model without what let it in. The search without it
 // (`notes` then its notes) is the answer when it explains the record with
