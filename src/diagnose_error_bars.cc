@@ -307,22 +307,20 @@ std::vector<const Effect*> Needed(
 // side: a bearing moment fitted at 9.0 +- 12.8 deg on a pair of runs
 // reaching 8.0 deg is within its bounds there. `names` may be aliases
 // (an effect's own list names Eq. 39's tunnel terms t1..t4, the fit
-// tunnel_Cm_theta..): each is matched by its place in `model`'s table.
+// tunnel_Cm_theta..): each is matched by its name in `model`'s table.
 FitResult Shrunk(FitResult fit,
                  ModelKind model,
                  const Effect& effect,
                  const std::vector<std::string>& names,
                  double k) {
-  std::vector<int> positions;
+  std::vector<std::string> own;
   for (const std::string& name : names) {
     const int position = FindParameter(model, name);
-    if (position >= 0) positions.push_back(position);
+    if (position >= 0) own.push_back(ParameterTable(model)[position].name);
   }
   for (ParameterEstimate& e : fit.parameters) {
     if (!e.segment.empty() || !(e.standard_error > 0.0) ||
-        std::find(positions.begin(),
-                  positions.end(),
-                  FindParameter(model, e.name)) == positions.end()) {
+        std::find(own.begin(), own.end(), e.name) == own.end()) {
       continue;
     }
     double least = 0.0;
