@@ -212,6 +212,27 @@ struct Swap {
   std::string held;  // a tunnel term held at zero, or none
 };
 
+// The swap `w` of `step` (one of `steps`, fitted as `fit`) as a model
+// that keeps a tie open (Diagnosis::TieModel).
+Diagnosis::TieModel AsTieModel(const DiagnosisStep& step,
+                               const std::vector<DiagnosisStep>& steps,
+                               const FitResult& fit,
+                               const Swap& w,
+                               const DiagnoseOptions& options) {
+  Diagnosis::TieModel m;
+  m.bic = Bic(w.fit);
+  m.parameters = w.fit.parameters;
+  m.in_place_of = step.effect;
+  m.rise = m.bic - Bic(fit);
+  m.effect = w.rival->effect;
+  m.held = w.held;
+  for (const DiagnosisStep& s : steps) {
+    m.effects.push_back(s.effect == step.effect ? m.effect : s.effect);
+  }
+  m.check = CheckResiduals(w.fit, options);
+  return m;
+}
+
 // Whether the swap `w`, fitted, keeps its effect within its bounds, judged
 // within two of its errors.
 bool SwapWithin(const Swap& w) {
@@ -300,16 +321,17 @@ bool SeparatedOutOfSample(const CandidateFit& rival,
 // roll reading error that was there) or its swap is far worse (FarWorse);
 // a rival in the model is none, nor one out of sample separates from the
 // step (SeparatedOutOfSample). The
-// fits of the rivals that were fitted and kept the tie open go into
-// *as_good_fits.
-std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
-                                     const DiagnosisStep& step,
-                                     const std::vector<DiagnosisStep>& steps,
-                                     const Case& at,
-                                     const FitResult& fit,
-                                     const std::vector<TimeHistory>& data,
-                                     const DiagnoseOptions& options,
-                                     std::vector<FitResult>* as_good_fits) {
+// models of the rivals that were fitted and kept the tie open go into
+// *tie_models.
+std::vector<CandidateFit> Unresolved(
+    const std::vector<CandidateFit>& rivals,
+    const DiagnosisStep& step,
+    const std::vector<DiagnosisStep>& steps,
+    const Case& at,
+    const FitResult& fit,
+    const std::vector<TimeHistory>& data,
+    const DiagnoseOptions& options,
+    std::vector<Diagnosis::TieModel>* tie_models) {
   const Case without = WithoutStep(at, step);
   const Effect* own = FindEffect(step.effect);
   const bool twins_separate = SpinSeparatesRollLocked(at, fit, data);
@@ -385,7 +407,9 @@ std::vector<CandidateFit> Unresolved(const std::vector<CandidateFit>& rivals,
             return k.effect == w.rival->effect;
           });
       if (!listed) open.push_back(*w.rival);
-      if (close) as_good_fits->push_back(std::move(w.fit));
+      if (close) {
+        tie_models->push_back(AsTieModel(step, steps, fit, w, options));
+      }
     }
   }
   return open;
@@ -434,13 +458,8 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
     (*tied)[i] = true;
     (*redundant)[i] = kept == pruned.steps.end();
     if ((*redundant)[i]) continue;
-    std::vector<FitResult> swapped;
     const std::vector<CandidateFit> open = Unresolved(
-        rivals[i], *kept, pruned.steps, at, fit, data, options, &swapped);
-    for (const FitResult& f : swapped) {
-      d->tie_models.push_back(
-          {Bic(f), f.parameters, kept->effect, Bic(f) - Bic(fit)});
-    }
+        rivals[i], *kept, pruned.steps, at, fit, data, options, &d->tie_models);
     (*tied)[i] = !open.empty();
     if (open.empty()) continue;
     if (first < 0) first = static_cast<int>(i);

@@ -217,6 +217,17 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
                                    {"check", Check(a.check)},
                                    {"parameters", Estimates(a.parameters)}});
   }
+  out["tie_models"] = json::array();
+  for (const Diagnosis::TieModel& m : d.tie_models) {
+    out["tie_models"].push_back(
+        {{"effects", m.effects},
+         {"effect", m.effect},
+         {"in_place_of", m.in_place_of},
+         {"held", m.held.empty() ? json(nullptr) : json(m.held)},
+         {"bic_rise", m.rise},
+         {"check", Check(m.check)},
+         {"parameters", Estimates(m.parameters)}});
+  }
   out["tie_stand_in"] = d.stand_in.empty() ? json(nullptr) : json(d.stand_in);
   out["stood_in"] = json::array();
   for (size_t i = 0; i < d.stood_in.size(); ++i) {
@@ -344,6 +355,12 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
            FormatNumber("%.3g", a.check.probable_error) +
            (a.check.at_noise_level ? ", at the noise level\n"
                                    : ", residuals structured\n");
+  }
+  for (const Diagnosis::TieModel& m : d.tie_models) {
+    out += "  model that keeps a tie open: " + Joined(m.effects, " and ") +
+           " (" + m.effect + " in place of " + m.in_place_of + "): BIC " +
+           FormatNumber("%+.1f", m.rise) + ", probable error " +
+           FormatNumber("%.3g", m.check.probable_error) + "\n";
   }
   if (!d.outside_catalog.effect.empty()) {
     out += "  outside the catalog, not adopted: " + d.outside_catalog.effect +

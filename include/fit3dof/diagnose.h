@@ -647,11 +647,18 @@ struct Diagnosis {
   // its values too (diagnose_error_bars.cc, WidenForTie), unless a complete
   // model of the tie (alternatives) is lower in BIC by more than
   // ambiguity_bic: then it stopped short of where its model fits.
+  // Each is reported (diagnosis.json: tie_models) with the effects it
+  // holds: where a second tie is left open, the alternatives hold its
+  // followed effect, and these the model with each of its rivals instead.
   struct TieModel {
     double bic = 0.0;
     std::vector<ParameterEstimate> parameters;
     std::string in_place_of;  // the tied step's effect the rival replaced
     double rise = 0.0;        // BIC against the model with that step
+    std::string effect;       // the rival swapped in
+    std::string held;         // a tunnel term of it held at zero, or none
+    std::vector<std::string> effects;  // the model's, in the search's order
+    ResidualCheck check;
   };
   std::vector<TieModel> tie_models;
   // The contenders of the search's rounds that the record cannot exclude
