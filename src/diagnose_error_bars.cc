@@ -106,17 +106,6 @@ std::vector<CompleteModel> CompleteModels(const Diagnosis& d,
   return complete;
 }
 
-// Whether effect `id` is in a tie the diagnosis leaves open.
-bool InTie(const Diagnosis& d, const std::string& id) {
-  auto in = [&](const std::vector<CandidateFit>& tie) {
-    return std::any_of(tie.begin(), tie.end(), [&](const CandidateFit& k) {
-      return k.effect == id;
-    });
-  };
-  return in(d.ambiguous) ||
-         std::any_of(d.later_ties.begin(), d.later_ties.end(), in);
-}
-
 // Why `effect` (its parameters `added`), fitted beside the effects
 // `model` into `fit`, lies outside the bounds (empty if it does not):
 // the model's effects as fitted, `effect` within two of its standard

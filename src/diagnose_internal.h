@@ -187,6 +187,9 @@ std::string Joined(const std::vector<std::string>& items, const char* last);
 std::vector<std::vector<CandidateFit>> Ties(const Diagnosis& d);
 std::vector<CandidateFit> Tied(const Diagnosis& d);
 
+// Whether effect `id` is in a tie the diagnosis leaves open.
+bool InTie(const Diagnosis& d, const std::string& id);
+
 // Sets d->verdict and d->verdict_text from what the search left in *d
 // (its ties, steps, partial steps, probe and final residual check), and
 // d->residual_description when the residuals are not explained

@@ -840,17 +840,13 @@ Diagnosis PastNoise(const Case& c,
 }
 
 // The step of `d`, an ambiguous answer, adopted in a joint set with an
-// effect that then went into the tie (Diagnosis::ambiguous), or null.
+// effect that then went into a tie (Diagnosis::ambiguous or later_ties),
+// or null.
 const DiagnosisStep* PartnerTied(const Diagnosis& d) {
   if (d.verdict != Verdict::kAmbiguous) return nullptr;
   for (const DiagnosisStep& s : d.steps) {
     for (const std::string& partner : s.adopted_with) {
-      if (std::any_of(
-              d.ambiguous.begin(),
-              d.ambiguous.end(),
-              [&](const CandidateFit& k) { return k.effect == partner; })) {
-        return &s;
-      }
+      if (InTie(d, partner)) return &s;
     }
   }
   return nullptr;

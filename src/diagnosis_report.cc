@@ -173,6 +173,13 @@ std::vector<CandidateFit> Tied(const Diagnosis& d) {
   return tied;
 }
 
+bool InTie(const Diagnosis& d, const std::string& id) {
+  const std::vector<CandidateFit> tied = Tied(d);
+  return std::any_of(tied.begin(), tied.end(), [&](const CandidateFit& k) {
+    return k.effect == id;
+  });
+}
+
 std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   json out;
   out["name"] = c.name;
