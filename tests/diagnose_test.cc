@@ -2311,6 +2311,7 @@ TEST(Diagnose, AStepTheEffectsNotExcludedBeatTogetherIsReplaced) {
 // of it is refitted (Refitted): the angularity ties with the trim moment
 // and the roll reading error.
 TEST(Diagnose, TheOffsetFamilyIsRefittedTogether) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_draw73.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2583,6 +2584,7 @@ TEST(Diagnose, AStepWhoseJointPartnerTiedIsSearchedWithout) {
 // named, 9.6 lower in BIC (the true model's own fit is 16 below every
 // model of the first answer).
 TEST(Diagnose, AStepWhosePartnerWentIntoALaterTieIsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_draw74.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
