@@ -173,11 +173,16 @@ std::vector<CandidateFit> Tied(const Diagnosis& d) {
   return tied;
 }
 
+// Without Tied's copy: called per contender where the final error bars
+// are weighed.
 bool InTie(const Diagnosis& d, const std::string& id) {
-  const std::vector<CandidateFit> tied = Tied(d);
-  return std::any_of(tied.begin(), tied.end(), [&](const CandidateFit& k) {
-    return k.effect == id;
-  });
+  const auto in = [&](const std::vector<CandidateFit>& tie) {
+    return std::any_of(tie.begin(), tie.end(), [&](const CandidateFit& k) {
+      return k.effect == id;
+    });
+  };
+  return in(d.ambiguous) ||
+         std::any_of(d.later_ties.begin(), d.later_ties.end(), in);
 }
 
 std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
