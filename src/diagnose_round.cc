@@ -182,7 +182,8 @@ void Judge(const FitResult& current,
     const double gain = out_of_sample->Gain(FromSolution(k.c, c->fit));
     c->record.prediction_gain = gain;
     const double needed = GainNeeded(static_cast<int>(k.added.size()), options);
-    if (!(gain > needed)) {
+    c->unpredicted = !(gain > needed);
+    if (c->unpredicted) {
       why =
           "it does not predict the held-out part of the record better "
           "(log-likelihood gain " +
@@ -1285,29 +1286,19 @@ std::vector<int> UnionPool(int lead,
 
 }  // namespace
 
-bool Jointly(const Case& current,
-             const FitResult& fit,
-             const std::vector<TimeHistory>& data,
-             const DiagnoseOptions& options,
-             const std::vector<const Effect*>& added,
-             OutOfSample* out_of_sample,
-             const std::vector<Candidate>& candidates,
-             const std::vector<int>& earned,
-             std::vector<Contender>* contenders,
-             JointSet* joint) {
-  if (!options.joint_sets) return false;
-  const int judged =
-      earned.empty() ? static_cast<int>(contenders->size()) : earned[0];
-  const auto leads = [&](const Contender& k) {
-    return k.dragged || (options.joint_sets_from_bounds && k.out_of_bounds);
-  };
-  const JointRound round{CaseAtSolution(current, fit),
-                         fit,
-                         data,
-                         options,
-                         added,
-                         out_of_sample,
-                         *contenders};
+namespace {
+
+// The sets led by each of the first `judged` contenders that `leads`
+// (JointlyLedBy), then, when none earns, by each with pools drawn from
+// its own scores (LeadPool, UnionPool); Jointly's search for one lead
+// rule.
+template <typename Leads>
+bool LedJointly(const Leads& leads,
+                int judged,
+                const JointRound& round,
+                const std::vector<Candidate>& candidates,
+                std::vector<Contender>* contenders,
+                JointSet* joint) {
   for (int lead = 0; lead < judged; ++lead) {
     if (leads((*contenders)[lead]) && JointlyLedBy(lead, round, joint)) {
       return true;
@@ -1331,6 +1322,41 @@ bool Jointly(const Case& current,
     }
   }
   return false;
+}
+
+}  // namespace
+
+bool Jointly(const Case& current,
+             const FitResult& fit,
+             const std::vector<TimeHistory>& data,
+             const DiagnoseOptions& options,
+             const std::vector<const Effect*>& added,
+             OutOfSample* out_of_sample,
+             const std::vector<Candidate>& candidates,
+             const std::vector<int>& earned,
+             std::vector<Contender>* contenders,
+             JointSet* joint) {
+  if (!options.joint_sets) return false;
+  const int judged =
+      earned.empty() ? static_cast<int>(contenders->size()) : earned[0];
+  const auto refused = [&](const Contender& k) {
+    return k.dragged || (options.joint_sets_from_bounds && k.out_of_bounds);
+  };
+  const JointRound round{CaseAtSolution(current, fit),
+                         fit,
+                         data,
+                         options,
+                         added,
+                         out_of_sample,
+                         *contenders};
+  if (LedJointly(refused, judged, round, candidates, contenders, joint)) {
+    return true;
+  }
+  // A round nothing else ends: the contenders that predicted nothing held
+  // out, each perhaps for want of another (Jointly's header).
+  const auto unpredicted = [](const Contender& k) { return k.unpredicted; };
+  return earned.empty() &&
+         LedJointly(unpredicted, judged, round, candidates, contenders, joint);
 }
 
 bool InOrder(const Case& current,

@@ -60,6 +60,7 @@ struct Contender {
   CandidateFit record;
   bool dragged = false;        // refused for dragging the coefficients (Judge)
   bool out_of_bounds = false;  // refused for leaving its bounds (Judge)
+  bool unpredicted = false;    // refused for predicting nothing held out
   bool minor = false;  // lowered BIC by less than min_bic_drop (Contenders)
 };
 
@@ -293,7 +294,11 @@ struct JointSet {
 // goes into *joint; false when none. When no lead's pools earn, each
 // lead draws a last pool from the scores at its own fit (LeadPool), the
 // effects of `candidates` (the round's, scored at `fit`) it names that no
-// round refitted appended to *contenders, refitted alone.
+// round refitted appended to *contenders, refitted alone. When none of
+// those earns and no contender earned alone, the contenders refused for
+// predicting nothing held out lead sets the same way: two effects each
+// missing beside the other may each predict nothing alone (on a 3-s run
+// of another body at 39 deg/s, a roll reading error and a Magnus moment).
 bool Jointly(const Case& current,
              const FitResult& fit,
              const std::vector<TimeHistory>& data,

@@ -294,7 +294,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   own_errors(&out["final_parameters"]);
   out["initial_rms_residual_deg"] = JsonChannels(d.initial.rms_deg);
   out["final_rms_residual_deg"] = JsonChannels(d.final.rms_deg);
-  out["noise_sigma_deg"] = JsonChannels(c.sigma);
+  out["noise_sigma_deg"] = JsonChannels(DiagnosedNoise(d, c.sigma));
   out["initial"] = Check(d.initial);
   out["final"] = Check(d.final);
   out["steps"] = json::array();
@@ -307,6 +307,13 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["pruned"] = json::array();
   for (const DiagnosisStep& s : d.pruned) out["pruned"].push_back(Step(s));
   return out.dump(2) + "\n";
+}
+
+ChannelValues DiagnosedNoise(const Diagnosis& d, const ChannelValues& stated) {
+  if (!d.noise_held || d.fits.empty() || d.fits[0].segments.empty()) {
+    return stated;
+  }
+  return d.fits[0].segments[0].sigma_deg;  // one level for every segment
 }
 
 std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {

@@ -170,10 +170,8 @@ std::string LargerThanSigma(const ResidualCheck& check,
 // sigma: auto (DiagnoseOptions::noise_held): the noise the search held,
 // and what its level could not tell.
 std::string HeldNoise(const Diagnosis& d) {
-  if (!d.noise_held || d.fits.empty() || d.fits[0].segments.empty()) {
-    return "";
-  }
-  const ChannelValues& s = d.fits[0].segments[0].sigma_deg;
+  if (!d.noise_held) return "";
+  const ChannelValues s = DiagnosedNoise(d, ChannelValues{});
   return "; sigma: auto, the noise held at the record's own estimate (phi " +
          FormatNumber("%.3g", s.phi) + ", theta " +
          FormatNumber("%.3g", s.theta) + ", psi " +

@@ -187,7 +187,7 @@ int DiagnoseCommand(const std::vector<std::string>& args) {
   }
   WriteFileAtomically(FLAGS.out_dir + "/final.yaml", CaseToYaml(d.final_case));
   WriteFileAtomically(FLAGS.out_dir + "/diagnosis.json", DiagnosisJson(d, c));
-  std::cout << FormatDiagnosis(d, c.sigma)
+  std::cout << FormatDiagnosis(d, DiagnosedNoise(d, c.sigma))
             << "fits of each step: " << FLAGS.out_dir
             << "/step*/ (tools/plot draws them); rerun: " << FLAGS.out_dir
             << "/final.yaml\n";

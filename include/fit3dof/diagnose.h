@@ -740,8 +740,15 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options);
 // with chance 1e-3.
 std::string DescribeResiduals(const FitResult& fit);
 
+// The noise level the diagnosis weighed the residuals by: the record's own
+// estimate it held with sigma: auto (Diagnosis::noise_held), else `stated`
+// (the config's sigma).
+ChannelValues DiagnosedNoise(const Diagnosis& d, const ChannelValues& stated);
+
+// diagnosis.json; `noise_reference` the case diagnosed (its sigma as
+// DiagnosedNoise reads it).
 std::string DiagnosisJson(const Diagnosis& d, const Case& noise_reference);
-// `sigma`: the stated noise level, quoted beside the residuals.
+// `sigma`: the noise level quoted beside the residuals (DiagnosedNoise).
 std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma);
 
 }  // namespace fit3dof
