@@ -821,13 +821,12 @@ double ModelFreeNoiseDeg(const SegmentFit& s, int ch) {
 // (tools/diagnose_suite --vary-conditions, draw 79) a pitch reading's lag
 // held at 1.22 times the true noise in pitch left 2.0 times that noise
 // there, under the held level's limit, and a Magnus moment and a body
-// asymmetry were named. The level's
-// limit widens by that estimate's spread (CheckResiduals), and the search
-// goes on past it while an effect earns its place (noise_held). On a 3-s
-// run with a Magnus moment at 1.3 times the noise, the fit with sigma:
-// auto had left residuals as white as noise at its own level, and the
-// diagnosis had said `noise_level`. The final config keeps sigma: auto
-// for its rerun.
+// asymmetry were named. The level's limit widens by that estimate's
+// spread (CheckResiduals), and the search goes on past it while an effect
+// earns its place (noise_held). On a 3-s run with a Magnus moment at 1.3
+// times the noise, the fit with sigma: auto had left residuals as white as
+// noise at its own level, and the diagnosis had said `noise_level`. The
+// final config keeps sigma: auto for its rerun.
 Diagnosis WithNoiseHeld(const Case& c, const DiagnoseOptions& options) {
   const FitResult relaxed = Fit(c);
   Case held = c;
