@@ -4042,5 +4042,23 @@ TEST(Diagnose, SigmaAutoHoldsTheResidualsModelFreeLevel) {
   EXPECT_LT(DiagnosedNoise(d, {}).theta, 0.0115) << text;
 }
 
+// The effects tied in an answer are candidates past the noise beside it
+// (PastNoise): on a cone of another body
+// (tests/data/coning_damping_magnus_angularity_varied80.yaml) a Magnus
+// moment tied with the tunnel damping and a flow angularity were in; past
+// the noise a roll torque took the damping's roll part (Eq. 39) and was
+// added at 4.8 of its errors, the damping only not excluded. With the
+// tied effects weighed there too, the damping is named, no roll torque.
+TEST(Diagnose, TiedEffectsAreWeighedPastTheNoise) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_damping_magnus_angularity_varied80.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  const std::set<std::string> added = EffectIds(d.steps);
+  EXPECT_TRUE(added.count("tunnel_damping")) << text;
+  EXPECT_FALSE(added.count("roll_torque")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.1473}, {"Cm_q", -8.716}}, text);
+}
+
 }  // namespace
 }  // namespace fit3dof
