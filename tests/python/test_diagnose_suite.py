@@ -51,3 +51,35 @@ def test_the_sizing_shrinks_an_effect_that_drove_the_motion_away(tmp_path):
                                  1.5, 1)
     assert abs(terms["Cm_q_delta2"]) < UNDAMPING["Cm_q_delta2"]
     assert math.isfinite(reached) and abs(reached - 1.5) < 0.15
+
+
+def test_varied_conditions_are_drawn_per_draw_and_leave_table6(monkeypatch):
+    import copy
+    base = copy.deepcopy(suite.CONDITIONS)
+    drawn = []
+    for draw in (77, 77, 78):
+        monkeypatch.setattr(suite, "CONDITIONS", copy.deepcopy(base))
+        suite.varied_conditions(draw)
+        drawn.append(copy.deepcopy(suite.CONDITIONS))
+    # The same draw, the same conditions; another draw, others.
+    assert drawn[0] == drawn[1]
+    assert drawn[0]["short"] != drawn[2]["short"]
+    for conditions in drawn:
+        # The report's Table 6 motion stays as it is.
+        assert conditions["table6"] == base["table6"]
+        for name in ("short", "coning", "pair"):
+            c = conditions[name]
+            assert -0.40 <= c["coef"]["Cm_alpha"] <= -0.12
+            assert -10.0 <= c["coef"]["Cm_q"] <= -1.5
+            assert 0.08 <= c["body"]["Ix"] / c["body"]["Iy"] <= 0.201
+            assert 8 <= c["points_per_cycle"] <= 12
+            assert 20.0 <= c["initial"][1] <= 40.0
+            assert 6.0 <= c["initial"][2] <= 10.0
+        # Circular coning: the pitch plane turns at the pitch frequency.
+        coning = conditions["coning"]
+        rate = 2.0 * math.pi * suite.natural_hz(coning) * coning["initial"][2]
+        assert coning["initial"][5] == pytest.approx(rate)
+        # The pair's second run: twice the spin, half the amplitude.
+        first, second = conditions["pair"]["runs"]
+        assert second[1] == pytest.approx(2.0 * first[1])
+        assert second[2] == pytest.approx(first[2] / 2.0)
