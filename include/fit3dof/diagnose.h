@@ -686,7 +686,9 @@ struct Diagnosis {
   // by how much per unit of its terms (the fitted value is the
   // combination). On a steady cone a Magnus moment keeps 0.014% of its
   // information apart from Cm_q (draw 42: the final Cm_q -0.24 against a
-  // truth of -5.5: Cm_q + 0.0325 Cm_p_alpha).
+  // truth of -5.5: Cm_q + 0.0325 Cm_p_alpha). An answer with nothing added
+  // lists the nominal fit's near twins so (a record at the noise says
+  // nothing of them, and its coefficients carry any that is there).
   std::vector<CoefficientTwin> coefficient_twins;
   // The effects tried beside the complete model that were only lesser
   // refits (each round that refitted them, they lowered BIC by less than
