@@ -800,12 +800,8 @@ namespace {
 // 3-s run at 9 points per cycle, 6.3 deg, the pitch data's level was
 // 0.0122-0.0150 deg against a true 0.01, its residual's 0.0089-0.0117).
 double ModelFreeNoiseDeg(const SegmentFit& s, int ch) {
-  const std::vector<double>& measured = s.data.channel(ch);
-  std::vector<double> residual(measured.size());
-  for (size_t i = 0; i < measured.size(); ++i) {
-    residual[i] = s.computed[3 * i + ch] - measured[i];
-  }
-  return std::min(DataNoiseDeg(measured), DataNoiseDeg(residual));
+  return std::min(DataNoiseDeg(s.data.channel(ch)),
+                  DataNoiseDeg(ChannelResidual(s, ch)));
 }
 
 // sigma: auto, whose fits each set their own weights (each channel's RMS

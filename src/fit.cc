@@ -315,10 +315,7 @@ void FitSegments(const Case& c,
                                      line.roll_harmonic,
                                      line.calibration_power});
       }
-      std::vector<double> residual(p.data.size());
-      for (int i = 0; i < p.data.size(); ++i) {
-        residual[i] = fit.computed[3 * i + ch] - measured[ch][i];
-      }
+      const std::vector<double> residual = ChannelResidual(fit, ch);
       const double dt =
           (p.data.t.back() - p.data.t.front()) / std::max(1, p.data.size() - 1);
       for (const SpectralLine& line : SpectralLines(residual, dt)) {
@@ -661,6 +658,15 @@ void ReportWildPoints(const Case& c,
 }
 
 }  // namespace
+
+std::vector<double> ChannelResidual(const SegmentFit& s, int ch) {
+  const std::vector<double>& measured = s.data.channel(ch);
+  std::vector<double> residual(measured.size());
+  for (size_t i = 0; i < measured.size(); ++i) {
+    residual[i] = s.computed[3 * i + ch] - measured[i];
+  }
+  return residual;
+}
 
 double SpinHz(const SegmentFit& s) {
   const int n = s.data.size();

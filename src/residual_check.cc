@@ -82,13 +82,9 @@ ResidualCheck CheckResiduals(const FitResult& fit,
   for (int ch = 0; ch < 3; ++ch) {
     double num = 0.0, den = 0.0;
     for (const SegmentFit& s : fit.segments) {
-      const std::vector<double>& measured = s.data.channel(ch);
-      std::vector<double> r(s.data.size());
+      const std::vector<double> r = ChannelResidual(s, ch);
       double mean = 0.0;
-      for (int i = 0; i < s.data.size(); ++i) {
-        r[i] = s.computed[3 * i + ch] - measured[i];
-        mean += r[i] / s.data.size();
-      }
+      for (int i = 0; i < s.data.size(); ++i) mean += r[i] / s.data.size();
       for (int i = 0; i + 1 < s.data.size(); ++i)
         num += (r[i] - mean) * (r[i + 1] - mean);
       for (int i = 0; i < s.data.size(); ++i)

@@ -188,6 +188,10 @@ void CheckRidges(const Case& c,
 // The spin rate (Hz) of a segment's fitted motion, over the record.
 double SpinHz(const SegmentFit& s);
 
+// A segment's residual in channel `ch` (0 phi, 1 theta, 2 psi), deg per
+// sample: computed minus measured.
+std::vector<double> ChannelResidual(const SegmentFit& s, int ch);
+
 // The estimate of the shared parameter (not a segment's own) named `name`,
 // or null: in a fit's estimates, or in a list of them.
 const ParameterEstimate* SharedEstimate(const FitResult& result,
