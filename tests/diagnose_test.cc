@@ -4075,5 +4075,3759 @@ TEST(Diagnose, ProbesAreFittedPastThoseOfTheWrongSign) {
   EXPECT_EQ(d.outside_catalog.effect, "reading_gain") << text;
 }
 
+// A rival that tied with a step where the step was added and loses its
+// swap by far is fitted again from its own terms first (Unresolved): on a
+// 3-s run of another body with a gas-bearing moment, a calibration error
+// and a roll torque, sigma: auto
+// (tests/data/short_bearing_calibration_roll_torque_varied85.yaml), the
+// roll damping and the roll torque lowered BIC alike at their step (twins
+// at one spin rate), but the torque swapped in for the damping ran the
+// bearing's angle along its ridge and stopped 30.8 worse: the roll damping
+// was named. From its own terms first the swap is as good: a tie.
+TEST(Diagnose, ASwapFarWorseIsRefittedFromTheRivalsOwnTerms) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_bearing_calibration_roll_torque_varied85.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.ambiguous),
+            (std::set<std::string>{"roll_damping", "roll_torque"}))
+      << text;
+  EXPECT_FALSE(EffectIds(d.steps).count("roll_damping")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.1534}, {"Cm_q", -7.049}}, text);
+}
+
+}  // namespace
+}  // namespace fit3dof
+
+namespace fit3dof {
+namespace {
+
+// The issue's short record: the Section 5.3 sharp cone, 3 s at 10 points
+// per cycle of its 1.55-Hz motion, 8 deg of coning, spinning at
+// `spin` deg/s, with a body-fixed trim moment that leaves residuals of
+// about 1.4 times the noise.
+Case ShortTruth(double spin) {
+  Case c = LoadConfig(testing::SourcePath("configs/report/table6_motion.yaml"));
+  for (ParameterSetting& p : c.parameters) p = ParameterSetting{};
+  c.body = {0.3491, 0.6667, 0.0301, 0.2583, 0.2583};
+  c.flow = {2900.0, 460.0};
+  const std::vector<std::pair<std::string, double>> values = {
+      {"Cm_alpha", -0.23},
+      {"Cm_q", -5.5},
+      {"Cm_alpha_delta2", -1.13},
+      {"Cm_0", 4.4e-5},
+      {"Cn_0", -3.3e-5},
+      {"phidot0", spin},
+      {"theta0", 8.0}};
+  SetValues(&c, values);
+  return c;
+}
+
+std::string SimulateShort(const Case& truth,
+                          const std::string& path,
+                          std::uint64_t seed) {
+  Case c = truth;
+  c.solver.step = 0.002;
+  return testing::WriteNoisyRecord(c, testing::ShortRecordTimes(), seed, path);
+}
+
+// ShortTruth without its trim moment.
+Case UntrimmedShortTruth(double spin) {
+  Case truth = ShortTruth(spin);
+  truth.parameters[FindParameter(truth.model, "Cm_0")].value = 0.0;
+  truth.parameters[FindParameter(truth.model, "Cn_0")].value = 0.0;
+  return truth;
+}
+
+// One 3-s run without trim at 30 deg/s (`path`, noise seed `seed`) whose
+// truth has the parameter `name` at `value`: a hidden fault's record.
+std::vector<std::string> ShortRunWith(const std::string& path,
+                                      const std::string& name,
+                                      double value,
+                                      std::uint64_t seed) {
+  Case truth = UntrimmedShortTruth(30.0);
+  truth.parameters[FindParameter(truth.model, name)].value = value;
+  return {SimulateShort(truth, path, seed)};
+}
+
+// *c in the asymmetric program with the body's own yaw stiffness: Cn_beta
+// untied from -Cm_alpha and `factor` times it. Returns Cn_beta.
+double UntieBodyYawStiffness(Case* c, double factor) {
+  *c = ToAsymmetric(*c);
+  ParameterSetting& cn_beta = c->parameters[FindParameter(c->model, "Cn_beta")];
+  cn_beta.tied_to = -1;
+  cn_beta.value *= factor;
+  return cn_beta.value;
+}
+
+// Two 3-s runs without trim, 30 deg/s at 8 deg and 60 deg/s at 4 deg,
+// each truth changed by `hide` before it is simulated (noise seeds `seed`
+// and seed + 1); the files, dir/run0.csv and dir/run1.csv.
+std::vector<std::string> TwoShortRuns(const std::string& dir,
+                                      std::uint64_t seed,
+                                      const std::function<void(Case*)>& hide) {
+  std::vector<std::string> files;
+  for (const auto& [spin, angle] : {std::pair{30.0, 8.0}, {60.0, 4.0}}) {
+    Case truth = UntrimmedShortTruth(spin);
+    truth.parameters[FindParameter(truth.model, "theta0")].value = angle;
+    hide(&truth);
+    const std::string path =
+        dir + "/run" + std::to_string(files.size()) + ".csv";
+    files.push_back(SimulateShort(truth, path, seed + files.size()));
+  }
+  return files;
+}
+
+// A fit config of the short records: Cm_alpha and Cm_q free, the cubic
+// stiffness known, no trim.
+Case ShortConfig(const std::vector<std::string>& files) {
+  Case c = ShortTruth(30.0);
+  for (const char* name : {"Cm_0", "Cn_0", "phidot0", "theta0"}) {
+    c.parameters[FindParameter(c.model, name)] = ParameterSetting{};
+  }
+  c.parameters[FindParameter(c.model, "Cm_alpha")] = {-0.2, true, false};
+  c.parameters[FindParameter(c.model, "Cm_q")] = {-2.0, true, false};
+  c.segments.clear();
+  for (size_t i = 0; i < files.size(); ++i) {
+    Segment s;
+    s.name = "run" + std::to_string(i + 1);
+    s.data_file = files[i];
+    for (int j = 0; j < 6; ++j) s.initial[j].free = true;
+    c.segments.push_back(s);
+  }
+  c.sigma = {0.01, 0.01, 0.01};
+  c.solver.step = 0.002;
+  c.source = files[0];
+  return c;
+}
+
+// The diagnosis, with the default options, of a suite record kept in
+// tests/data (`file`, under that directory) fitted from ShortConfig.
+Diagnosis DiagnoseRecord(const std::string& file) {
+  return Diagnose(ShortConfig({testing::SourcePath("tests/data/" + file)}),
+                  DiagnoseOptions());
+}
+
+// The diagnosis, with the default options, of a config kept in tests/data
+// (`file`, under that directory; its data files beside it).
+Diagnosis DiagnoseConfig(const std::string& file) {
+  return Diagnose(LoadConfig(testing::SourcePath("tests/data/" + file)),
+                  DiagnoseOptions());
+}
+
+// The same with the catalog's own forms only (DiagnoseOptions::other_forms
+// off): what the search does with a calibration error that is not a cube
+// when it can name only the cube.
+Diagnosis DiagnoseConfigOwnForms(const std::string& file) {
+  DiagnoseOptions options;
+  options.other_forms = false;
+  return Diagnose(LoadConfig(testing::SourcePath("tests/data/" + file)),
+                  options);
+}
+
+// `parameters` hold each of `truths` (name -> true value) within 3
+// standard errors; `context` follows a failure's message.
+void ExpectCovers(const std::vector<ParameterEstimate>& parameters,
+                  const std::map<std::string, double>& truths,
+                  const std::string& context) {
+  for (const auto& [name, value] : truths) {
+    const ParameterEstimate* e = SharedEstimate(parameters, name);
+    ASSERT_NE(e, nullptr) << name << "\n" << context;
+    EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
+        << name << " = " << e->value << " +- " << e->standard_error << "\n"
+        << context;
+  }
+}
+
+// `d`'s final model holds each of `truths` within 3 standard errors.
+void ExpectFinalCovers(const Diagnosis& d,
+                       const std::map<std::string, double>& truths,
+                       const std::string& context) {
+  ExpectCovers(d.FinalFit().parameters, truths, context);
+}
+
+// `d` names exactly `effects` (`explained`) and its final model holds each
+// of `truths` within 3 standard errors; `context` follows a failure's
+// message.
+void ExpectNamedExactly(const Diagnosis& d,
+                        const std::set<std::string>& effects,
+                        const std::map<std::string, double>& truths,
+                        const std::string& context) {
+  EXPECT_EQ(d.verdict, Verdict::kExplained) << context;
+  EXPECT_EQ(EffectIds(d.steps), effects) << context;
+  ExpectFinalCovers(d, truths, context);
+}
+
+// At one slow spin (90 deg of roll in the record) a body-fixed trim moment
+// and a roll-synchronous reading error leave the same signature: the
+// verdict says so, adds neither, and names what would separate them.
+// Two runs at different spin rates, diagnosed together, do separate them.
+TEST(Diagnose, AmbiguityIsAVerdictAndTwoSpinRatesSeparate) {
+  const std::string dir = testing::ScratchDirectory("diagnose_ambiguous");
+  const std::string slow =
+      SimulateShort(ShortTruth(30.0), dir + "/slow.csv", 3);
+  const Diagnosis one = Diagnose(ShortConfig({slow}), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(one, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(one.verdict), std::string("ambiguous")) << text;
+  EXPECT_TRUE(one.steps.empty()) << text;
+  const std::set<std::string> pair = EffectIds(one.ambiguous);
+  EXPECT_TRUE(pair.count("trim_moment")) << text;
+  EXPECT_NE(one.separated_by.find("spin"), std::string::npos) << text;
+  const nlohmann::json j =
+      nlohmann::json::parse(DiagnosisJson(one, ShortConfig({slow})));
+  EXPECT_EQ(j["verdict"], "ambiguous");
+  // The pair, and over 90 deg of roll a drift in time as well: the one
+  // tied explanation outside the catalog.
+  EXPECT_GE(j["ambiguous_between"].size(), 2u);
+  std::set<std::string> outside;
+  for (const std::string id : j["ambiguous_between"]) {
+    if (FindEffect(id) == nullptr) outside.insert(id);
+  }
+  EXPECT_FALSE(outside.empty()) << j.dump();
+  EXPECT_EQ(j["ambiguous_outside_catalog"].get<std::set<std::string>>(),
+            outside)
+      << j.dump();
+
+  if (testing::kSanitized) return;  // the second half: plain build
+  const std::string fast =
+      SimulateShort(ShortTruth(400.0), dir + "/fast.csv", 4);
+  const Diagnosis two = Diagnose(ShortConfig({slow, fast}), DiagnoseOptions());
+  const std::string both = FormatDiagnosis(two, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(two.verdict), std::string("explained")) << both;
+  ASSERT_EQ(two.steps.size(), 1u) << both;
+  EXPECT_EQ(two.steps[0].effect, "trim_moment") << both;
+}
+
+// Over 90 deg of roll a pitch reading drifting 0.05 deg in 3 s and a
+// roll-synchronous reading error look alike: the reading error is not
+// adopted, and the verdict names the drift outside the catalog as its
+// rival (or finds nothing that explains the record).
+TEST(Diagnose, ARollLockedEffectTiesWithADriftOnLessThanARevolution) {
+  const std::string dir = testing::ScratchDirectory("diagnose_short_drift");
+  SimulateShort(UntrimmedShortTruth(30.0), dir + "/clean.csv", 12);
+  TimeHistory data = ReadTimeHistory(dir + "/clean.csv");
+  for (int i = 0; i < data.size(); ++i) data.theta[i] += 0.016 * data.t[i];
+  WriteTimeHistory(dir + "/data.csv", data);
+  const Diagnosis d =
+      Diagnose(ShortConfig({dir + "/data.csv"}), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.steps.empty()) << text;
+  const std::string verdict = VerdictToString(d.verdict);
+  if (verdict == "ambiguous") {
+    // The rival is a drift: the fitted probe (theta_drift near the truth)
+    // or, when the probe falls short, the roll-locked rule's unfitted one.
+    ASSERT_EQ(d.ambiguous.size(), 2u) << text;
+    const CandidateFit& rival = d.ambiguous[1];
+    if (rival.effect == "reading_drift") {
+      ASSERT_EQ(rival.parameters.size(), 2u) << text;
+      for (const ParameterEstimate& e : rival.parameters) {
+        if (e.name == "theta_drift") {
+          EXPECT_NEAR(e.value, 0.016, 3.0 * e.standard_error) << text;
+        }
+      }
+      EXPECT_NE(d.separated_by.find("second run"), std::string::npos) << text;
+    } else {
+      EXPECT_EQ(rival.effect, "drift_in_time") << text;
+      EXPECT_NE(d.separated_by.find("revolution of roll"), std::string::npos)
+          << text;
+      EXPECT_NE(text.find("drift_in_time (outside the catalog, not fitted)"),
+                std::string::npos)
+          << text;
+    }
+  } else {
+    EXPECT_EQ(verdict, "not_explained") << text;
+  }
+  // The final model is the nominal fit.
+  EXPECT_EQ(&d.FinalFit(), &d.fits.front());
+}
+
+// tools/diagnose_suite's `short` trim moment (draw 10), kept as
+// tests/data/short_trim_moment_seed10.csv: over 90 deg of roll the fitted
+// drift of the readings came out 0.4 lower in BIC than the trim moment,
+// and with no margin for a drift against a roll-locked effect the record
+// was not explained. A difference that small is no evidence either way
+// (DiagnoseOptions::drift_bic): the two tie, the trim moment among the
+// tied effects, nothing added.
+TEST(Diagnose, ADriftBarelyBetterThanATrimMomentTiesWithIt) {
+  const Diagnosis d = DiagnoseRecord("short_trim_moment_seed10.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("trim_moment")) << text;
+  EXPECT_TRUE(tied.count("reading_drift")) << text;
+}
+
+// tools/diagnose_suite --vary's `short` roll reading error beside a
+// nonlinear damping of 3.5 times |Cm_q| at 8 deg (draw 13), kept as
+// tests/data/short_roll_nonlinear_damping_vary13.csv. The damping drags
+// Cm_q alone and ranks last of the round's four contenders; the three
+// ranked before it, roll-locked, fail alone only to predict the held-out
+// part. A joint set drawn from contenders after the lead alone had none
+// to draw: the record ended `not_explained`, Cm_q 145 of its errors off.
+// Drawn from those before it too (JointPool), the damping is added with a
+// roll-locked effect, the reading error among those tied, and Cm_q and
+// the damping's term come within 3 errors of the truth.
+TEST(Diagnose, AJointSetDrawsOnContendersRankedAboveItsLead) {
+  const Diagnosis d = DiagnoseRecord("short_roll_nonlinear_damping_vary13.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_NE(d.verdict, Verdict::kNotExplained) << text;
+  std::set<std::string> named = EffectIds(d.ambiguous);
+  for (const DiagnosisStep& s : d.steps) named.insert(s.effect);
+  EXPECT_TRUE(named.count("nonlinear_damping")) << text;
+  EXPECT_TRUE(named.count("roll_interaction")) << text;
+  ExpectFinalCovers(d, {{"Cm_q", -5.5}, {"Cm_q_delta2", 982.87}}, text);
+}
+
+// On a 3-s coning run the Magnus moment acts along the motion as Cm_q
+// does: its score at every round's solution was spanned by Cm_q (novelty
+// about 1e-5), so no round refitted it and it was never tried beside the
+// final model. That model (a tunnel damping, a tie of the angularity and
+// the reading error) reached the noise with Cm_q at -2.15 +- 0.03, 106 of
+// its errors from the truth. Tried there as a near twin (NearTwins), the
+// Magnus moment is not excluded, and the final error bars cover the
+// truth.
+TEST(Diagnose, NearTwinsOfTheFreeParametersAreTriedBesideTheFinalModel) {
+  const Diagnosis d =
+      DiagnoseConfig("coning_damping_magnus_angularity_vary14.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("magnus")) << text;
+  EXPECT_NE(std::find(d.near_twins.begin(), d.near_twins.end(), "magnus"),
+            d.near_twins.end())
+      << text;
+  EXPECT_NE(text.find("near twin"), std::string::npos) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
+// An engineer who knows the tunnel has no Magnus moment in it says so
+// (`--absent magnus`): the effect is never tried, so the near twin no
+// longer widens Cm_q's error bar (the other effects not excluded hardly
+// do), and the text and diagnosis.json say what was declared absent.
+TEST(Diagnose, EffectsKnownAbsentAreNeverTried) {
+  DiagnoseOptions options;
+  options.absent = {"magnus"};
+  const Case c = LoadConfig(testing::SourcePath(
+      "tests/data/coning_damping_magnus_angularity_vary14.yaml"));
+  const Diagnosis d = Diagnose(c, options);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.near_twins.empty()) << text;
+  std::set<std::string> tried = EffectIds(d.not_excluded);
+  for (const auto& ids :
+       {EffectIds(d.steps), EffectIds(d.ambiguous), EffectIds(d.rejected)}) {
+    tried.insert(ids.begin(), ids.end());
+  }
+  EXPECT_FALSE(tried.count("magnus")) << text;
+  // The Magnus moment had widened it 120-fold (+- 1.9 against 0.016).
+  const ParameterEstimate* cm_q = SharedEstimate(d.FinalFit(), "Cm_q");
+  ASSERT_NE(cm_q, nullptr);
+  const auto own = d.model_standard_errors.find("Cm_q");
+  if (own != d.model_standard_errors.end()) {
+    EXPECT_LT(cm_q->standard_error, 2.0 * own->second) << text;
+  }
+  EXPECT_NE(text.find("known absent, not tried: magnus"), std::string::npos)
+      << text;
+  const nlohmann::json json = nlohmann::json::parse(DiagnosisJson(d, c));
+  EXPECT_EQ(json["effects_known_absent"], nlohmann::json::array({"magnus"}));
+}
+
+// On a 3-s run with a nonlinear damping at 0.9 of its bound, Cm_q takes
+// it (its near twin, novelty 0.0014): the nominal fit reaches the noise
+// level with Cm_q 61 of its errors off, and the search had stopped there.
+// The damping's score stands 11 above ln(n), so the near twins get one
+// round (HiddenTwins): the damping is named, and Cm_q and its term come
+// within 3 errors of the truth.
+TEST(Diagnose, ANearTwinHiddenAtTheNoiseLevelGetsARound) {
+  const Diagnosis d = DiagnoseRecord("short_nonlinear_damping_vary15.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  std::set<std::string> named = EffectIds(d.ambiguous);
+  for (const DiagnosisStep& s : d.steps) named.insert(s.effect);
+  EXPECT_TRUE(named.count("nonlinear_damping")) << text;
+  ExpectFinalCovers(d, {{"Cm_q", -5.5}, {"Cm_q_delta2", 277.19}}, text);
+}
+
+// A clean 48-s Table 6 record whose noise holds a line at the spin
+// frequency: a product of inertia, a near twin of the initial conditions
+// alone (novelty 0.0006), scores 24.2 there, and had been added at 5.0 of
+// its errors. It moves no coefficient (TwinShifts), so the search at the
+// noise level gives it no round: the answer is the noise level.
+TEST(Diagnose, ATwinOfTheInitialConditionsAloneGetsNoRoundAtTheNoise) {
+  const Diagnosis d = DiagnoseConfig("clean_table6_draw67.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("noise_level")) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+}
+
+// `d` (printed as `text`) adds nothing, ends not_explained and names the
+// probe `probe` outside the catalog, each of its parameters in `truths`
+// (name -> true value) within 3 standard errors of its truth.
+void ExpectOutsideCatalog(const Diagnosis& d,
+                          const std::string& text,
+                          const std::string& probe,
+                          const std::map<std::string, double>& truths) {
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  ASSERT_EQ(d.outside_catalog.effect, probe) << text;
+  const std::vector<ParameterEstimate>& fitted = d.outside_catalog.parameters;
+  for (const auto& [name, truth] : truths) {
+    const auto it = std::find_if(
+        fitted.begin(), fitted.end(), [&](const ParameterEstimate& e) {
+          return e.name == name;
+        });
+    ASSERT_NE(it, fitted.end()) << name << "\n" << text;
+    EXPECT_NEAR(it->value, truth, 3.0 * it->standard_error) << name << "\n"
+                                                            << text;
+  }
+  // The probe is the hidden fault's own model: with it the residuals
+  // reach the noise, and the report says so.
+  EXPECT_TRUE(d.outside_at_noise_level) << text;
+  EXPECT_NE(text.find("residuals at the noise level with it"),
+            std::string::npos)
+      << text;
+}
+
+// The same, for a probe's one parameter `name`.
+void ExpectOutsideCatalog(const Diagnosis& d,
+                          const std::string& text,
+                          const std::string& probe,
+                          const std::string& name,
+                          double truth) {
+  ExpectOutsideCatalog(d, text, probe, {{name, truth}});
+}
+
+// The same drift in two runs (30 deg/s and 8 deg, 60 deg/s and 4 deg): a
+// roll-synchronous reading error cannot follow it in both, the probe
+// outside the catalog (theta_drift, psi_drift) can. Nothing is adopted,
+// the verdict is not_explained and names the drift with its fitted rate.
+TEST(Diagnose, TwoRunsNameADriftOfTheReadingsOutsideTheCatalog) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const std::string dir = testing::ScratchDirectory("diagnose_two_drifts");
+  const std::vector<std::string> files = TwoShortRuns(dir, 21, [](Case* c) {
+    c->parameters[FindParameter(c->model, "theta_drift")].value = 0.02;
+  });
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "reading_drift", "theta_drift", 0.02);
+  EXPECT_EQ(&d.FinalFit(), &d.fits.front());
+  EXPECT_NE(d.verdict_text.find("drift of the pitch and yaw readings"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("outside the catalog, not adopted: reading_drift"),
+            std::string::npos)
+      << text;
+  const nlohmann::json j =
+      nlohmann::json::parse(DiagnosisJson(d, ShortConfig(files)));
+  EXPECT_EQ(j["outside_catalog"]["effect"], "reading_drift");
+  EXPECT_TRUE(j["effects_added"].empty());
+}
+
+// A dynamic pressure rising 1.2% over one 3-s run (30 deg/s, 8 deg): the
+// stiffness grows in time, as a bearing moment's grows while the amplitude
+// decays, and a bearing moment had been adopted for it. The second probe
+// outside the catalog (q_drift) explains it better: nothing is adopted,
+// the verdict is not_explained and names the drift with its rate.
+TEST(Diagnose, ADriftingDynamicPressureIsNotExplainedByTheCatalog) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const std::string dir = testing::ScratchDirectory("diagnose_q_drift");
+  const std::vector<std::string> files =
+      ShortRunWith(dir + "/run0.csv", "q_drift", 0.004, 5);
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "pressure_drift", "q_drift", 0.004);
+  EXPECT_EQ(&d.FinalFit(), &d.fits.front());
+  EXPECT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
+  EXPECT_NE(d.verdict_text.find("a dynamic pressure drifting during the run"),
+            std::string::npos)
+      << text;
+}
+
+// A flow 3.5% softer in the tunnel's yaw plane than in its pitch plane
+// (Cn_beta_flow = -0.008 against Cm_alpha = -0.23), acting through the
+// model's normal force: Eq. 39's tunnel stiffness carries a roll torque
+// this has not, and on two runs from a pitch-plane start (30 and 60 deg/s)
+// a Magnus moment had been adopted for it (the spin turns the pitching into
+// yaw either way). The third probe outside the catalog explains it:
+// nothing is adopted, the verdict is not_explained with its value.
+TEST(Diagnose, AFlowStifferInOnePlaneIsNotAMagnusMoment) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const std::string dir = testing::ScratchDirectory("diagnose_flow_planes");
+  const std::vector<std::string> files = TwoShortRuns(dir, 41, [](Case* c) {
+    c->parameters[FindParameter(c->model, "Cn_beta_flow")].value = -0.008;
+  });
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "flow_yaw_stiffness", "Cn_beta_flow", -0.008);
+  EXPECT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
+}
+
+// A pitch reading lagging 6 ms (a filter in the signal conditioning) on one
+// 3-s run in circular coning (8 deg, the pitch plane turning at 78 deg/s):
+// the pitch channel's phase lags the yaw channel's, as a tunnel damping
+// stronger in pitch than in yaw makes it, and tunnel damping had been
+// adopted for it, residuals at the noise. The fourth probe outside the
+// catalog fits the lag: not_explained, the lag within 3 errors.
+TEST(Diagnose, ALaggingPitchReadingIsNotATunnelDamping) {
+  const std::string dir = testing::ScratchDirectory("diagnose_reading_lag");
+  Case truth = UntrimmedShortTruth(30.0);
+  SetValues(
+      &truth,
+      std::map<std::string, double>{{"psidot0", 78.0}, {"theta_lag", 0.006}});
+  const std::vector<std::string> files = {
+      SimulateShort(truth, dir + "/run0.csv", 7)};
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "reading_lag", "theta_lag", 0.006);
+}
+
+// A pitch reading whose gain is 5% off the yaw reading's (a calibration
+// slope) on two 3-s runs (30 and 60 deg/s): a cubic calibration error and
+// a bearing moment between them had been adopted for it. The fifth probe
+// fits the gain: not_explained, the gain within 3 errors.
+TEST(Diagnose, APitchReadingsGainIsNotACalibrationNonlinearity) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const std::string dir = testing::ScratchDirectory("diagnose_reading_gain");
+  const std::vector<std::string> files = TwoShortRuns(dir, 51, [](Case* c) {
+    c->parameters[FindParameter(c->model, "theta_gain")].value = 0.05;
+  });
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "reading_gain", "theta_gain", 0.05);
+  EXPECT_EQ(d.outside_catalog.parameters.size(), 1u) << text;
+}
+
+// Dry friction in the bearing (Cm_friction = 2.8e-4: a moment of constant
+// size against the pitch-yaw rate) on one 3-s run pitching in one plane:
+// its damping grows as the amplitude falls, as a nonlinear damping with a
+// positive Cm_q_delta2 does, and that (474 +- 40) had been adopted for it,
+// residuals at the noise. The sixth probe fits the friction (BIC 16.6
+// lower): not_explained, its value within 3 errors. (At 2e-4 the two tie:
+// `ambiguous`, neither added.)
+TEST(Diagnose, DryFrictionInTheBearingIsNotANonlinearDamping) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const std::string dir = testing::ScratchDirectory("diagnose_friction");
+  const std::vector<std::string> files =
+      ShortRunWith(dir + "/run0.csv", "Cm_friction", 2.8e-4, 9);
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "bearing_friction", "Cm_friction", 2.8e-4);
+}
+
+// tools/diagnose_suite's `short` tunnel damping (t2 = -1.27, t4 = 1.72;
+// draw 2), kept as tests/data/short_tunnel_damping_seed2.csv. The axis
+// friction probe fitted it 3.4 better, with Cm_axis_friction = -1.7e-5 +-
+// 1.9e-6: a friction that drives the motion, no friction at all. The tie
+// it made had left the record `ambiguous`. A probe whose lag or friction
+// has the wrong sign is no answer (WrongSign): the damping is named.
+TEST(Diagnose, AFrictionThatDrivesTheMotionIsNoAnswer) {
+  const Diagnosis d = DiagnoseRecord("short_tunnel_damping_seed2.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
+  EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"tunnel_damping"}))
+      << text;
+  for (const auto& [name, truth] :
+       {std::pair{"tunnel_Cm_thetadot", -1.268}, {"tunnel_Cn_psidot", 1.722}}) {
+    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
+    ASSERT_NE(e, nullptr) << name << "\n" << text;
+    EXPECT_NEAR(e->value, truth, 3.0 * e->standard_error) << name << "\n"
+                                                          << text;
+  }
+}
+
+// tools/diagnose_suite's `coning` pitch reading lag (6.69 ms, the yaw
+// reading none; draw 34), kept as tests/data/coning_pitch_lag_draw34.yaml.
+// The reading-lag probe fitted both lags, psi_lag -0.00105 +- 0.00051 s,
+// and was refused for it (WrongSign); a tunnel damping, 32 of BIC behind,
+// was named. A term past zero against its sign, the other not, is held
+// at zero (SignHeld): the pitch lag alone reaches the noise.
+TEST(Diagnose, AProbeTermPastItsSignIsHeldAtZero) {
+  const Diagnosis d = DiagnoseConfig("coning_pitch_lag_draw34.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "reading_lag", "theta_lag", 0.00669);
+  const ParameterEstimate* yaw =
+      SharedEstimate(d.outside_catalog.parameters, "psi_lag");
+  ASSERT_NE(yaw, nullptr) << text;
+  EXPECT_FALSE(yaw->free) << text;
+  EXPECT_EQ(yaw->value, 0.0) << text;
+  EXPECT_NE(text.find("psi_lag = 0 s (held)"), std::string::npos) << text;
+}
+
+// Dry friction about each of the pitch and yaw axes alone
+// (Cm_axis_friction = 1e-4, on both axes) on one 3-s run pitching in
+// one plane: the small yaw rate is damped by the friction's full size,
+// which a tunnel damping of opposite signs in yaw and pitch imitates
+// (without the probes: t4 = -19.5 +- 2.2, t2 = +10.9 +- 2, `explained`,
+// residuals at the noise); the ball's friction (the sixth probe) does not.
+// The seventh probe fits it: not_explained, its values within 3 errors.
+// (At 5e-5 it ties with the tunnel damping: `ambiguous`, neither added.)
+TEST(Diagnose, DryFrictionAboutEachAxisIsNotATunnelDamping) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const std::string dir = testing::ScratchDirectory("diagnose_axis_friction");
+  const std::vector<std::string> files =
+      ShortRunWith(dir + "/run0.csv", "Cm_axis_friction", 1e-4, 9);
+  DiagnoseOptions options;
+  const Diagnosis d = Diagnose(ShortConfig(files), options);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "axis_friction", "Cm_axis_friction", 1e-4);
+  // Without the probes the catalog's nearest effect is adopted for it.
+  options.probes = false;
+  const Diagnosis without = Diagnose(ShortConfig(files), options);
+  EXPECT_FALSE(without.steps.empty())
+      << FormatDiagnosis(without, {0.01, 0.01, 0.01});
+}
+
+// tools/diagnose_suite's `short` dry friction about the pitch axis alone
+// (draw 4), kept as tests/data/short_pitch_friction_seed4.csv, with the
+// probe that models it declared absent: a fault no probe models. The
+// ball's friction lowers BIC most at the first round (115.9), but a
+// nonlinear damping and a body yaw asymmetry together explain the record
+// 31.9 below it, and they had been adopted (Cm_q -9.9 +- 0.29, truth -5.5;
+// the nominal fit's -8.8). The probe is weighed with what the catalog adds
+// beside it as well: with a tunnel damping or a body asymmetry beside it
+// the record is explained 38 below them. Not explained; nothing added.
+TEST(Diagnose, AProbeIsWeighedWithWhatTheCatalogAddsBesideIt) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Case c = ShortConfig(
+      {testing::SourcePath("tests/data/short_pitch_friction_seed4.csv")});
+  DiagnoseOptions options;
+  options.absent = {"pitch_friction"};
+  const Diagnosis d = Diagnose(c, options);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_EQ(d.outside_catalog.effect, "bearing_friction") << text;
+  EXPECT_NE(d.verdict_text.find("beside it"), std::string::npos) << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(d, c));
+  EXPECT_FALSE(j["outside_catalog_beside"].empty()) << text;
+  EXPECT_EQ(j["outside_catalog_beside"],
+            nlohmann::json(d.outside_catalog_beside));
+}
+
+// The same case on draw 7 (tests/data/short_pitch_friction_seed7.csv),
+// the pitch axis's friction probe again absent: with a tunnel damping
+// beside it the ball's friction explains the record only 2.4 below the
+// nonlinear damping and body yaw asymmetry the catalog answers with, short
+// of the 10 that would make it the answer. The catalog's answer is taken,
+// and the verdict says that the probe's model explains the record alike
+// and what would separate them (outside_catalog_alike): it had said
+// nothing of it.
+TEST(Diagnose, AProbesModelThatExplainsTheRecordAlikeIsNamed) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Case c = ShortConfig(
+      {testing::SourcePath("tests/data/short_pitch_friction_seed7.csv")});
+  DiagnoseOptions options;
+  options.absent = {"pitch_friction"};
+  const Diagnosis d = Diagnose(c, options);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_TRUE(d.outside_catalog.effect.empty()) << text;
+  ASSERT_GE(d.outside_catalog_alike.size(), 2u) << text;
+  EXPECT_EQ(d.outside_catalog_alike[0], "bearing_friction") << text;
+  EXPECT_NE(d.verdict_text.find("alike: dry (Coulomb) friction"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(d.verdict_text.find("another amplitude"), std::string::npos)
+      << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(d, c));
+  EXPECT_EQ(j["outside_catalog_alike"],
+            nlohmann::json(d.outside_catalog_alike));
+}
+
+// Dry friction about the pitch axis alone, which the ball's friction and
+// the friction of both axes did not model: on the 3-s runs of draws 4 and
+// 7 it had got a nonlinear damping and a body asymmetry (the two tests
+// above), and on the circular cone of draw 23 (tests/data/coning_pitch_
+// friction_draw23.yaml) a tunnel damping, `explained` with Cm_q moved from
+// 3.5 to 12.2 of its errors off the truth: there the friction's describing
+// function is a damping of the pitch axis alone, which Eq. 39's t2 and t4
+// give with Cm_q shifted by half of it. The eighth probe fits it: not
+// explained, nothing added, the friction within 3 errors of the truth;
+// with that probe declared absent the tunnel damping is named again.
+TEST(Diagnose, AFrictionAboutThePitchAxisAloneIsNamed) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Diagnosis d = DiagnoseConfig("coning_pitch_friction_draw23.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectOutsideCatalog(d, text, "pitch_friction", "Cm_pitch_friction", 6.31e-5);
+  const Diagnosis short_run = DiagnoseRecord("short_pitch_friction_seed4.csv");
+  EXPECT_EQ(short_run.outside_catalog.effect, "pitch_friction")
+      << FormatDiagnosis(short_run, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(short_run.steps.empty())
+      << FormatDiagnosis(short_run, {0.01, 0.01, 0.01});
+  DiagnoseOptions options;
+  options.absent = {"pitch_friction"};
+  const Diagnosis without = Diagnose(
+      LoadConfig(
+          testing::SourcePath("tests/data/coning_pitch_friction_draw23.yaml")),
+      options);
+  EXPECT_EQ(EffectIds(without.steps), std::set<std::string>({"tunnel_damping"}))
+      << FormatDiagnosis(without, {0.01, 0.01, 0.01});
+}
+
+// tools/diagnose_suite's `short` reading error at the second harmonic of
+// roll (draw 22: theta_m += -0.0281 cos(2 phi + 0.7), psi_m += -0.0225
+// sin(2 phi + 0.2)), kept as tests/data/short_second_roll_harmonic_
+// draw22.csv. Section 5.2's reading error varies with roll "with no
+// apparent symmetry"; the catalog's roll interaction keeps the first
+// harmonics, and with a flow angularity beside it (six terms) had
+// followed the second harmonic over the run's quarter revolution (on two
+// runs, on every draw). The probe (four terms) fits it: not explained,
+// nothing added, each term within 3 errors of the truth.
+TEST(Diagnose, AReadingErrorAtTheSecondRollHarmonicIsNamed) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Diagnosis d = DiagnoseRecord("short_second_roll_harmonic_draw22.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  const double a = -0.028074;
+  ExpectOutsideCatalog(d,
+                       text,
+                       "second_roll_harmonic",
+                       {{"theta_cos_2phi", a * std::cos(0.7)},
+                        {"theta_sin_2phi", -a * std::sin(0.7)},
+                        {"psi_cos_2phi", 0.8 * a * std::sin(0.2)},
+                        {"psi_sin_2phi", 0.8 * a * std::cos(0.2)}});
+  EXPECT_EQ(d.outside_catalog.parameters.size(), 4u) << text;
+}
+
+// tools/diagnose_suite's `coning` tunnel stiffness + nonlinear damping +
+// body yaw asymmetry (draw 26), kept as tests/data/coning_stiffness_
+// damping_asymmetry_draw26.yaml. The friction about each axis reaches the
+// noise alone (BIC 65.9 below the nominal fit) and outdid each catalog
+// effect alone (26.3 at most); a noise-level probe had been taken for the
+// last word, `not_explained` with Cm_q 31.7 of its errors off. Searched
+// without probes, the catalog's effects explain the record 18.7 below the
+// probe's model: that answer is taken (a nonlinear damping added, the
+// asymmetry in a tie, the stiffness not excluded) and its error bars
+// cover the truth.
+TEST(Diagnose, ACatalogAnswerBelowAProbeAtTheNoiseIsTaken) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Diagnosis d =
+      DiagnoseConfig("coning_stiffness_damping_asymmetry_draw26.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_NE(VerdictToString(d.verdict), std::string("not_explained")) << text;
+  EXPECT_TRUE(d.outside_catalog.effect.empty()) << text;
+  std::set<std::string> named = EffectIds(d.steps);
+  for (const CandidateFit& k : d.ambiguous) named.insert(k.effect);
+  for (const CandidateFit& k : d.not_excluded) named.insert(k.effect);
+  for (const char* id :
+       {"tunnel_stiffness", "nonlinear_damping", "asymmetric_body"}) {
+    EXPECT_EQ(named.count(id), 1u) << id << "\n" << text;
+  }
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
+// tools/diagnose_suite's `pair` tunnel damping (draw 22), kept as
+// tests/data/pair_tunnel_damping_draw22.yaml: a damping stronger in yaw
+// (t4 -2.89) than in pitch (t2 +2.13) on two runs pitching in one plane,
+// whose small yaw rates the yaw axis's dry friction damps alike; the probe
+// comes 10.3 below the damping, and fitted on either run each model
+// predicts the other alike. The verdict is the probe's, `not_explained`,
+// and the final model the nominal fit's, whose Cm_q (-3.39 +- 0.015) was
+// 137 of its errors from the truth (-5.5) the damping's model holds
+// (-5.14 +- 0.64). Its error bars now cover that model at its Akaike
+// weight against the probe's (0.035): Cm_q +- 0.35.
+TEST(Diagnose, ACatalogEffectAProbeOutdidWidensTheFinalErrorBars) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Diagnosis d = DiagnoseConfig("pair_tunnel_damping_draw22.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_FALSE(d.outside_catalog.effect.empty()) << text;
+  EXPECT_EQ(d.outdone_by_probe, std::vector<std::string>({"tunnel_damping"}))
+      << text;
+  const ParameterEstimate* cm_q = SharedEstimate(d.FinalFit(), "Cm_q");
+  ASSERT_NE(cm_q, nullptr) << text;
+  ASSERT_EQ(d.model_standard_errors.count("Cm_q"), 1u) << text;
+  EXPECT_GT(cm_q->standard_error, 10.0 * d.model_standard_errors.at("Cm_q"))
+      << text;
+  EXPECT_LT(std::abs(cm_q->value + 5.5), 10.0 * cm_q->standard_error) << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(
+      d,
+      LoadConfig(
+          testing::SourcePath("tests/data/pair_tunnel_damping_draw22.yaml"))));
+  EXPECT_EQ(j["outdone_by_probe"], nlohmann::json({"tunnel_damping"}));
+}
+
+// tools/diagnose_suite's `short` calibration error growing as the angle's
+// signed square (draw 24), kept as tests/data/short_calibration_signed_
+// square_draw24.csv: the catalog's cube is named for it, and with the gain
+// it leaves open beside it Cm_alpha had been 3.5 of its errors off. The
+// cube leaves the signed square open too (OpenForms): fitted beside the
+// final model, it is not excluded, and the final error bars cover it.
+TEST(Diagnose, ACalibrationErrorsSignedSquareIsLeftOpenBesideTheCube) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Diagnosis d =
+      DiagnoseRecord("short_calibration_signed_square_draw24.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(EffectIds(d.steps),
+            std::set<std::string>({"calibration_nonlinearity"}))
+      << text;
+  EXPECT_TRUE(std::any_of(
+      d.open_terms.begin(),
+      d.open_terms.end(),
+      [](const CandidateFit& k) { return k.effect == "calibration_square"; }))
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}}, text);
+}
+
+// tools/diagnose_suite's calibration error growing as the angle's signed
+// square less its line over -8..8 deg (theta_cal2 = t, psi_cal2 = -t,
+// cal_range 8), another form than the catalog's cube. On draw 53's coning
+// run (tests/data/coning_calibration_signed_square_draw53.csv, t =
+// -0.0822) the cube named for it left a difference of the two readings'
+// gains, an elliptical look, and a tunnel stiffness, a body asymmetry and
+// a pitch gain tied beside it (`ambiguous`, 4 draws of 14); on the `pair`
+// records of draws 24 and 26-28 (t = -0.125, 0.137, 0.127, -0.128) the
+// cube dragged the coefficients or left its bounds, and the records ended
+// `not_explained` (the tests with the catalog's own forms only, below).
+// The effect's other form (Effect::other_form, tried where the record
+// favors it by 10 in BIC; its range held at the readings' largest angle)
+// names each: `explained`, the square within 3 of its errors.
+TEST(Diagnose, ACalibrationErrorsSignedSquareIsNamedInItsOtherForm) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const std::vector<std::pair<Diagnosis, double>> records = {
+      {DiagnoseRecord("coning_calibration_signed_square_draw53.csv"), -0.0822},
+      {DiagnoseConfig("pair_calibration_signed_square_draw24.yaml"), -0.125},
+      {DiagnoseConfig("pair_calibration_signed_square_draw26.yaml"), 0.137},
+      {DiagnoseConfig("pair_calibration_signed_square_draw27.yaml"), 0.127},
+      {DiagnoseConfig("pair_calibration_signed_square_draw28.yaml"), -0.128}};
+  for (const auto& [d, t] : records) {
+    const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+    ExpectNamedExactly(d,
+                       {"calibration_nonlinearity"},
+                       {{"Cm_alpha", -0.23},
+                        {"Cm_q", -5.5},
+                        {"theta_cal2", t},
+                        {"psi_cal2", -t}},
+                       text);
+    const ParameterEstimate* range = SharedEstimate(d.FinalFit(), "cal_range");
+    ASSERT_NE(range, nullptr) << text;
+    EXPECT_NEAR(range->value, 8.0, 0.5) << text;
+    const ParameterEstimate* cube = SharedEstimate(d.FinalFit(), "theta_cal3");
+    ASSERT_NE(cube, nullptr) << text;
+    EXPECT_FALSE(cube->free) << text;
+  }
+}
+
+// tools/diagnose_suite's `pair` Magnus moment + nonlinear damping + cubic
+// calibration error (draw 52; tests/data/pair_magnus_damping_calibration_
+// draw52.yaml). With the Magnus moment alone beside it the signed square
+// came 11.2 ahead of the cube in BIC and was taken; once the damping was
+// in, the cube was 8.3 lower, but the form stayed, and the cube's terms,
+// which the suite judges, were not in the final model. An effect in its
+// other form goes back to its own where the record no longer favors the
+// other by the round's margin (BackToOwnForms): the cube is named, within
+// 3 of its errors.
+TEST(Diagnose, AnEffectInItsOtherFormGoesBackWhenLaterStepsFavorItsOwn) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_magnus_damping_calibration_draw52.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(EffectIds(d.steps).count("calibration_nonlinearity")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
+  ExpectFinalCovers(
+      d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}, {"theta_cal3", -0.0394}}, text);
+  const ParameterEstimate* square = SharedEstimate(d.FinalFit(), "theta_cal2");
+  ASSERT_NE(square, nullptr) << text;
+  EXPECT_FALSE(square->free) << text;
+}
+
+// tools/diagnose_suite's `pair` signed-square calibration error (draws 27
+// and 26), kept as tests/data/pair_calibration_signed_square_draw27.yaml
+// and _draw26.yaml: the cube is named, and Cm_alpha was -0.23028 +- 3.9e-5
+// (7.3 of its errors off) and -0.23034 +- 4.3e-5 (7.9). The gain the cube
+// leaves open lowers BIC by 35 and 28 beside it, but moved the cube past
+// its bound (0.256 +- 0.016 and 0.277 +- 0.017 deg at 8.1 deg, bound
+// 0.242); with the form beside it the cube is not judged alone (the two
+// are one calibration curve), and the final error bars cover the gain's
+// model. Draw 26's cube itself came in through the third search
+// (AThirdSearchJudgesEveryBoundWithinItsErrors). With the catalog's own
+// forms only: the effect's other form names these records
+// (ACalibrationErrorsSignedSquareIsNamedInItsOtherForm).
+TEST(Diagnose, AnOpenFormThatMovesTheNamedOneAlongItsRidgeIsWeighed) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  for (const char* file : {"pair_calibration_signed_square_draw27.yaml",
+                           "pair_calibration_signed_square_draw26.yaml"}) {
+    const Diagnosis d = DiagnoseConfigOwnForms(file);
+    const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+    EXPECT_EQ(EffectIds(d.steps),
+              std::set<std::string>({"calibration_nonlinearity"}))
+        << file << "\n"
+        << text;
+    const auto gain = std::find_if(
+        d.open_terms.begin(), d.open_terms.end(), [](const CandidateFit& k) {
+          return k.effect == "reading_gain";
+        });
+    ASSERT_NE(gain, d.open_terms.end()) << file << "\n" << text;
+    EXPECT_GT(gain->bic_drop, 10.0) << file << "\n" << text;
+    EXPECT_NE(text.find("lowers BIC beside it"), std::string::npos) << text;
+    ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+  }
+}
+
+// A pitch reading drifting 0.015 deg/s on one 3-s run: over its 90 deg of
+// roll a roll-synchronous reading error follows it nearly as well, with
+// twice the parameters. A roll-locked effect on less than a revolution is
+// a drift in time already, so the fitted drift need not beat it by the
+// ambiguity margin: when it does better by drift_bic (2), the verdict is
+// not_explained (it had been `ambiguous` on 8 seeds of 8; now
+// not_explained on all 8).
+TEST(Diagnose, OneRunNamesADriftOfThePitchReading) {
+  const std::string dir = testing::ScratchDirectory("diagnose_pitch_drift");
+  for (std::uint64_t seed : {3, 4}) {
+    const std::vector<std::string> files =
+        ShortRunWith(dir + "/run0.csv", "theta_drift", 0.015, seed);
+    const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+    const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+    EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
+    EXPECT_TRUE(d.steps.empty()) << text;
+    EXPECT_EQ(d.outside_catalog.effect, "reading_drift") << text;
+  }
+}
+
+// A yaw stiffness 0.3% off the pitch one in the body (the asymmetric
+// program's Cn_beta untied from Cm_alpha) in two 3-s runs (30 deg/s and 8
+// deg, 60 deg/s and 4 deg). The switch to the asymmetric program keeps the
+// symmetric relations tied (model_conversion.h), so a product of inertia
+// costs I_zx alone and cannot hide the asymmetry behind freed images (it
+// had ended "explained: a Magnus moment" with Cn_beta free under I_zx's
+// name); the asymmetric body is named, Cn_beta within 3 errors of the
+// truth, and every step reports its values as the final (asymmetric)
+// model has them (it had printed "a Magnus moment ()").
+TEST(Diagnose, NamesABodyFixedYawAsymmetryInTheAsymmetricProgram) {
+  const std::string dir = testing::ScratchDirectory("diagnose_yaw_stiffness");
+  double truth = 0.0;
+  const std::vector<std::string> files = TwoShortRuns(
+      dir, 31, [&truth](Case* c) { truth = UntieBodyYawStiffness(c, 1.003); });
+  const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.FinalFit().model, ModelKind::kAsymmetric) << text;
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("explained")) << text;
+  ASSERT_EQ(d.steps.size(), 1u) << text;
+  EXPECT_EQ(d.steps[0].effect, "asymmetric_body") << text;
+  bool found = false;
+  for (const ParameterEstimate& e : d.final_parameters) {
+    if (e.name != "Cn_beta") continue;
+    found = true;
+    EXPECT_TRUE(e.free) << text;
+    EXPECT_NEAR(e.value, truth, 3.0 * e.standard_error) << text;
+  }
+  EXPECT_TRUE(found) << text;
+  for (const DiagnosisStep& s : d.steps) {
+    EXPECT_FALSE(s.parameters.empty()) << s.effect << "\n" << text;
+  }
+  EXPECT_EQ(text.find("()"), std::string::npos) << text;
+  // With the body's own yaw stiffness free, a tunnel stiffness is one
+  // combination with it and Cm_alpha (Eq. 43): an exact twin, which no
+  // fit beside the model weighs (it had widened Cm_alpha 2700-fold).
+  EXPECT_EQ(std::count(d.near_twins.begin(),
+                       d.near_twins.end(),
+                       std::string("tunnel_stiffness")),
+            0)
+      << text;
+}
+
+// The true Cm_alpha and Cm_q of the short runs.
+const std::map<std::string, double> kShortCoefficients = {{"Cm_alpha", -0.23},
+                                                          {"Cm_q", -5.5}};
+
+// `d` explains the record with the true effects `truth`, named or in a
+// tie, adds none other, and its final model covers the true Cm_alpha and
+// Cm_q (-0.23, -5.5) within 3 standard errors.
+void ExpectTruthAddedOrTied(const Diagnosis& d,
+                            const std::set<std::string>& truth) {
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.verdict == Verdict::kExplained ||
+              d.verdict == Verdict::kAmbiguous)
+      << text;
+  std::set<std::string> named;
+  for (const DiagnosisStep& s : d.steps) {
+    EXPECT_TRUE(truth.count(s.effect)) << s.effect << "\n" << text;
+    named.insert(s.effect);
+  }
+  for (const CandidateFit& k : d.ambiguous) named.insert(k.effect);
+  for (const auto& tie : d.later_ties) {
+    for (const CandidateFit& k : tie) named.insert(k.effect);
+  }
+  for (const std::string& id : truth) {
+    EXPECT_TRUE(named.count(id)) << id << "\n" << text;
+  }
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// `d` names a tunnel damping and a Magnus moment and either a flow
+// angularity (`explained`) or a tie of the angularity with a roll reading
+// error (`ambiguous`, neither added): over the quarter revolution of roll
+// of a 3-s run at 30 deg/s a first harmonic of roll holds an offset, and
+// the two fit alike but for the reading error's two more terms (TieGap).
+// The model with the angularity holds each of `truths` within 3 standard
+// errors: the final one; or the tie's alternative with it; or, the tie
+// being the last step, the final model the truths but the angularity's
+// (theta_T, psi_T), which its fit at the tie holds. A final model in the
+// asymmetric program (a body asymmetry taken and dropped again) holds the
+// Magnus moment as Cm_p_beta.
+void ExpectDampingMagnusWithAngularityOrItsTwin(
+    const Diagnosis& d,
+    std::map<std::string, double> truths,
+    const std::string& text) {
+  const auto magnus = truths.find("Cm_p_alpha");
+  if (magnus != truths.end() &&
+      SharedEstimate(d.FinalFit(), "Cm_p_alpha") == nullptr) {
+    truths["Cm_p_beta"] = magnus->second;
+    truths.erase(magnus);
+  }
+  if (d.verdict == Verdict::kExplained) {
+    ExpectNamedExactly(
+        d, {"flow_angularity", "magnus", "tunnel_damping"}, truths, text);
+    return;
+  }
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"magnus", "tunnel_damping"}))
+      << text;
+  EXPECT_EQ(EffectIds(d.ambiguous),
+            (std::set<std::string>{"flow_angularity", "roll_interaction"}))
+      << text;
+  const auto with_angularity = std::find_if(
+      d.alternatives.begin(),
+      d.alternatives.end(),
+      [](const AlternativeModel& m) { return m.effect == "flow_angularity"; });
+  if (with_angularity != d.alternatives.end()) {
+    EXPECT_TRUE(with_angularity->check.at_noise_level) << text;
+    ExpectCovers(with_angularity->parameters, truths, text);
+    return;
+  }
+  std::map<std::string, double> offsets;
+  for (const char* name : {"theta_T", "psi_T"}) {
+    const auto truth = truths.find(name);
+    if (truth == truths.end()) continue;
+    offsets.insert(*truth);
+    truths.erase(truth);
+  }
+  ExpectFinalCovers(d, truths, text);
+  const auto tied = std::find_if(
+      d.ambiguous.begin(), d.ambiguous.end(), [](const CandidateFit& k) {
+        return k.effect == "flow_angularity";
+      });
+  ASSERT_NE(tied, d.ambiguous.end()) << text;
+  ExpectCovers(tied->parameters, offsets, text);
+}
+
+// tools/diagnose_suite's `short` roll reading error alone (draw 65:
+// theta 0.0162 cos phi + 0.0097 sin phi, psi -0.0129 cos phi - 0.0065 sin
+// phi deg), kept as tests/data/short_roll_error_draw65.csv: 47 samples over
+// 90 deg of roll. It was named a flow angularity, `explained`: the
+// angularity lowered BIC 11.6 more than the reading error, of which 9.9
+// were the reading error's two more terms. Judged by the fits alone
+// (TieGap), the two tie: `ambiguous`, neither added, a run at another spin
+// rate named to separate them; the reading error's fit holds the truth.
+TEST(Diagnose, ARollReadingErrorOverAQuarterRevolutionTiesWithAnAngularity) {
+  const Diagnosis d = DiagnoseRecord("short_roll_error_draw65.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_EQ(EffectIds(d.ambiguous),
+            (std::set<std::string>{"flow_angularity", "roll_interaction"}))
+      << text;
+  EXPECT_NE(text.find("a run at another spin rate would separate them"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("a first harmonic of roll holds an offset"),
+            std::string::npos)
+      << text;
+  const auto error = std::find_if(
+      d.ambiguous.begin(), d.ambiguous.end(), [](const CandidateFit& k) {
+        return k.effect == "roll_interaction";
+      });
+  ASSERT_NE(error, d.ambiguous.end()) << text;
+  ExpectCovers(error->parameters,
+               {{"theta_cos_phi", 0.016186},
+                {"theta_sin_phi", 0.0097114},
+                {"psi_cos_phi", -0.012949},
+                {"psi_sin_phi", -0.0064743}},
+               text);
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// A calibration error in another form than the catalog's cube: each
+// reading errs by `size` times the angle's signed square (deg^2 / 25)
+// less its linear part over a calibration from -8 to 8 deg (the report's
+// linear calibration fit takes that into the gain), pitch and yaw with
+// opposite signs. The cube named for it matches its third harmonic but
+// not its fundamental: a gain error of the amplitude, which the known
+// cubic stiffness turns into a Cm_alpha 5-8 of its errors off (the
+// diagnose suite's form cases). The cube's form leaves that gain open
+// (Effect::leaves_open); freed beside the final model, where the record
+// cannot exclude it, the final error bars cover that fit too. Seeds: the
+// suite's short condition at 1.3 times the noise.
+TEST(Diagnose, ACalibrationErrorOfAnotherFormLeavesTheGainOpen) {
+  constexpr double kSize = 0.06;
+  auto reading = [](double angle) {
+    return kSize * (angle * std::abs(angle) - 6.0 * angle) / 25.0;
+  };
+  const std::vector<std::uint64_t> seeds =
+      testing::kSanitized ? std::vector<std::uint64_t>{1}
+                          : std::vector<std::uint64_t>{1, 2, 3};
+  int opened = 0;
+  for (const std::uint64_t seed : seeds) {
+    const std::string dir = testing::ScratchDirectory(
+        "diagnose_signed_square_" + std::to_string(seed));
+    const Case truth = UntrimmedShortTruth(30.0);
+    Case simulated = truth;
+    simulated.solver.step = 0.002;
+    TimeHistory data =
+        SimulateAt(simulated, simulated.Values(), testing::ShortRecordTimes());
+    for (int i = 0; i < data.size(); ++i) {
+      data.theta[i] += reading(data.theta[i]);
+      data.psi[i] -= reading(data.psi[i]);
+    }
+    NoiseOptions noise;
+    noise.enabled = true;
+    noise.sigma = {0.01, 0.01, 0.01};
+    noise.seed = seed;
+    AddNoise(noise, &data);
+    WriteTimeHistory(dir + "/data.csv", data);
+    const Diagnosis d =
+        Diagnose(ShortConfig({dir + "/data.csv"}), DiagnoseOptions());
+    const std::string text = "seed " + std::to_string(seed) + "\n" +
+                             FormatDiagnosis(d, {0.01, 0.01, 0.01});
+    // Named, or not explained: never another effect.
+    for (const DiagnosisStep& s : d.steps) {
+      EXPECT_EQ(s.effect, "calibration_nonlinearity") << text;
+    }
+    ExpectFinalCovers(d, kShortCoefficients, text);
+    if (EffectIds(d.open_terms).count("reading_gain")) {
+      ++opened;
+      EXPECT_NE(text.find("left open, the final error bars cover it: "
+                          "reading_gain"),
+                std::string::npos)
+          << text;
+    }
+  }
+  EXPECT_GE(opened, 1);
+}
+
+// Three effects on one short run (a Magnus moment, a nonlinear damping, a
+// calibration nonlinearity): at the first step an asymmetric body lowers
+// BIC as much as the Magnus moment does. Followed first, it leaves the
+// record unexplained whatever comes after; the other branch of the tie,
+// the Magnus moment, explains the record with the other two, and is what
+// the diagnosis gives, the branch left named among the rejected (without
+// the second branch: not_explained). The noise decides which branches get
+// through: of seeds 1-24 of this record, most end `ambiguous` (either
+// branch explains it with the other two: at one spin rate the two are
+// alike), a few end not_explained (neither does); seed 21 is one where
+// only the second does.
+TEST(Diagnose, FollowsTheOtherBranchOfATieThatLeavesTheRecordUnexplained) {
+  const std::string dir = testing::ScratchDirectory("diagnose_tie_branch");
+  Case truth = ShortTruth(30.0);
+  const std::vector<std::pair<std::string, double>> hidden = {
+      {"Cm_0", 0.0},
+      {"Cn_0", 0.0},
+      {"Cm_p_alpha", 2.9},
+      {"Cm_q_delta2", 494.0},
+      {"theta_cal3", 0.027},
+      {"psi_cal3", -0.027}};
+  SetValues(&truth, hidden);
+  const std::string data = SimulateShort(truth, dir + "/data.csv", 21);
+  // Fitted jointly (Jointly), the body yaw asymmetry with the nonlinear
+  // damping and the calibration error reaches the noise as well: a tie
+  // with the Magnus moment. The branches are what this test is about.
+  DiagnoseOptions branches;
+  branches.joint_sets = false;
+  const Diagnosis d = Diagnose(ShortConfig({data}), branches);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("explained")) << text;
+  const std::set<std::string> added = EffectIds(d.steps);
+  EXPECT_TRUE(added.count("magnus")) << text;
+  EXPECT_FALSE(added.count("asymmetric_body")) << text;
+  bool left = false;
+  bool outdone = false;
+  for (const CandidateFit& k : d.rejected) {
+    left |= k.effect == "asymmetric_body" &&
+            k.rejected.find("whatever followed it") != std::string::npos;
+    outdone |=
+        k.rejected.find("catalog's effects together") != std::string::npos;
+  }
+  EXPECT_TRUE(left) << text;
+  // On the Magnus branch a reading lag had outdone the Magnus moment at the
+  // first step, and only the catalog's three effects together (CatalogAlone)
+  // kept the record from `not_explained`. That lag was a lead (theta_lag =
+  // -0.033 +- 0.0092 s), no filter's: a probe of the wrong sign is no
+  // answer (WrongSign), and the catalog's search goes on undisturbed.
+  EXPECT_FALSE(outdone) << text;
+  EXPECT_TRUE(d.outside_catalog.effect.empty()) << text;
+  // The joint answer (AdoptsEffectsThatEarnTheirPlaceOnlyTogether covers
+  // joint sets in the sanitized build): plain build only, for time.
+  if (testing::kSanitized) return;
+  ExpectTruthAddedOrTied(
+      Diagnose(ShortConfig({data}), DiagnoseOptions()),
+      {"magnus", "nonlinear_damping", "calibration_nonlinearity"});
+}
+
+// tools/diagnose_suite's `short` bearing moment + calibration error + roll
+// torque (Cm_bearing = -0.02 at 1 deg, theta_cal3 = -psi_cal3 = 0.0371,
+// Cl_0 = -2.28e-7; draw 0), kept as tests/data/short_bearing_calibration_
+// roll_torque_seed0.csv. A drifting dynamic pressure (a probe with no
+// sign to check) lowers BIC most at the second step, but the catalog's
+// effects together explain the record 130 below it (CatalogAlone): the
+// bearing moment and the calibration error are added, the roll torque
+// ties with the roll damping and a tunnel damping (one spin rate), and
+// the probe is reported as outdone.
+TEST(Diagnose, TheCatalogsEffectsTogetherOutdoAProbeThatLedARound) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Diagnosis d =
+      DiagnoseRecord("short_bearing_calibration_roll_torque_seed0.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(
+      EffectIds(d.steps),
+      std::set<std::string>({"bearing_moment", "calibration_nonlinearity"}))
+      << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("roll_torque")) << text;
+  EXPECT_TRUE(d.outside_catalog.effect.empty()) << text;
+  bool outdone = false;
+  for (const CandidateFit& k : d.rejected) {
+    outdone |=
+        k.effect == "pressure_drift" &&
+        k.rejected.find("catalog's effects together") != std::string::npos;
+  }
+  EXPECT_TRUE(outdone) << text;
+  for (const auto& [name, truth] : {std::pair{"Cm_bearing", -0.02},
+                                    {"theta_cal3", 0.0371},
+                                    {"psi_cal3", -0.0371}}) {
+    const ParameterEstimate* e = SharedEstimate(d.FinalFit(), name);
+    ASSERT_NE(e, nullptr) << name << "\n" << text;
+    EXPECT_NEAR(e->value, truth, 3.0 * e->standard_error) << name << "\n"
+                                                          << text;
+  }
+}
+
+// A roll-synchronous reading error ties with a trim moment on one slow
+// run, and a Magnus moment is needed whichever of them is in the model:
+// the Magnus moment is adopted, the pair stays ambiguous, and the complete
+// model with each is reported. (Before, a trim moment that the search
+// followed had been named with the Magnus moment: a confident wrong
+// answer.)
+TEST(Diagnose, AdoptsWhatATieLeavesUndisputed) {
+  const std::string dir = testing::ScratchDirectory("diagnose_after_tie");
+  Case truth = UntrimmedShortTruth(30.0);
+  const std::vector<std::pair<std::string, double>> hidden = {
+      {"Cm_p_alpha", 3.0},
+      {"theta_cos_phi", 0.03},
+      {"theta_sin_phi", -0.02},
+      {"psi_cos_phi", 0.025},
+      {"psi_sin_phi", 0.012}};
+  SetValues(&truth, hidden);
+  const std::string data = SimulateShort(truth, dir + "/data.csv", 31);
+  const Case config = ShortConfig({data});
+  const Diagnosis d = Diagnose(config, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("ambiguous")) << text;
+  ASSERT_EQ(d.steps.size(), 1u) << text;
+  EXPECT_EQ(d.steps[0].effect, "magnus") << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("roll_interaction")) << text;
+  ASSERT_EQ(d.alternatives.size(), 2u) << text;
+  bool checked = false;
+  for (const AlternativeModel& a : d.alternatives) {
+    // The other may be a drift in time (over 89 deg of roll), fitted as a
+    // drift of the readings: a straight line, short of the noise.
+    if (a.effect != "roll_interaction") continue;
+    EXPECT_TRUE(a.check.at_noise_level) << text;
+    for (const ParameterEstimate& e : a.parameters) {
+      if (e.name != "Cm_p_alpha") continue;
+      EXPECT_NEAR(e.value, 3.0, 3.0 * e.standard_error) << text;
+      checked = true;
+    }
+  }
+  EXPECT_TRUE(checked) << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(d, config));
+  EXPECT_EQ(j["effects_added"], nlohmann::json({"magnus"}));
+  EXPECT_EQ(j["alternatives"].size(), 2u);
+}
+
+// Three effects near the noise on one slow run: a tunnel stiffness (seen
+// there only through the roll it drives, as a roll torque or a tunnel
+// damping would drive it), a roll-synchronous reading error and a flow
+// angularity (over 90 deg of roll both alike a trim moment). Each tie the
+// record leaves open is reported, and nothing in doubt is added.
+TEST(Diagnose, ReportsEveryTieTheRecordLeavesOpen) {
+  const std::string dir = testing::ScratchDirectory("diagnose_two_ties");
+  Case truth = UntrimmedShortTruth(30.0);
+  const std::vector<std::pair<std::string, double>> hidden = {
+      {"t1", 0.00046},
+      {"t3", -0.00016},
+      {"theta_cos_phi", 0.0129},
+      {"theta_sin_phi", -0.0077},
+      {"psi_cos_phi", 0.0103},
+      {"psi_sin_phi", 0.0051},
+      {"theta_T", -0.0076},
+      {"psi_T", 0.0086}};
+  SetValues(&truth, hidden);
+  const std::string data = SimulateShort(truth, dir + "/data.csv", 41);
+  const Case config = ShortConfig({data});
+  const Diagnosis d = Diagnose(config, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("ambiguous")) << text;
+  const std::set<std::string> truths = {
+      "tunnel_stiffness", "roll_interaction", "flow_angularity"};
+  for (const DiagnosisStep& s : d.steps) {
+    EXPECT_TRUE(truths.count(s.effect)) << s.effect << "\n" << text;
+  }
+  EXPECT_FALSE(d.later_ties.empty()) << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(d, config));
+  std::set<std::string> named(j["effects_added"].begin(),
+                              j["effects_added"].end());
+  named.insert(j["ambiguous_between"].begin(), j["ambiguous_between"].end());
+  EXPECT_TRUE(named.count("tunnel_stiffness")) << text;
+  // The reading error as itself or as its roll-locked twin.
+  EXPECT_TRUE(named.count("roll_interaction") || named.count("trim_moment"))
+      << text;
+  EXPECT_EQ(j["ambiguous_groups"].size(), 1 + d.later_ties.size());
+}
+
+// Two runs at 30 and 60 deg/s, far below the pitch frequency, cannot tell a
+// roll-synchronous reading error from a trim moment: with a nonlinear
+// damping beside the reading error, the damping is adopted and the
+// reading error is never replaced by a trim moment (it had been on 2
+// noise seeds of 8 in the suite's generator, its rival refused at the
+// first step while the damping was still missing).
+TEST(Diagnose, SlowRunsNeverNameOneOfTheRollLockedTwins) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "the roll-locked tie's path as in "
+                    "ARollLockedEffectTiesWithADrift...; plain build";
+  }
+  const std::string dir = testing::ScratchDirectory("diagnose_twins");
+  const int seeds = 3;
+  for (int seed = 0; seed < seeds; ++seed) {
+    const std::vector<std::string> files = TwoShortRuns(
+        dir + "/" + std::to_string(seed), 50 + 10 * seed, [](Case* c) {
+          const std::vector<std::pair<std::string, double>> hidden = {
+              {"theta_cos_phi", 0.0145},
+              {"theta_sin_phi", -0.0087},
+              {"psi_cos_phi", 0.0116},
+              {"psi_sin_phi", 0.0058},
+              {"Cm_q_delta2", 150.0}};
+          SetValues(c, hidden);
+        });
+    const Diagnosis d = Diagnose(ShortConfig(files), DiagnoseOptions());
+    const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+    const std::set<std::string> added = EffectIds(d.steps);
+    EXPECT_FALSE(added.count("trim_moment")) << seed << "\n" << text;
+    EXPECT_TRUE(added.count("nonlinear_damping")) << seed << "\n" << text;
+    if (d.verdict == Verdict::kAmbiguous) {
+      std::set<std::string> tied;
+      for (const CandidateFit& a : d.ambiguous) tied.insert(a.effect);
+      EXPECT_TRUE(tied.count("roll_interaction")) << seed << "\n" << text;
+    } else {
+      EXPECT_EQ(d.verdict, Verdict::kExplained) << seed << "\n" << text;
+    }
+  }
+}
+
+// A coning run (3 s, 8 deg, the pitch plane turning at 78 deg/s) with a
+// roll reading error (0.012 deg) and a nonlinear damping (Cm_q_delta2 =
+// 98.5), each near the detection limit: tools/diagnose_suite's record of
+// that case (draw 0), kept as tests/data/coning_roll_error_nonlinear_
+// damping.csv. At the first step a trim moment ties with a flow
+// angularity; followed, it leaves the damping predicting nothing held out
+// and the record unexplained. The other branch explains the record with a
+// tie of its own (a flow angularity or the reading error) and the damping
+// added: that is the answer (it had been not_explained), the trim moment
+// among the rejected.
+TEST(Diagnose, TakesTheOtherBranchOfATieWhenItEndsAmbiguous) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "FollowsTheOtherBranchOfATie...'s path; plain build";
+  }
+  Case c = ShortConfig({testing::SourcePath(
+      "tests/data/coning_roll_error_nonlinear_damping.csv")});
+  // Fitted jointly, a trim moment with the damping reaches the noise as
+  // well: a tie with the reading error. The branches are what this test is
+  // about.
+  DiagnoseOptions branches;
+  branches.joint_sets = false;
+  const Diagnosis d = Diagnose(c, branches);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("roll_interaction")) << text;
+  EXPECT_FALSE(tied.count("trim_moment")) << text;
+  ASSERT_EQ(d.steps.size(), 1u) << text;
+  EXPECT_EQ(d.steps[0].effect, "nonlinear_damping") << text;
+  // The complete model with each tied effect explains the record.
+  ASSERT_EQ(d.alternatives.size(), 2u) << text;
+  for (const auto& a : d.alternatives) {
+    EXPECT_TRUE(a.check.at_noise_level) << a.effect << "\n" << text;
+  }
+  for (const ParameterEstimate& e : d.final_parameters) {
+    if (e.name == "Cm_q_delta2")
+      EXPECT_NEAR(e.value, 98.5, 3 * e.standard_error);
+    if (e.name == "Cm_q") EXPECT_NEAR(e.value, -5.5, 3 * e.standard_error);
+  }
+  bool left = false;
+  for (const CandidateFit& k : d.rejected) {
+    left |= k.effect == "trim_moment" &&
+            k.rejected.find("whatever followed it") != std::string::npos;
+  }
+  EXPECT_TRUE(left) << text;
+  ExpectTruthAddedOrTied(Diagnose(c, DiagnoseOptions()),
+                         {"roll_interaction", "nonlinear_damping"});
+}
+
+// An effect outside the catalog (a pitch reading that drifts 0.05 deg
+// over the Table 6 record) ends not_explained, with at most one effect
+// added, and the residuals described (the trend) for the engineer.
+TEST(Diagnose, SaysWhenNoCatalogEffectExplains) {
+  const std::string dir = testing::ScratchDirectory("diagnose_drift");
+  Simulate(Truth(), dir + "/clean.csv", 8);
+  TimeHistory data = ReadTimeHistory(dir + "/clean.csv");
+  for (int i = 0; i < data.size(); ++i) data.theta[i] += 0.001 * data.t[i];
+  WriteTimeHistory(dir + "/data.csv", data);
+  const Diagnosis d =
+      Diagnose(FitConfig(Truth(), dir + "/data.csv"), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
+  // Nothing is adopted: the final model is the nominal fit, and whatever
+  // lowered the residual on the way is reported as partial.
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_EQ(d.fits.size(), 1 + d.partial.size());
+  EXPECT_EQ(&d.FinalFit(), &d.fits.front());
+  ASSERT_EQ(d.final_parameters.size(), d.fits.front().parameters.size());
+  for (size_t i = 0; i < d.final_parameters.size(); ++i) {
+    EXPECT_EQ(d.final_parameters[i].value, d.fits.front().parameters[i].value);
+  }
+  if (!d.partial.empty()) {
+    EXPECT_NE(d.verdict_text.find("not adopted"), std::string::npos) << text;
+    EXPECT_NE(text.find("explains part, not adopted"), std::string::npos);
+  }
+  EXPECT_NE(d.residual_description.find("trend in time"), std::string::npos)
+      << text;
+}
+
+// A tunnel stiffness, a body yaw asymmetry (Cn_beta 0.2% off -Cm_alpha) and
+// a nonlinear damping on one 3-s run at 30 deg/s. On this run the tunnel
+// stiffness shows through the roll it drives, as a roll torque would; at the
+// first step, with the other two still missing, the roll torque lowers BIC
+// by more than 10 below it (no tie), and the search used to end
+// "explained" by a roll torque, the asymmetry and the damping (noise seeds
+// 1 and 7 of 1-8; the others tie the roll torque with a tunnel damping).
+// Swapped in with the other two in (rival_bic), the tunnel stiffness
+// explains the record as well: the two are ambiguous (on 6 seeds of 8 the
+// tunnel stiffness is among the tied).
+TEST(Diagnose, SwapsInARivalThatLostWhileAnEffectWasMissing) {
+  const std::string dir = testing::ScratchDirectory("diagnose_wide_rival");
+  Case truth = UntrimmedShortTruth(30.0);
+  const std::vector<std::pair<std::string, double>> hidden = {
+      {"t1", 0.00064}, {"t3", -0.00022}, {"Cm_q_delta2", 930.0}};
+  SetValues(&truth, hidden);
+  UntieBodyYawStiffness(&truth, 1.002);
+  const std::string data = SimulateShort(truth, dir + "/data.csv", 1);
+  const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("ambiguous")) << text;
+  std::set<std::string> tied;
+  for (const CandidateFit& k : d.ambiguous) tied.insert(k.effect);
+  for (const auto& tie : d.later_ties) {
+    for (const CandidateFit& k : tie) tied.insert(k.effect);
+  }
+  EXPECT_TRUE(tied.count("tunnel_stiffness")) << text;
+  for (const DiagnosisStep& s : d.steps) {
+    EXPECT_NE(s.effect, "roll_torque") << text;
+  }
+}
+
+// tools/diagnose_suite's `pair` bearing moment at half a degree (draw 11),
+// kept as tests/data/pair_bearing_half_degree_seed11.yaml. On this noise
+// draw the best fit puts the angle at 9.0 +- 12.8 deg, past the records'
+// 8.0 (0.11 lower in the sum of residuals than near the truth): a moment
+// that fades only beyond the record is a stiffness, on a ridge with
+// Cm_alpha (Effect::on_ridge). The second search judges its bounds within
+// two errors, moving the angle toward the 1 deg it starts at rather than
+// toward zero (Shrunk): it is named, not left `not_explained` with the
+// nominal Cm_alpha 12 of its errors off.
+TEST(Diagnose, ABearingAngleOnTheRidgeIsJudgedWithinItsErrors) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d = DiagnoseConfig("pair_bearing_half_degree_seed11.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(d,
+                     {"bearing_moment"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"Cm_bearing", -0.00559},
+                      {"bearing_angle", 0.5}},
+                     text);
+}
+
+// Whether `fit` holds Cm_bearing's error bar from its profile.
+bool Profiled(const FitResult& fit) {
+  return testing::InPipeline(fit, "Cm_bearing's error bar from its profile");
+}
+
+// A bearing moment on one 3-s run, where its angle is not determined:
+// Cm_bearing lies on the ridge Cm_bearing x bearing_angle = const, and its
+// linear error bar sees only the ridge's width (profile_error_bar_test).
+// The search fits without profiles; every fit it reports with the bearing
+// moment in (the final model, the partial one that an open tie leaves, the
+// alternatives) gets Cm_bearing's error bar from its profile, covering the
+// truth. At 30 deg/s the bearing moment explains the record, or ties with
+// a dynamic pressure drift (the record shows the stiffness changing, not
+// whether with time or amplitude).
+TEST(Diagnose, ReportsTheBearingMomentWithItsProfileErrorBar) {
+  constexpr double kMoment = -0.02;
+  int reported = 0;
+  for (const std::uint64_t seed : {1, 3}) {
+    const std::string dir = testing::ScratchDirectory(
+        "diagnose_bearing_ridge_" + std::to_string(seed));
+    Case truth = UntrimmedShortTruth(30.0);
+    SetValues(&truth,
+              std::map<std::string, double>{{"Cm_bearing", kMoment},
+                                            {"bearing_angle", 1.0}});
+    const std::string data = SimulateShort(truth, dir + "/data.csv", seed);
+    const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
+    const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+    EXPECT_TRUE(d.verdict == Verdict::kExplained ||
+                d.verdict == Verdict::kAmbiguous)
+        << text;
+    // The final model's coefficients cover the truth, also when the tie
+    // leaves the bearing moment out of it (WidenForTie).
+    ExpectFinalCovers(
+        d, kShortCoefficients, "seed " + std::to_string(seed) + "\n" + text);
+    std::vector<const FitResult*> fits = {&d.FinalFit()};
+    if (!d.partial.empty()) fits.push_back(&d.fits[d.partial_fit]);
+    for (const AlternativeModel& a : d.alternatives) {
+      if (a.fit >= 0) fits.push_back(&d.fits[a.fit]);
+    }
+    for (const FitResult* fit : fits) {
+      const ParameterEstimate* moment = SharedEstimate(*fit, "Cm_bearing");
+      const ParameterEstimate* angle = SharedEstimate(*fit, "bearing_angle");
+      if (moment == nullptr || !moment->free ||
+          angle->standard_error < std::abs(angle->value)) {
+        continue;
+      }
+      ++reported;
+      EXPECT_TRUE(Profiled(*fit))
+          << "seed " << seed << ": " << ::testing::PrintToString(fit->pipeline);
+      EXPECT_LT(std::abs(moment->value - kMoment), 3.0 * moment->standard_error)
+          << "seed " << seed << ": " << moment->value << " +- "
+          << moment->standard_error;
+    }
+  }
+  EXPECT_GE(reported, 2);
+}
+
+// Three effects that each, alone, drag a coefficient the others bias: on
+// a 3-s run with a Magnus moment, a nonlinear damping and a calibration
+// error, the fit without them has Cm_q near -1 (truth -5.5), and the
+// damping alone moves it by hundreds of its errors while lowering the
+// probable error 1.2-fold; the drag rule refused it and the record ended
+// `not_explained` with Cm_q 280 errors off. Together they explain the
+// record to the noise (Jointly): all three are named, and the final model
+// covers the truth.
+TEST(Diagnose, AdoptsEffectsThatEarnTheirPlaceOnlyTogether) {
+  const std::string dir = testing::ScratchDirectory("diagnose_joint");
+  Case truth = UntrimmedShortTruth(30.0);
+  const std::map<std::string, double> hidden = {{"Cm_p_alpha", 2.65},
+                                                {"Cm_q_delta2", 985.0},
+                                                {"theta_cal3", 0.029},
+                                                {"psi_cal3", -0.029}};
+  SetValues(&truth, hidden);
+  const std::string data = SimulateShort(truth, dir + "/data.csv", 1);
+  const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("explained")) << text;
+  std::set<std::string> found;
+  bool together = false;
+  for (const DiagnosisStep& s : d.steps) {
+    found.insert(s.effect);
+    together = together || s.note.find("together") != std::string::npos;
+  }
+  EXPECT_EQ(found,
+            (std::set<std::string>{
+                "magnus", "nonlinear_damping", "calibration_nonlinearity"}))
+      << text;
+  EXPECT_TRUE(together) << text;
+  std::map<std::string, double> truths = kShortCoefficients;
+  truths.insert(hidden.begin(), hidden.end());
+  ExpectFinalCovers(d, truths, text);
+}
+
+// A 3-s coning run (one mode of motion) with a tunnel damping, a Magnus
+// moment and a flow angularity. The damping and Cm_q absorb the Magnus
+// moment, and the model without it reaches the noise with Cm_q near -3.8
+// +- 0.01 (truth -5.5). The Magnus moment beside that model is neither
+// needed nor excluded, so the final error bars must cover the truth.
+TEST(Diagnose, ErrorBarsCoverAnEffectTheRecordCannotExclude) {
+  if (testing::kSanitized) GTEST_SKIP() << "plain build only (time)";
+  const std::string dir = testing::ScratchDirectory("diagnose_not_excluded");
+  Case truth = UntrimmedShortTruth(30.0);
+  const std::map<std::string, double> hidden = {{"psidot0", 78.0},
+                                                {"Cm_p_alpha", 50.5},
+                                                {"tunnel_Cm_thetadot", -0.058},
+                                                {"tunnel_Cn_psidot", 0.079},
+                                                {"theta_T", -0.009},
+                                                {"psi_T", 0.010}};
+  SetValues(&truth, hidden);
+  const std::string data = SimulateShort(truth, dir + "/data.csv", 3);
+  const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  bool magnus = false;
+  for (const auto* fits : {&d.not_excluded, &d.ambiguous}) {
+    for (const CandidateFit& k : *fits) magnus |= k.effect == "magnus";
+  }
+  for (const DiagnosisStep& s : d.steps) magnus |= s.effect == "magnus";
+  EXPECT_TRUE(magnus) << text;
+  // The final model's own error stays on record beside the widened one.
+  EXPECT_LT(d.model_standard_errors.at("Cm_q"),
+            SharedEstimate(d.FinalFit(), "Cm_q")->standard_error)
+      << text;
+  if (!d.not_excluded.empty()) {
+    EXPECT_NE(text.find("not excluded, the final error bars cover it"),
+              std::string::npos)
+        << text;
+  }
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// tools/diagnose_suite's `coning` Magnus moment + nonlinear damping +
+// calibration error (draw 3), kept as tests/data/coning_magnus_damping_
+// calibration_seed3.csv. On one mode of motion at one amplitude the Magnus
+// moment ties with a tunnel damping, the calibration error is added beside
+// either, and the nonlinear damping is neither needed nor excluded. The
+// complete model with the Magnus moment, refitted without the damping,
+// gave Cm_p_alpha = 81 +- 6 (truth 53.5): its error bars must cover the
+// damping the record cannot exclude, as the final model's do.
+TEST(Diagnose, AlternativesErrorBarsCoverAnEffectTheRecordCannotExclude) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_magnus_damping_calibration_seed3.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("magnus")) << text;
+  // The damping is not excluded, or added beside the calibration error:
+  // the joint set's refits land within their tolerance of the minimum, and
+  // where one lands nearer (as with Levenberg-Marquardt's Jacobians from
+  // the coarser motion, stage_solver.h) the damping earns its place.
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("nonlinear_damping") ||
+              EffectIds(d.steps).count("nonlinear_damping"))
+      << text;
+  // Nothing is added (the tie's final model is the one before it, short of
+  // the noise): beside it a body asymmetry had lowered BIC by 77.6 and was
+  // reported "not needed beside the final model, nor excluded". Each
+  // effect is listed beside the search's model first, and one that lowers
+  // BIC is not called "not needed".
+  EXPECT_FALSE(d.final.at_noise_level) << text;
+  for (const CandidateFit& k : d.not_excluded) {
+    EXPECT_NE(k.rejected.find("search's model"), std::string::npos) << text;
+    if (k.bic_drop > 0.0) {
+      EXPECT_EQ(k.rejected.find("not needed"), std::string::npos) << text;
+    }
+  }
+  bool checked = false;
+  for (const AlternativeModel& a : d.alternatives) {
+    if (a.effect != "magnus") continue;
+    const ParameterEstimate* magnus =
+        SharedEstimate(a.parameters, "Cm_p_alpha");
+    ASSERT_NE(magnus, nullptr) << text;
+    EXPECT_NEAR(magnus->value, 53.5, 3.0 * magnus->standard_error) << text;
+    checked = true;
+  }
+  EXPECT_TRUE(checked) << text;
+}
+
+// tools/diagnose_suite's `pair` roll reading error + Magnus moment (draw
+// 0), kept as tests/data/pair_roll_error_magnus.yaml: the Magnus moment
+// ties with a probe outside the catalog (a flow stiffer in one plane), the
+// reading error is added beside either, and effects are not excluded. The
+// probe's complete model is widened too, with the probe's bounds (a first
+// build of that dereferenced the catalog entry a probe does not have).
+TEST(Diagnose, AProbesAlternativeIsWidenedWithTheProbesBounds) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d = DiagnoseConfig("pair_roll_error_magnus.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"roll_interaction"}))
+      << text;
+  EXPECT_FALSE(d.not_excluded.empty()) << text;
+  std::set<std::string> alternatives;
+  for (const AlternativeModel& a : d.alternatives) {
+    alternatives.insert(a.effect);
+    EXPECT_TRUE(a.check.at_noise_level) << a.effect << "\n" << text;
+    if (a.effect != "magnus") continue;
+    const ParameterEstimate* magnus =
+        SharedEstimate(a.parameters, "Cm_p_alpha");
+    ASSERT_NE(magnus, nullptr) << text;
+    EXPECT_NEAR(magnus->value, 2.61, 3.0 * magnus->standard_error) << text;
+  }
+  EXPECT_EQ(alternatives,
+            std::set<std::string>({"magnus", "flow_yaw_stiffness"}))
+      << text;
+}
+
+// tools/diagnose_suite's `short` tunnel damping + Magnus moment + flow
+// angularity (draw 0), kept as tests/data/short_damping_magnus_angularity.
+// csv. At the first round a body yaw asymmetry lowers BIC most but
+// predicts nothing held out, and the tunnel damping, next, drags Cm_q
+// alone. The Magnus moment, taken alone, left nothing after it that
+// earned its place, and the other branch of its tie added the body
+// asymmetry, a false effect. The damping's joint set (Jointly, from the
+// first dragged contender ahead of every earned one) explains the record:
+// Magnus added, the damping tied with its look-alike over 90 deg of roll
+// (the body asymmetry), the angularity with a roll reading error. With the
+// catalog's own forms only: the calibration's other form, refused for its
+// bound on the quiet yaw reading (0.054 deg at 0.47 deg), still takes a
+// contender's place and changes the joint sets' pools; the record then
+// ends `ambiguous` with the Magnus moment tied with the body asymmetry
+// (the three true effects added or tied). Not mended.
+TEST(Diagnose, TriesAJointSetBehindABetterContenderRefusedOtherwise) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  DiagnoseOptions own_forms;
+  own_forms.other_forms = false;
+  const Diagnosis d =
+      Diagnose(ShortConfig({testing::SourcePath(
+                   "tests/data/short_damping_magnus_angularity.csv")}),
+               own_forms);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  const std::set<std::string> added = EffectIds(d.steps);
+  EXPECT_FALSE(added.count("asymmetric_body")) << text;
+  EXPECT_TRUE(added.count("magnus")) << text;
+  ExpectTruthAddedOrTied(d, {"tunnel_damping", "magnus", "flow_angularity"});
+  // Two ties stay open (the damping with a body asymmetry, the angularity
+  // with a roll reading error): each alternative of the first holds the
+  // second's followed effect too, so each reaches the noise (without the
+  // angularity neither did).
+  ASSERT_EQ(d.alternatives.size(), 2u) << text;
+  for (const AlternativeModel& a : d.alternatives) {
+    EXPECT_TRUE(a.check.at_noise_level) << a.effect << "\n" << text;
+  }
+}
+
+// A Table 6 run with a bearing moment near zero angle, a calibration
+// nonlinearity and a roll torque: at constant spin a roll damping and the
+// roll torque are twins (BIC 918.747 and 918.746), and without either the
+// calibration error the bearing moment needs leaves its bounds (0.333 >
+// 0.204 deg). The final model holds the followed one in the tie's place
+// (not claimed), the bearing moment and the calibration error are added,
+// and the final values cover the truth. Before, nothing was added: the
+// final model was the nominal one.
+TEST(Diagnose, KeepsATiedEffectTheOthersNeedAsTheTiesStandIn) {
+  if (testing::kSanitized) GTEST_SKIP() << "800 samples; plain build";
+  const Case c = LoadConfig(testing::SourcePath(
+      "tests/data/table6_bearing_calibration_roll_torque.yaml"));
+  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  std::vector<std::string> added, tied;
+  for (const DiagnosisStep& s : d.steps) added.push_back(s.effect);
+  for (const CandidateFit& k : d.ambiguous) tied.push_back(k.effect);
+  EXPECT_EQ(
+      added,
+      std::vector<std::string>({"bearing_moment", "calibration_nonlinearity"}))
+      << text;
+  EXPECT_EQ(std::set<std::string>(tied.begin(), tied.end()),
+            std::set<std::string>({"roll_damping", "roll_torque"}))
+      << text;
+  ASSERT_FALSE(tied.empty());
+  EXPECT_EQ(d.stand_in, tied[0]) << text;
+  EXPECT_TRUE(d.final.at_noise_level) << text;
+  ExpectFinalCovers(d,
+                    {{"Cm_alpha", -0.236},
+                     {"Cm_q", -4.0},
+                     {"Cm_bearing", -0.000917},
+                     {"theta_cal3", 0.0612},
+                     {"psi_cal3", -0.0612}},
+                    text);
+  const nlohmann::json json = nlohmann::json::parse(DiagnosisJson(d, c));
+  EXPECT_EQ(json["tie_stand_in"], tied[0]);
+}
+
+// Two runs with a tunnel stiffness, a nonlinear damping and a body yaw
+// asymmetry: a roll torque ties with the stiffness and is followed; the
+// damping, the asymmetry and a roll damping are taken after it. Without
+// the torque the roll damping drives the roll (out of its bounds), and
+// with the stiffness in its place it is worth nothing: it goes with the
+// torque (partial), and the damping and the asymmetry, needed whichever
+// of the tied effects is in, were added, the tie left open. But the
+// complete model with the stiffness is 10.2 lower in BIC than the one with
+// the torque: searched without the torque (OutdoneTieBranch), the record
+// is explained by the three true effects, the roll damping gone with the
+// torque. Before the tie's partial steps, nothing was added.
+TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d = DiagnoseConfig("pair_stiffness_damping_asymmetry.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(
+      d,
+      {"nonlinear_damping", "asymmetric_body", "tunnel_stiffness"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"Cm_q_alpha2", 136.0},
+       {"tunnel_Cm_theta", 0.000689},
+       {"tunnel_Cn_psi", -0.000241}},
+      text);
+  EXPECT_TRUE(EffectIds(d.rejected).count("roll_torque")) << text;
+  EXPECT_TRUE(d.stand_in.empty()) << text;
+}
+
+// tools/diagnose_suite's `coning` tunnel damping + Magnus moment + flow
+// angularity (draw 2), kept as tests/data/coning_damping_magnus_angularity.
+// csv. On one coning mode Cm_q and a Magnus moment are hardly told apart:
+// the tunnel damping, added first, and Cm_q absorbed the Magnus moment,
+// 35 below the damping at the first round (outside rival_bic), and the
+// final model reached the noise with Cm_q at -3.68 +- 0.014 (truth -5.5;
+// 129 of its errors off). Every round's contenders are now tried beside
+// the complete model: the Magnus moment is not excluded there, and the
+// final error bars cover its values. The final model holds the tunnel
+// damping: claimed, or (since a pool widened by the scores at its union,
+// UnionPool) standing in for a Magnus moment with a roll damping, which
+// the search without the damping found to explain the record as well.
+TEST(Diagnose, AContenderBehindTheRivalsIsStillTriedBesideTheFinalModel) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d = DiagnoseRecord("coning_damping_magnus_angularity.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(EffectIds(d.steps).count("tunnel_damping") +
+              EffectIds(d.stood_in).count("tunnel_damping"))
+      << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("magnus")) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// The same case on draw 38 (t2 0.061, t4 -0.083, Cm_p_alpha -43.6,
+// theta_T -0.0086 deg, psi_T 0.0097 deg), kept as tests/data/coning_
+// damping_magnus_angularity_draw38.csv. The flow angularity, taken alone
+// last, brought the record to the noise and predicted its held-out part;
+// a roll reading error refitted at that round predicted it worse than
+// its four terms need, yet swapped in for the angularity within 10 of
+// BIC, and the two tied. Out of sample separates them there
+// (SeparatedOutOfSample): the damping and the angularity are named.
+TEST(Diagnose, ARivalThatFailedOutOfSampleBesideACompleteModelHoldsNoTie) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_damping_magnus_angularity_draw38.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("tunnel_damping")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("flow_angularity")) << text;
+  EXPECT_FALSE(EffectIds(d.ambiguous).count("roll_interaction")) << text;
+  ExpectFinalCovers(d, {{"theta_T", -0.008572}, {"psi_T", 0.009724}}, text);
+}
+
+// The same case on draw 5 (tests/data/coning_damping_magnus_angularity_
+// seed5.csv): the angularity ties with a roll reading error, the tunnel
+// damping is added, and the Magnus moment, not excluded beside it, leaves
+// the fit's likelihood nearly as it was (Cm_p_alpha 18 +- 47, truth 67;
+// BIC +4.8, AIC +1.9). At its BIC weight (0.08) the final Cm_q was -3.31
+// +- 0.47, 4.6 of its errors off the truth (-5.5); at its Akaike weight
+// (0.28), -3.31 +- 0.88, within 3.
+TEST(Diagnose, AnEffectTheRecordCannotSeeWeighsByItsLikelihood) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_damping_magnus_angularity_seed5.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(EffectIds(d.steps).count("tunnel_damping")) << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("magnus")) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// tools/diagnose_suite's `coning` tunnel stiffness + nonlinear damping +
+// body yaw asymmetry (draw 0), kept as tests/data/coning_stiffness_
+// damping_asymmetry.csv. The asymmetry and the damping explain the record
+// to the noise with Cm_alpha at -0.2299 +- 2e-5; beside them a tunnel
+// stiffness lowers BIC by 6.7 on the Eq. 43 ridge (only t1 - t3 and
+// Cm_alpha + t1 determined), with t1 = 0.138 +- 0.051, past its bound by
+// half an error, and Cm_alpha -0.368. Judged at its point fit it was
+// excluded, and the final Cm_alpha stood 6 of its errors off the truth;
+// within two errors of its bounds it is not excluded, and the final error
+// bars cover it. So widened, Cm_alpha's error bar is printed beside the
+// final model's own.
+TEST(Diagnose, AnEffectOnARidgeIsJudgedWithinItsErrors) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d = DiagnoseRecord("coning_stiffness_damping_asymmetry.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("tunnel_stiffness")) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+  const size_t widened =
+      text.find("error bars widened by the models the record cannot exclude: ");
+  ASSERT_NE(widened, std::string::npos) << text;
+  const std::string line = text.substr(widened, text.find('\n', widened));
+  EXPECT_NE(line.find("Cm_alpha +- "), std::string::npos) << line;
+  EXPECT_NE(line.find("model_standard_error"), std::string::npos) << line;
+}
+
+// tools/diagnose_suite's `short` tunnel damping + Magnus moment + flow
+// angularity on another noise draw (--seed 1), kept as tests/data/short_
+// damping_magnus_angularity_seed1.csv. A body's own yaw damping lowers BIC
+// by 16 more than the tunnel damping at the first round (over a quarter
+// turn of roll a body-fixed damping looks tunnel-fixed) and earns its
+// place; the damping and the Magnus moment, each alone swapped for it
+// worse, are both not excluded beside it. Together, in its place, they
+// lower BIC by 16 more: the search without the body asymmetry is the
+// answer, and it adds them. Before, the body asymmetry was added.
+TEST(Diagnose, AStepTheEffectsNotExcludedBeatTogetherIsReplaced) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_damping_magnus_angularity_seed1.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("asymmetric_body")) << text;
+  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
+  ExpectTruthAddedOrTied(d, {"tunnel_damping", "magnus", "flow_angularity"});
+}
+
+// The same case on draw 73 (t2 -1.65, t4 2.24, Cm_p_alpha -2.8, theta_T
+// -0.0097 and psi_T 0.011 deg: 1.85 times the noise), kept as
+// tests/data/short_damping_magnus_angularity_draw73.csv. At the first
+// round the angularity came sixth by score and was never refitted; a trim
+// moment taken in a joint set with the damping and the Magnus moment then
+// tied with a roll reading error and a drift in time, but not with the
+// angularity: over 25 deg of roll the three are one offset. Where roll
+// does not separate them, a round refits the whole offset family when one
+// of it is refitted (Refitted): the angularity ties with the trim moment
+// and the roll reading error.
+TEST(Diagnose, TheOffsetFamilyIsRefittedTogether) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_damping_magnus_angularity_draw73.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectTruthAddedOrTied(d, {"tunnel_damping", "magnus", "flow_angularity"});
+  std::vector<std::vector<CandidateFit>> ties = d.later_ties;
+  ties.push_back(d.ambiguous);
+  const auto angularity = std::find_if(ties.begin(), ties.end(), [](auto& t) {
+    return EffectIds(t).count("flow_angularity") > 0;
+  });
+  ASSERT_NE(angularity, ties.end()) << text;
+  EXPECT_TRUE(EffectIds(*angularity).count("trim_moment")) << text;
+}
+
+// The same case on draw 8 (tests/data/short_damping_magnus_angularity_
+// seed8.csv), its tunnel damping's yaw term 1.36 times its pitch term. A
+// body yaw asymmetry leads the tunnel damping by 14.6 at the first round
+// (no tie, but within near_tie_bic) and is added; the search that follows
+// it adds no Magnus moment, and the true model's BIC is about 20 lower
+// than its complete model's. The search without the asymmetry is the
+// answer (NearTieBranch).
+TEST(Diagnose, ANearTieAtAStepIsSearchedWithoutItsLead) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_damping_magnus_angularity_seed8.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("asymmetric_body")) << text;
+  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
+  ExpectTruthAddedOrTied(d, {"tunnel_damping", "magnus", "flow_angularity"});
+}
+
+// The same case on draw 16 (tests/data/short_damping_magnus_angularity_
+// vary16.csv). The body yaw asymmetry leads the tunnel damping by 17.4 at
+// the first round and ends in a tie with it; the complete model with the
+// tunnel damping is 17 lower than the one with the asymmetry. A reading
+// lag (a probe) weighed against the asymmetry's side alone seemed to
+// explain the record 19 better than the catalog, and the verdict was
+// `not_explained` with Cm_q 57 of its errors off. Now the tie's better
+// side counts (CompleteBic), and the search without the followed effect
+// of a tie so outdone is the answer (OutdoneTieBranch): the three effects
+// are named, or the angularity tied with a roll reading error (TieGap).
+TEST(Diagnose, ATieOutdoneOnItsOtherSideIsSearchedWithoutItsLead) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_damping_magnus_angularity_vary16.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectDampingMagnusWithAngularityOrItsTwin(d,
+                                             {{"Cm_alpha", -0.23},
+                                              {"Cm_q", -5.5},
+                                              {"Cm_p_alpha", 4.8258},
+                                              {"tunnel_Cm_thetadot", -2.3173},
+                                              {"tunnel_Cn_psidot", 3.1459}},
+                                             text);
+  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
+}
+
+// tools/diagnose_suite --vary's `coning` Magnus moment (Cm_p_alpha 103) +
+// nonlinear damping (Cm_q_delta2 252) + calibration error (draw 16), kept
+// as tests/data/coning_magnus_nonlinear_damping_calibration_vary16.csv.
+// The search follows a tunnel damping that ties with the Magnus moment,
+// though swapped in for it the Magnus moment lowers BIC by 46; and a dry
+// friction with the Magnus moment and the calibration error fits the
+// record as well as the truth does (the same sum of squares to 1e-4,
+// Cm_q +5.8 there). Weighed against the tie's followed side alone the
+// friction had seemed 46 better: the verdict was `not_explained`,
+// nothing added, Cm_q 80 of its errors off. The tie's other side counts
+// (CompleteBic), and the search without the followed effect of a tie so
+// outdone is the answer (OutdoneTieBranch): the three effects are named,
+// and the final values cover the truth. The friction is named alike where
+// the searches' paths weigh it (with the calibration's other form tried,
+// they no longer do).
+TEST(Diagnose, ATieFollowedWhereItsOtherSideIsBetterIsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_magnus_nonlinear_damping_calibration_vary16.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(
+      d,
+      {"magnus", "nonlinear_damping", "calibration_nonlinearity"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"Cm_p_alpha", 103.157},
+       {"Cm_q_delta2", 251.94},
+       {"theta_cal3", -0.03664},
+       {"psi_cal3", 0.03495}},
+      text);
+  EXPECT_TRUE(EffectIds(d.rejected).count("tunnel_damping")) << text;
+  if (!d.outside_catalog_alike.empty()) {
+    EXPECT_EQ(d.outside_catalog_alike[0], "bearing_friction") << text;
+  }
+}
+
+// `d` is ambiguous with `effect` pruned from its steps within the tie
+// (PruneWithinTie): neither its final model nor any complete model of the
+// tie holds the effect's terms.
+void ExpectPrunedWithinTie(const Diagnosis& d, const std::string& effect) {
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_FALSE(EffectIds(d.steps).count(effect)) << text;
+  EXPECT_TRUE(EffectIds(d.pruned).count(effect)) << text;
+  ASSERT_GE(d.alternatives.size(), 2u) << text;
+  std::vector<const std::vector<ParameterEstimate>*> models = {
+      &d.FinalFit().parameters};
+  for (const AlternativeModel& a : d.alternatives) {
+    models.push_back(&a.parameters);
+  }
+  const Effect* e = FindEffect(effect);
+  std::vector<std::string> terms = e->symmetric;
+  terms.insert(terms.end(), e->asymmetric.begin(), e->asymmetric.end());
+  for (const auto* parameters : models) {
+    for (const std::string& term : terms) {
+      const ParameterEstimate* p = SharedEstimate(*parameters, term);
+      EXPECT_TRUE(p == nullptr || (!p->free && p->value == 0.0)) << term << "\n"
+                                                                 << text;
+    }
+  }
+}
+
+// The same coning record as above: the body yaw asymmetry (true), added
+// first, and a tunnel stiffness (true) with a tunnel damping (false) in its
+// place explain the record alike (BIC +3.0 with both needed there): over a
+// quarter turn of roll a body-fixed asymmetry looks tunnel-fixed. The
+// verdict is a tie of the one against the two; the final model keeps the
+// asymmetry's terms without claiming it, its error bars covering the other
+// model.
+TEST(Diagnose, AStepTwoEffectsReplaceAlikeIsATieNotAClaim) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d = DiagnoseRecord("coning_stiffness_damping_asymmetry.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  ASSERT_EQ(d.stood_in.size(), 1u) << text;
+  EXPECT_EQ(d.stood_in[0].effect, "asymmetric_body") << text;
+  EXPECT_EQ(d.stood_in_for[0].size(), 2u) << text;
+  EXPECT_FALSE(EffectIds(d.steps).count("asymmetric_body")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
+  EXPECT_NE(SharedEstimate(d.FinalFit(), "Cn_r"), nullptr) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// Draw 3 of the suite's short record with a tunnel stiffness, a nonlinear
+// damping and a body yaw asymmetry (t1 = 5.3e-4, t3 = -1.8e-4: over a
+// quarter turn of roll the stiffness shows mostly through the roll that
+// Eq. 39's t3 psi drives). A roll torque was added first; swapped in for
+// it once the other two were in, the tunnel stiffness lowered BIC by 1.1
+// more with t1 = 0.138, past its bound (0.115) on the Eq. 43 ridge, and
+// the roll torque was claimed, a false effect. The swap now judges the
+// rival within two of its errors of its bounds: the two tie.
+TEST(Diagnose, ASwapOnTheRidgeIsJudgedWithinItsErrors) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_seed3.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("roll_torque")) << text;
+  ExpectTruthAddedOrTied(
+      d, {"tunnel_stiffness", "nonlinear_damping", "asymmetric_body"});
+}
+
+// The same case on draw 23 (t1 9.0e-4, t3 -3.2e-4, Cm_q_delta2 926, body
+// yaw +0.26%), kept as tests/data/short_stiffness_damping_asymmetry_vary23
+// .csv. A roll torque takes the stiffness's roll signature first and the
+// search explains the record with it; the stiffness, not excluded beside
+// that model (BIC -2.1), ran along Eq. 43's ridge out of its bounds in the
+// torque's place (t1 0.15, bound 0.115). With each of its terms held at
+// zero in turn (FindSingleReplacement) it explains the record 5 lower
+// (one more parameter counted): the roll torque is not claimed, the two
+// tie.
+TEST(Diagnose, AnEffectNotExcludedHeldOnItsRidgeTiesWithAStep) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_vary23.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_FALSE(EffectIds(d.steps).count("roll_torque")) << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("roll_torque") && tied.count("tunnel_stiffness"))
+      << text;
+  ExpectTruthAddedOrTied(
+      d, {"tunnel_stiffness", "nonlinear_damping", "asymmetric_body"});
+}
+
+// A 3-s run with a dry friction on both axes (outside the catalog; suite
+// draw 68, kept as tests/data/short_friction_draw68.csv). The axis
+// friction probe lowers BIC by 288.0, a tunnel damping by 248.4, and a
+// calibration error in signed-square form by 296.2 but 3.8 times past its
+// bound: refused so, it had kept the probe from counting, and the tunnel
+// damping was named `explained`. Weighed against the contenders within
+// their bounds, the probe outdoes the catalog: `not_explained`, nothing
+// added, the probe named.
+TEST(Diagnose, AContenderFarPastItsBoundLeavesAProbeToCount) {
+  const Diagnosis d = DiagnoseRecord("short_friction_draw68.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained")) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_EQ(d.outside_catalog.effect, "axis_friction") << text;
+  EXPECT_TRUE(d.outside_at_noise_level) << text;
+}
+
+// The same case on draw 24 (t1 1.02e-3, t3 -3.6e-4, Cm_q_delta2 930, body
+// yaw -0.32%), kept as tests/data/short_stiffness_damping_asymmetry_vary24
+// .csv. A Magnus moment led the first round by 1.7 over the asymmetry and
+// was adopted, the stiffness's roll signature then tied with a roll torque
+// and a tunnel damping, and the false Magnus moment, needed in none of the
+// complete models (RedundantInEach), was pruned within the tie
+// (PruneWithinTie; the draw-39 record below still goes that way). Since a
+// probe is weighed against the contenders within their bounds (a
+// calibration error refused far past its bound had kept a friction probe
+// from counting, suite draw 68), a reading lag outdoes the first round's
+// catalog effects; the catalog alone explains the record 232.6 lower in
+// BIC, and its search names the three, the Magnus moment dropped again as
+// redundant and the roll torque's tie resolved without it.
+TEST(Diagnose, AFalseMagnusStepIsDroppedAndTheThreeNamed) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_vary24.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("magnus")) << text;
+  ExpectTruthAddedOrTied(
+      d, {"tunnel_stiffness", "nonlinear_damping", "asymmetric_body"});
+}
+
+// The same case on draw 39 (t1 1.02e-3, t3 -3.6e-4, Cm_q_delta2 788, body
+// yaw -0.30%), kept as tests/data/short_stiffness_damping_asymmetry_draw39
+// .csv. A Magnus moment is taken first, a roll torque ties with a tunnel
+// damping after the damping and the asymmetry, and every complete model
+// is 4.8 lower in BIC without the Magnus moment (1.6 +- 3.4 in the final
+// model). Searched without it, the tunnel stiffness ran along Eq. 43's
+// ridge out of its bounds with every companion and the record stayed
+// unexplained, so the search without a step (the older rule) kept the
+// false Magnus moment; pruned within the tie, it is gone, and the
+// stiffness (t1 1e-3) stays not excluded beside the answer.
+TEST(Diagnose, AStepPrunedWithinATieNeedsNoSearchWithoutIt) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_draw39.csv");
+  ExpectPrunedWithinTie(d, "magnus");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"asymmetric_body", "nonlinear_damping"}))
+      << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// The same case on draw 70 (t1 -9.5e-4, t3 3.3e-4, Cm_q_delta2 558, body
+// yaw +0.30%), kept as tests/data/short_stiffness_damping_asymmetry_draw70
+// .csv. After the asymmetry a tunnel damping, dragging Cm_q alone, came in
+// a joint set with the stiffness, which then tied with a roll torque and a
+// roll damping: the answer added the asymmetry and a false tunnel damping
+// (t2 5.7 +- 5.7), the nonlinear damping only "not excluded" though 46
+// lower in BIC beside it. The damping stood on a partner not adopted
+// (WithoutTiedPartner): without it the asymmetry and the nonlinear damping
+// are named, 13.9 lower, the stiffness tied with a roll effect.
+TEST(Diagnose, AStepWhoseJointPartnerTiedIsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_draw70.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("tunnel_damping")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
+  ExpectTruthAddedOrTied(
+      d, {"tunnel_stiffness", "nonlinear_damping", "asymmetric_body"});
+}
+
+// The same rule where the partner went into a later tie: draw 74's 3-s
+// tunnel damping + Magnus moment (Cm_p_alpha 2.4) + flow angularity,
+// kept as tests/data/short_damping_magnus_angularity_draw74.csv. The
+// tunnel damping's yaw term is not its pitch term (t2 -1.65, t4 2.24),
+// which a body yaw asymmetry's own yaw damping takes up: the asymmetry
+// was adopted in a joint set with the Magnus moment, which then tied with
+// the tunnel damping after the angularity's tie with a roll reading
+// error. Without the asymmetry the damping and the Magnus moment are
+// named, 9.6 lower in BIC (the true model's own fit is 16 below every
+// model of the first answer).
+TEST(Diagnose, AStepWhosePartnerWentIntoALaterTieIsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_damping_magnus_angularity_draw74.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("asymmetric_body")) << text;
+  ExpectTruthAddedOrTied(d, {"tunnel_damping", "magnus", "flow_angularity"});
+}
+
+// The same case on draw 72 (t1 -9.6e-4, t3 3.4e-4, Cm_q_delta2 -582, body
+// yaw +0.27%), kept as tests/data/short_stiffness_damping_asymmetry_draw72
+// .csv. Two ties stay open: the asymmetry with a Magnus moment, and after
+// the nonlinear damping a roll torque with a roll damping, a tunnel
+// damping and the stiffness. The alternatives hold the roll torque the
+// search followed: the asymmetry's, without the stiffness, had Cn_beta
+// 0.23174 +- 3.7e-5 against a true 0.23061 (30 of its errors). The models
+// that kept the second tie open (tie_models) hold each of its rivals in
+// the torque's place: the one with the stiffness, 10.7 lower in BIC, is
+// the true model, and its values cover the truth (on Eq. 43's ridge).
+TEST(Diagnose, ATieModelHoldsTheTrueEffectOfASecondTie) {
+  const std::string file = "short_stiffness_damping_asymmetry_draw72.csv";
+  const Diagnosis d = DiagnoseRecord(file);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  ASSERT_FALSE(d.later_ties.empty()) << text;
+  const std::set<std::string> truth = {
+      "asymmetric_body", "nonlinear_damping", "tunnel_stiffness"};
+  const auto true_model =
+      std::find_if(d.tie_models.begin(),
+                   d.tie_models.end(),
+                   [&](const Diagnosis::TieModel& m) {
+                     return std::set<std::string>(m.effects.begin(),
+                                                  m.effects.end()) == truth;
+                   });
+  ASSERT_NE(true_model, d.tie_models.end()) << text;
+  EXPECT_EQ(true_model->in_place_of, "roll_torque") << text;
+  EXPECT_TRUE(true_model->check.at_noise_level) << text;
+  ExpectCovers(true_model->parameters,
+               {{"Cm_alpha", -0.23},
+                {"Cn_beta", 0.23 * (1.0 + 0.0026659)},
+                {"tunnel_Cm_theta", -9.618e-4},
+                {"tunnel_Cn_psi", 3.366e-4},
+                {"Cm_q_alpha2", -582.15}},
+               text);
+  // diagnosis.json reports it with its effects.
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(
+      d, ShortConfig({testing::SourcePath("tests/data/" + file)})));
+  int reported = 0;
+  for (const nlohmann::json& m : j["tie_models"]) {
+    if (m["effects"].get<std::set<std::string>>() != truth) continue;
+    ++reported;
+    EXPECT_EQ(m["in_place_of"], "roll_torque");
+    EXPECT_TRUE(m["check"]["at_noise_level"].get<bool>());
+    EXPECT_TRUE(m["parameters"].contains("tunnel_Cn_psi"));
+  }
+  EXPECT_EQ(reported, 1) << j["tie_models"].dump(1);
+}
+
+// The same case on draw 27 (t1 8.1e-4, t3 -2.8e-4, Cm_q_delta2 670, body
+// yaw -0.20%), kept as tests/data/short_stiffness_damping_asymmetry_vary27
+// .csv. A Magnus moment comes in with the damping, and the roll torque
+// that follows ties with a tunnel damping; the stiffness, swapped in for
+// the torque, ran along Eq. 43's ridge to t1 = 0.5 (bound 0.11) and lost,
+// and the final Cm_alpha, -0.22899 +- 2e-5, was 47 of its errors off the
+// truth (-0.23: the stiffness's part). A tunnel term out of its bounds in
+// a swap is now held at zero in turn (Unresolved): 7 above the torque
+// with the held term counted, the stiffness joins the tie and the final
+// error bars cover its model. The Magnus moment (-2.5 +- 0.56) was named
+// too: the asymmetry, scored seventh at the first round on two terms, was
+// never refitted (refitting seven changed six other kept records'
+// answers), and beside the answer it is a near twin not excluded (BIC
+// -3.1). Fitted in the Magnus moment's place it explains the record 5
+// lower (FindSingleReplacement, open to ambiguous answers and near twins
+// since session 25): the two tie, and neither is claimed.
+TEST(Diagnose, ASwapRunningAlongTheRidgeIsHeldAtZeroInTurn) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_vary27.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("roll_torque") && tied.count("tunnel_stiffness"))
+      << text;
+  EXPECT_FALSE(EffectIds(d.steps).count("magnus")) << text;
+  std::set<std::string> later;
+  for (const auto& tie : d.later_ties) {
+    for (const CandidateFit& k : tie) later.insert(k.effect);
+  }
+  EXPECT_TRUE(later.count("magnus") && later.count("asymmetric_body")) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// The alternative model of `d` with the tunnel stiffness in the tie holds
+// the true t1 and t3 within 3 of their errors.
+void ExpectStiffnessAlternativeCovers(const Diagnosis& d,
+                                      double t1,
+                                      double t3,
+                                      const std::string& text) {
+  const auto stiffness = std::find_if(
+      d.alternatives.begin(),
+      d.alternatives.end(),
+      [](const AlternativeModel& a) { return a.effect == "tunnel_stiffness"; });
+  ASSERT_NE(stiffness, d.alternatives.end()) << text;
+  ExpectCovers(stiffness->parameters,
+               {{"tunnel_Cm_theta", t1}, {"tunnel_Cn_psi", t3}},
+               text);
+}
+
+// `d` (`text` its report), ambiguous, names the body asymmetry and the
+// nonlinear damping and ties the tunnel stiffness, the final model
+// covering the truth: Cm_alpha and Cm_q, and the damping (the asymmetric
+// program's Cm_q_alpha2).
+void ExpectAsymmetryAndDampingNamed(const Diagnosis& d,
+                                    double damping,
+                                    const std::string& text) {
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"asymmetric_body", "nonlinear_damping"}))
+      << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+  ExpectCovers(d.final_parameters, {{"Cm_q_alpha2", damping}}, text);
+}
+
+// As ExpectAsymmetryAndDampingNamed, and the stiffness's complete model
+// covers t1 and t3.
+void ExpectAsymmetryAndDampingBesideAStiffnessTie(const Diagnosis& d,
+                                                  double damping,
+                                                  double t1,
+                                                  double t3) {
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectAsymmetryAndDampingNamed(d, damping, text);
+  ExpectStiffnessAlternativeCovers(d, t1, t3, text);
+}
+
+// The same case on draw 40 (t1 1.02e-3, t3 -3.6e-4, Cm_q_delta2 806, body
+// yaw -0.30%), kept as tests/data/short_stiffness_damping_asymmetry_draw40
+// .csv. A Magnus moment led the first round by 0.9 over the stiffness and
+// took the asymmetry's signal: beside it the asymmetry is excluded, so no
+// search nor replacement from the effects not excluded tried it, and the
+// search without the Magnus moment ended `not_explained` (a lag of the
+// readings outdid the stiffness, which then ran along Eq. 43's ridge).
+// The Magnus moment was named, -3.7 +- 1.3 (2.8 of its own errors from
+// zero). Since ambiguous answers are searched past the noise too
+// (PastNoise), the search past the noise names the asymmetry and the
+// damping, drops the Magnus moment, and ties the tunnel stiffness with a
+// roll torque and a tunnel damping. (A stage that scored a barely held
+// step's place afresh at the end had tied the asymmetry with the Magnus
+// moment here; it was removed when no record needed it.)
+TEST(Diagnose, AMagnusMomentThatTookTheAsymmetrysSignalIsNotClaimed) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_draw40.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_FALSE(EffectIds(d.steps).count("magnus")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("asymmetric_body")) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+  ExpectStiffnessAlternativeCovers(d, 1.02e-3, -3.57e-4, text);
+}
+
+// The same case on draw 29 (t1 8.1e-4, t3 -2.8e-4, Cm_q_delta2 983, body
+// yaw +0.25%), kept as tests/data/short_stiffness_damping_asymmetry_vary29
+// .csv. A roll torque (Eq. 39's roll part of the stiffness) is taken
+// first; the asymmetry and the damping, together, bring the record to the
+// noise. In the final model the stiffness in the torque's place (t1 held
+// at zero) is 10.3 lower in BIC: the search without the torque took a
+// Magnus moment first and left the record unexplained, and the torque
+// had been named. A step one effect beats in its place stands in a tie
+// with it when the search without it explains nothing.
+TEST(Diagnose, AStepOutdoneByOneEffectTiesWithItWhenTheSearchWithoutItFails) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_vary29.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.ambiguous),
+            (std::set<std::string>{"roll_torque", "tunnel_stiffness"}))
+      << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"asymmetric_body", "nonlinear_damping"}))
+      << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// The same case on draw 53 (t1 6.2e-4, t3 -2.2e-4, Cm_q_delta2 519, body
+// yaw -0.19%; tests/data/short_stiffness_damping_asymmetry_draw53.yaml).
+// After the asymmetry a tunnel damping (false) was named, 108.8 lower in
+// BIC. The effects not excluded in its place lowered BIC by 29.5, but the
+// stiffness among them ran along Eq. 43's ridge to t1 = 0.186 (bound
+// 0.114), and the set was refused; with t1 held at zero they lowered it by
+// 29.2 within their bounds. Of the five, taken out together, the four
+// each unneeded beside the others left the damping alone, short of the
+// noise; taken out one at a time the stiffness stays with it. The search
+// without the tunnel damping names the asymmetry and the damping and ties
+// the stiffness with a roll torque. A set's tunnel term out of its bounds
+// is held at zero in turn, as a swap's is, and a set's members are
+// dropped one at a time.
+TEST(Diagnose, ASetsTunnelTermOnTheRidgeIsHeldAtZeroInTurn) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_stiffness_damping_asymmetry_draw53.yaml");
+  ExpectAsymmetryAndDampingBesideAStiffnessTie(d, 518.6, 6.22e-4, -2.18e-4);
+}
+
+// The same case on draw 56's pair of runs (t1 1.02e-3, t3 -3.57e-4,
+// Cm_q_delta2 236, body yaw +0.34%; tests/data/pair_stiffness_damping_
+// asymmetry_draw56.yaml). A roll torque, taken first, tied with the
+// stiffness; after it the damping and the asymmetry (together) and a
+// Magnus moment were adopted as "needed with each of the tied effects" --
+// the three together were, but beside the stiffness the record is at the
+// noise without the Magnus moment, BIC 5.6 lower (beside the torque, 18.8
+// higher). A step that only the followed tied effect needs goes with it
+// (CompanionsWithinTie); then the torque explains the record worse than
+// the effects found without it, and the three true effects are named.
+TEST(Diagnose, AStepOnlyTheFollowedTiedEffectNeedsGoesWithIt) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs, three effects; plain";
+  const Diagnosis d =
+      DiagnoseConfig("pair_stiffness_damping_asymmetry_draw56.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("magnus")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("asymmetric_body")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("tunnel_stiffness") ||
+              EffectIds(d.ambiguous).count("tunnel_stiffness"))
+      << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// The same case on draw 56 (t1 6.56e-4, t3 -2.30e-4, Cm_q_delta2 661,
+// body yaw -0.22%; tests/data/short_stiffness_damping_asymmetry_draw56
+// .yaml). A lag of the readings outdid every catalog effect at the first
+// round; the catalog alone took the damping with a Magnus moment (a joint
+// set) and tied a roll torque with the stiffness, 19.9 above the lag with
+// the damping, the asymmetry and that tie beside it: `not_explained`,
+// Cm_alpha 10.6 of its errors off. The Magnus moment is what the probe's
+// answer does without; searched without it, the catalog names the
+// asymmetry and the damping with the same tie, 24 lower in BIC, and the
+// lag's model comes 4.3 above (alike).
+TEST(Diagnose, TheCatalogIsSearchedWithoutWhatTheProbesAnswerDoesWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_stiffness_damping_asymmetry_draw56.yaml");
+  ExpectAsymmetryAndDampingBesideAStiffnessTie(d, 660.8, 6.56e-4, -2.30e-4);
+}
+
+// tools/diagnose_suite's `short` tunnel damping (t2 1.65, t4 -2.24) +
+// Magnus moment (Cm_p_alpha 3.37) + flow angularity (0.011, 0.013 deg),
+// draw 31, kept as tests/data/short_damping_magnus_angularity_vary31.csv.
+// A body yaw asymmetry led the first round by 29 in BIC and was named
+// beside the angularity's tie with a roll reading error; searched without
+// it, the damping and the Magnus moment explain the record, their final
+// fit 15 lower in BIC, the complete models of the two 2.4 apart. A near
+// tie's first step that the search without it matches within
+// ambiguity_bic stands in a tie with what that search found.
+TEST(Diagnose, ANearTiesFirstStepMatchedWithoutItTiesWithWhatWasFound) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_damping_magnus_angularity_vary31.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_FALSE(EffectIds(d.steps).count("asymmetric_body")) << text;
+  ASSERT_EQ(d.stood_in.size(), 1u) << text;
+  EXPECT_EQ(d.stood_in[0].effect, "asymmetric_body") << text;
+  EXPECT_EQ(
+      std::set<std::string>(d.stood_in_for[0].begin(), d.stood_in_for[0].end()),
+      (std::set<std::string>{"magnus", "tunnel_damping"}))
+      << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// tools/diagnose_suite's `short` tunnel damping + Magnus moment + flow
+// angularity (draw 29: t2 -1.83, t4 2.48, Cm_p_alpha 3.89, theta_T 0.0123,
+// psi_T -0.0140 deg), kept as tests/data/short_damping_magnus_angularity_
+// draw29.csv. A body yaw asymmetry led the first round by 20 and was
+// taken; after the angularity a lag of the readings outdid the damping and
+// the Magnus moment and reached the noise: `not_explained`, Cm_q 36 of its
+// errors off. Without the asymmetry the three explain the record, their
+// complete model below the lag's (the angularity named, or tied with a roll
+// reading error: TieGap).
+TEST(Diagnose, AProbeAfterANearTiesFirstStepLosesToTheSearchWithoutIt) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_damping_magnus_angularity_draw29.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectDampingMagnusWithAngularityOrItsTwin(d,
+                                             {{"Cm_alpha", -0.23},
+                                              {"Cm_q", -5.5},
+                                              {"tunnel_Cm_thetadot", -1.83},
+                                              {"tunnel_Cn_psidot", 2.48},
+                                              {"Cm_p_alpha", 3.89},
+                                              {"theta_T", 0.0123},
+                                              {"psi_T", -0.0140}},
+                                             text);
+  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body")) << text;
+  EXPECT_TRUE(EffectIds(d.rejected).count("reading_lag")) << text;
+}
+
+// tools/diagnose_suite's `coning` tunnel stiffness + roll reading error +
+// flow angularity (draw 33), kept as tests/data/coning_stiffness_roll_
+// error_angularity_draw33.yaml: over 68 deg of roll the angularity is a sum
+// of the reading error's terms. It led the first round by 0.8 and tied;
+// the reading error's side was 29 lower, and the search without the
+// angularity is the answer (the reading error tied with a drift in time).
+// Left out of that search, the angularity was never tried beside its
+// model, where the record cannot exclude it: it is listed there now, and
+// the final error bars cover it.
+TEST(Diagnose, AnEffectASecondSearchLeftOutIsTriedBesideItsModel) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_stiffness_roll_error_angularity_draw33.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(EffectIds(d.rejected).count("flow_angularity")) << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("flow_angularity")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
+// tools/diagnose_suite's `short` tunnel stiffness + roll reading error +
+// flow angularity (draw 27), kept as tests/data/short_stiffness_roll_error_
+// angularity_vary27.csv: the stiffness is added, the reading error ties
+// with a trim moment (and a drift in time) and the final model holds it in
+// the tie's place; the flow angularity is not excluded beside it. Each
+// alternative's error bars cover the effects not excluded beside it; the
+// one the final model is had kept its own (theta_cos_phi 0.0257 +- 0.0023
+// deg, truth 0.0394: 6 of those errors).
+TEST(Diagnose, TheFinalModelsAlternativeCoversWhatIsNotExcludedBesideIt) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_roll_error_angularity_vary27.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  const auto roll = std::find_if(
+      d.alternatives.begin(),
+      d.alternatives.end(),
+      [](const AlternativeModel& a) { return a.effect == "roll_interaction"; });
+  ASSERT_NE(roll, d.alternatives.end()) << text;
+  ASSERT_EQ(roll->fit, static_cast<int>(d.final_fit)) << text;
+  ExpectCovers(roll->parameters,
+               {{"theta_cos_phi", 0.0394},
+                {"theta_sin_phi", -0.0236},
+                {"psi_cos_phi", 0.0315},
+                {"psi_sin_phi", -0.0158}},
+               text);
+}
+
+// tools/diagnose_suite's `short` roll reading error + nonlinear damping at
+// 0.003-deg noise (draw 0), kept as tests/data/short_roll_error_nonlinear_
+// damping_noise3.csv. The damping drags Cm_q alone; its joint set with a
+// flow angularity and a trim moment explains the record, and the trim
+// moment ties with the reading error. Taken in the set's order, the flow
+// angularity came before the tie and stayed in the final model, though
+// beside the reading error it is not needed: over a quarter turn of roll
+// a trim moment and a flow angularity together are what a roll reading
+// error is. The tied member goes first (TakeJointSteps) and the
+// angularity, which goes with the trim moment (TieCompanions), is not
+// added.
+TEST(Diagnose, AJointSetsMemberNeededOnlyBesideATiedOneIsNotAdded) {
+  Case c = ShortConfig({testing::SourcePath(
+      "tests/data/short_roll_error_nonlinear_damping_noise3.csv")});
+  c.sigma = {0.003, 0.003, 0.003};
+  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.003, 0.003, 0.003});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"nonlinear_damping"}))
+      << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("trim_moment") && tied.count("roll_interaction"))
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}}, text);
+}
+
+// tools/diagnose_suite's `short` roll reading error + nonlinear damping
+// (draw 7), kept as tests/data/short_roll_error_nonlinear_damping_seed7.csv:
+// the damping sized to 1.3 times the noise is Cm_q_delta2 = 1125, which
+// changes Cm_q by 4.0 times its size at 8 deg, at the catalog's bound. The
+// fit put it at 967 +- 83 with Cm_q at -4.73 (the two 99.96% correlated:
+// only Cm_q + 0.0049 Cm_q_delta2 is determined), 4.02 times: refused,
+// and the verdict was `not_explained` with the nominal fit's Cm_q 253 of
+// its errors off. The nonlinear damping's bound is judged within two of
+// its errors in the second search, as a tunnel term's on Eq. 43's ridge.
+TEST(Diagnose, ANonlinearDampingAtItsBoundIsJudgedWithinItsErrors) {
+  const Diagnosis d =
+      DiagnoseRecord("short_roll_error_nonlinear_damping_seed7.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.verdict == Verdict::kExplained ||
+              d.verdict == Verdict::kAmbiguous)
+      << text;
+  std::set<std::string> found = EffectIds(d.steps);
+  for (const auto* fits : {&d.ambiguous, &d.not_excluded}) {
+    for (const std::string& id : EffectIds(*fits)) found.insert(id);
+  }
+  EXPECT_TRUE(found.count("nonlinear_damping")) << text;
+  for (const std::string& id : EffectIds(d.steps)) {
+    EXPECT_TRUE(id == "nonlinear_damping" || id == "roll_interaction") << text;
+  }
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// The same coning record on draw 9 (tests/data/coning_roll_error_
+// nonlinear_damping_seed9.csv). The damping, which alone dragged Cm_q, is
+// adopted in a joint set with a flow angularity and a trim moment; the
+// trim moment ties with the reading error. Beside the trim moment the
+// angularity was pruned, yet the final model (the one before the tie)
+// kept it: a false effect. It now goes with the tie (partial, not
+// excluded), and only the damping is added.
+TEST(Diagnose, AStepPrunedBesideTheTieIsNotAddedBeforeIt) {
+  const Diagnosis d =
+      DiagnoseRecord("coning_roll_error_nonlinear_damping_seed9.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("flow_angularity")) << text;
+  ExpectTruthAddedOrTied(d, {"roll_interaction", "nonlinear_damping"});
+}
+
+// tools/diagnose_suite's `coning` tunnel stiffness + roll reading error +
+// flow angularity (draw 3), kept as tests/data/coning_stiffness_roll_error_
+// angularity_seed3.csv. The true model's own residual has a periodogram
+// peak 5.3 times the mean but 28 times its neighbours, which the fit had
+// emptied: the local line test called it structure, no model reached the
+// noise, and the verdict was `not_explained`. The neighbourhood's mean is
+// now at least half the periodogram's (CheckResiduals).
+TEST(Diagnose, TheFitsEmptiedBinsRaiseNoLineOnATrueModel) {
+  const Diagnosis d =
+      DiagnoseRecord("coning_stiffness_roll_error_angularity_seed3.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.verdict == Verdict::kExplained ||
+              d.verdict == Verdict::kAmbiguous)
+      << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("roll_interaction")) << text;
+}
+
+// The same case on draw 4 (tests/data/coning_stiffness_roll_error_
+// angularity_seed4.csv): beside a trim moment (tied with the reading error
+// and the angularity) the tunnel stiffness lowers BIC by 78 on Eq. 43's
+// ridge at t1 = t3 = -0.134 +- 0.048 (truth 1.8e-4, -6.2e-5; the true
+// model's own fit lands there too), past its bound (0.115) at the point
+// fit: refused, and the verdict was `not_explained`. The second search
+// judges a tunnel term's bounds, on Eq. 43's ridge, within two of its
+// errors (FromBounds, bounds_within_errors): the record is explained, the
+// tunnel stiffness beside the tie, and the final error bars cover Cm_alpha.
+TEST(Diagnose, AnEffectOnItsRidgeIsJudgedWithinItsErrorsWhenNothingExplains) {
+  const Diagnosis d =
+      DiagnoseRecord("coning_stiffness_roll_error_angularity_seed4.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("roll_interaction") && tied.count("flow_angularity"))
+      << text;
+  std::set<std::string> beside = EffectIds(d.steps);
+  for (const auto& ids : {EffectIds(d.partial), EffectIds(d.not_excluded)}) {
+    beside.insert(ids.begin(), ids.end());
+  }
+  EXPECT_TRUE(beside.count("tunnel_stiffness")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
+// tools/diagnose_suite's `pair` bearing moment + calibration error + roll
+// torque (draw 2), kept as tests/data/pair_bearing_calibration_roll_
+// torque.yaml. Alone, the calibration error reached 0.263 deg at 8.2 deg
+// (bound 0.246) and the bearing moment's angle ran to 8.3 deg, each
+// taking up the other; the search ended `not_explained` with Cm_alpha 6.1
+// of its errors off. A second search lets an effect out of its bounds
+// lead a joint set (FromBounds): the bearing moment and the calibration
+// error are added. The roll torque's place may go to a roll damping: with
+// the others in, the swap raises BIC by 9.7-10.1 (as the search's fits
+// stop a little sooner or later) against ambiguity_bic's 10, so `explained`
+// with the roll torque and `ambiguous` between the two are both right.
+// Along the bearing moment's ridge (angle 2.2 +- 1.6 deg, truth 1)
+// Cm_bearing's error bar is its profile's (CheckRidges) and covers the
+// truth.
+TEST(Diagnose, AnEffectOutOfItsBoundsLeadsAJointSetWhenNothingElseExplains) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_bearing_calibration_roll_torque.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  const std::set<std::string> both = {"bearing_moment",
+                                      "calibration_nonlinearity"};
+  if (d.verdict == Verdict::kAmbiguous) {
+    EXPECT_EQ(EffectIds(d.steps), both) << text;
+    EXPECT_EQ(EffectIds(d.ambiguous),
+              std::set<std::string>({"roll_damping", "roll_torque"}))
+        << text;
+  } else {
+    ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
+    std::set<std::string> three = both;
+    three.insert("roll_torque");
+    EXPECT_EQ(EffectIds(d.steps), three) << text;
+  }
+  // The search's fit of the final model stopped by its BIC rule (10
+  // iterations); the model reported is taken on to the user's (42).
+  EXPECT_EQ(d.FinalFit().termination.find("BIC"), std::string::npos)
+      << d.FinalFit().termination;
+  ExpectFinalCovers(d,
+                    {{"Cm_alpha", -0.23},
+                     {"Cm_q", -5.5},
+                     {"Cm_bearing", -0.00327},
+                     {"theta_cal3", 0.0461}},
+                    text);
+}
+
+// The same case on draw 28 (Cm_bearing -0.0055 at 1 deg, theta_cal3
+// 0.0496 deg, 0.218 deg at the record's 8.19 deg), kept as tests/data/pair_
+// bearing_calibration_roll_torque_draw28.yaml. With the roll torque and the
+// bearing moment in, the calibration error lowers BIC by 240 but its fit
+// reaches 0.254 +- 0.013 deg there, past the bound of 0.246 at the point
+// fit; the second search judges only the effects on a ridge within their
+// errors, and both ended `not_explained`, the final (nominal) Cm_alpha 6.9
+// of its errors off. A third judges every effect so: the record is
+// explained or tied, and the final error bars cover the truth.
+TEST(Diagnose, AThirdSearchJudgesEveryBoundWithinItsErrors) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_bearing_calibration_roll_torque_draw28.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_NE(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_NE(d.verdict_text.find("alone left its bounds"), std::string::npos)
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
+// tools/diagnose_suite's `coning` bearing moment + calibration error + roll
+// torque (draw 29), kept as tests/data/coning_bearing_calibration_roll_
+// torque_draw29.yaml: the bearing moment, 72 lower in BIC, is refused for
+// moving Cm_alpha by 148 of its errors, and leads a joint set. Its pool by
+// BIC (the calibration, a roll damping and a roll torque, the two last
+// lowering BIC by 8.1 alone, lesser refits that join no triple) reaches the
+// noise but no set of it earns its place; its pool by score takes the
+// roll damping into a triple that does. At one spin rate a roll damping
+// and a roll torque are one constant roll acceleration (8.07993 and
+// 8.07981 lower in BIC alone): the set's roll damping ties with the roll
+// torque among the lesser refits, and neither is named. Before the pool
+// by score the record ended `not_explained`, the nominal Cm_alpha 97 of
+// its errors off.
+TEST(Diagnose, ALesserRefitInAJointSetTiesWithItsTwins) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_bearing_calibration_roll_torque_draw29.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("roll_torque") && tied.count("roll_damping")) << text;
+  EXPECT_EQ(
+      EffectIds(d.steps),
+      (std::set<std::string>{"bearing_moment", "calibration_nonlinearity"}))
+      << text;
+  ExpectFinalCovers(
+      d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}, {"theta_cal3", 0.02}}, text);
+}
+
+// `d` (a Table 6 record) adds the bearing moment and the calibration error
+// beside a tie of a roll damping and a roll torque (twins at constant
+// spin), its final model covering Cm_alpha, Cm_q and the calibration's
+// `terms`.
+void ExpectBearingAndCalibrationBesideTheRollTie(
+    const Diagnosis& d, const std::map<std::string, double>& terms) {
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.ambiguous),
+            (std::set<std::string>{"roll_damping", "roll_torque"}))
+      << text;
+  EXPECT_EQ(
+      EffectIds(d.steps),
+      (std::set<std::string>{"bearing_moment", "calibration_nonlinearity"}))
+      << text;
+  std::map<std::string, double> truths = {{"Cm_alpha", -0.236}, {"Cm_q", -4.0}};
+  truths.insert(terms.begin(), terms.end());
+  ExpectFinalCovers(d, truths, text);
+}
+
+// tools/diagnose_suite's Table 6 bearing moment + calibration error + roll
+// torque (draw 30; tests/data/table6_bearing_calibration_roll_torque_
+// draw30.yaml). A roll damping and a roll torque score alike (795.922:
+// at the nominal fit's constant spin, one direction) and came fifth and
+// sixth; with five refitted a round, the roll damping alone was weighed
+// and named (BIC 962 lower) and the roll torque never was. Score twins
+// are refitted together: the two lower BIC alike, and they tie.
+TEST(Diagnose, ScoreTwinsAreRefittedTogether) {
+  if (testing::kSanitized) GTEST_SKIP() << "48-s record; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("table6_bearing_calibration_roll_torque_draw30.yaml");
+  ExpectBearingAndCalibrationBesideTheRollTie(
+      d, {{"theta_cal3", -0.0810}, {"psi_cal3", 0.0746}});
+}
+
+// tools/diagnose_suite's `coning` Magnus moment + nonlinear damping +
+// calibration nonlinearity (draw 29), kept as tests/data/coning_magnus_
+// damping_calibration_draw29.yaml. The damping, 115 lower in BIC alone, is
+// refused for moving Cm_q 21.9 of its errors and leads a joint set; its
+// pool by BIC (Magnus 9.0, a body yaw asymmetry 4.8, a tunnel damping 3.3)
+// reaches a probable error of 1.44 at best (limit 1.18) and the record
+// ended `not_explained`, Cm_q 65 of its nominal errors off. The
+// calibration, 1.5 higher in BIC alone but fourth by score, is in the pool
+// by score, whose union reaches 0.98: the three are named.
+TEST(Diagnose, AJointPoolDrawsOnTheScoresWhenItsBicPoolCannotReachTheNoise) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_magnus_damping_calibration_draw29.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(
+      d,
+      {"magnus", "nonlinear_damping", "calibration_nonlinearity"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"Cm_p_alpha", -92.0},
+       {"Cm_q_delta2", -157.0},
+       {"theta_cal3", 0.0389}},
+      text);
+}
+
+// The same three on draw 34 (tests/data/coning_magnus_damping_calibration_
+// draw34.yaml): the calibration scored too little at the round to be
+// refitted (the Magnus moment second at 10.8, the calibration below the
+// five), and both pools stopped at a probable error of 1.42 (limit 1.18):
+// `not_explained`, the nominal Cm_q -10.0. At the damping's own fit the
+// Magnus moment (14.3) and the calibration (13.7) score highest: the
+// lead's pool (LeadPool) names the three. On draw 35's record (_draw35)
+// the calibration came third there, after a tunnel damping: three drawn.
+TEST(Diagnose, AJointSetsLeadDrawsAPoolFromTheScoresAtItsOwnFit) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const struct {
+    const char* config;
+    double magnus, damping, calibration;
+  } records[] = {
+      {"coning_magnus_damping_calibration_draw34.yaml", -96.0, -131.2, 0.0404},
+      {"coning_magnus_damping_calibration_draw35.yaml", -87.5, -120.7, 0.0319},
+  };
+  for (const auto& r : records) {
+    const Diagnosis d = DiagnoseConfig(r.config);
+    const std::string text =
+        r.config + ("\n" + FormatDiagnosis(d, {0.01, 0.01, 0.01}));
+    ExpectNamedExactly(
+        d,
+        {"magnus", "nonlinear_damping", "calibration_nonlinearity"},
+        {{"Cm_alpha", -0.23},
+         {"Cm_q", -5.5},
+         {"Cm_p_alpha", r.magnus},
+         {"Cm_q_delta2", r.damping},
+         {"theta_cal3", r.calibration},
+         {"psi_cal3", -r.calibration}},
+        text);
+  }
+}
+
+// The same three on draw 52 (tests/data/coning_magnus_damping_calibration_
+// draw52.yaml): at the damping's own fit the calibration scored fourth
+// (8.0, after the Magnus moment 17.1, a tunnel stiffness 12.9 and a tunnel
+// damping 12.5), every pool's union stopped at a probable error of 1.22
+// (limit 1.18), and the record ended `not_explained`, Cm_q 3.0 of its
+// errors off. At the union's own fit the calibration scores highest: the
+// pool widened by it (UnionPool) reaches 0.94 and names the three.
+TEST(Diagnose, AJointSetsLeadWidensItsPoolByTheScoresAtItsUnion) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_magnus_damping_calibration_draw52.yaml");
+  ExpectNamedExactly(
+      d,
+      {"magnus", "nonlinear_damping", "calibration_nonlinearity"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"Cm_p_alpha", -80.0},
+       {"Cm_q_delta2", -115.1},
+       {"theta_cal3", 0.0303},
+       {"psi_cal3", -0.0303}},
+      FormatDiagnosis(d, {0.01, 0.01, 0.01}));
+}
+
+// The same three on draw 56 (Cm_p_alpha 65.4, Cm_q_delta2 -87.5,
+// calibration 0.0174 deg; tests/data/coning_magnus_damping_calibration_
+// draw56.yaml). The damping dragged Cm_q and led; its pool by BIC (the
+// Magnus moment, a tunnel damping, the calibration) held only lesser
+// refits, which JointSets leaves out of triples, so its pairs alone were
+// fitted (1.31, limit 1.18); the same three drawn by the damping's own
+// scores counted as tried, and the record ended `not_explained` with the
+// truth's model 157 lower in BIC. A pool whose triples were not all tried
+// is drawn again from the lead's scores: the damping and the calibration
+// are named, the Magnus moment tied with a tunnel damping (on a circular
+// cone their signatures are alike).
+TEST(Diagnose, ALeadPoolWhoseTriplesWereNotTriedIsDrawnAgain) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_magnus_damping_calibration_draw56.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_NE(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("calibration_nonlinearity")) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("magnus") ||
+              EffectIds(d.ambiguous).count("magnus"))
+      << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+  ExpectCovers(
+      d.final_parameters,
+      {{"Cm_q_delta2", -87.5}, {"theta_cal3", -0.0174}, {"psi_cal3", 0.0174}},
+      text);
+}
+
+// The pool a lead draws from its own scores has no round's BIC behind its
+// members: each must show in the set's fit (MembersShow). On draw 28's
+// pair of runs with a signed-square calibration error (tests/data/pair_
+// calibration_signed_square_draw28.yaml; a form outside the catalog), the
+// cube dragged Cm_alpha and led; with a bearing moment from its scores it
+// reached the noise, Cm_bearing -0.0017 +- 0.0094 and bearing_angle 0.96
+// +- 6.3 deg, and both were named. The record stays `not_explained` (with
+// the catalog's own forms only: the effect's other form names it).
+TEST(Diagnose, ALeadPoolsMemberThatDoesNotShowIsNotAdopted) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d =
+      DiagnoseConfigOwnForms("pair_calibration_signed_square_draw28.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
+// The same case on draw 58 (Cm_bearing -0.00145 at 1 deg, theta_cal3
+// 0.0711, psi_cal3 -0.0847; tests/data/table6_bearing_calibration_roll_
+// torque_draw58.yaml). After the roll torque (tied with the roll
+// damping) a joint set of three, led by a nonlinear stiffness, reached the
+// noise with the bearing moment and the calibration error; in the explained
+// model the stiffness was redundant (pruned), and it ended the steps adopted
+// after the tie: nothing was added, the three left partial. A redundant step
+// no longer ends them (the stiffness then needed in no complete model is
+// pruned within the tie). The torque's complete model had stopped 23 in BIC
+// above the damping's, its bearing angle stuck where the stiffness had left
+// it (0.28 +- 437 deg); fitted from the damping's side it reaches it.
+TEST(Diagnose, ARedundantStepDoesNotEndWhatIsAdoptedAfterATie) {
+  if (testing::kSanitized) GTEST_SKIP() << "48-s record; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("table6_bearing_calibration_roll_torque_draw58.yaml");
+  ExpectBearingAndCalibrationBesideTheRollTie(
+      d, {{"theta_cal3", 0.0711}, {"psi_cal3", -0.0847}});
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.final.at_noise_level) << text;
+  // The sides of the tie alike, and each with the bearing moment's terms
+  // determined and covering the truth.
+  ASSERT_EQ(d.alternatives.size(), 2u) << text;
+  EXPECT_NEAR(d.alternatives[0].check.probable_error,
+              d.alternatives[1].check.probable_error,
+              1e-3)
+      << text;
+  for (const AlternativeModel& a : d.alternatives) {
+    ExpectCovers(
+        a.parameters, {{"Cm_bearing", -0.00145}, {"bearing_angle", 1.0}}, text);
+    EXPECT_LT(SharedEstimate(a.parameters, "bearing_angle")->standard_error,
+              0.5)
+        << text;
+  }
+}
+
+// The Table 6 record of the same three (draw 33; tests/data/table6_magnus_
+// damping_calibration_draw33.yaml): the damping leads a joint set, and a
+// roll torque and a roll damping, score twins (44.4466), filled its pool
+// beside the Magnus moment by BIC and by score alike, the calibration
+// (14.6, -0.9 in BIC alone) fourth: `not_explained`. The pool by score
+// draws one of twins: the three are named.
+TEST(Diagnose, AJointPoolByScoreDrawsOneOfScoreTwins) {
+  if (testing::kSanitized) GTEST_SKIP() << "48-s record; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("table6_magnus_damping_calibration_draw33.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(
+      d,
+      {"magnus", "nonlinear_damping", "calibration_nonlinearity"},
+      {{"Cm_alpha", -0.236},
+       {"Cm_q", -4.0},
+       {"Cm_p_alpha", 0.100},
+       {"Cm_q_delta2", -116.3},
+       {"theta_cal3", 0.0705},
+       {"psi_cal3", 0.0742}},
+      text);
+}
+
+// tools/diagnose_suite's `pair` signed-square calibration error (draw 24;
+// tests/data/pair_calibration_signed_square_draw24.yaml), a form outside
+// the catalog: no effect earns its place, and the calibration nonlinearity
+// (the cube) is refused for moving Cm_q toward the truth by many of its
+// errors. The record ends `not_explained` with the nominal fit, whose Cm_q
+// stands 10.5 of its own errors off; its error bars cover the dragged
+// contender's model at its Akaike weight (refused_for_drag). With the
+// catalog's own forms only: the effect's other form names the record.
+TEST(Diagnose, AContenderRefusedForItsDragWidensAnUnexplainedRecordsErrorBars) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const std::string config = "pair_calibration_signed_square_draw24.yaml";
+  const Diagnosis d = DiagnoseConfigOwnForms(config);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(std::count(d.refused_for_drag.begin(),
+                         d.refused_for_drag.end(),
+                         "calibration_nonlinearity"))
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+  ASSERT_EQ(d.model_standard_errors.count("Cm_q"), 1u) << text;
+  const ParameterEstimate* own =
+      SharedEstimate(d.FinalFit().parameters, "Cm_q");
+  ASSERT_NE(own, nullptr);
+  EXPECT_GT(std::abs(own->value + 5.5),
+            3.0 * d.model_standard_errors.at("Cm_q"))
+      << "the nominal fit's own error bar covered the truth already\n"
+      << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(
+      d, LoadConfig(testing::SourcePath("tests/data/" + config))));
+  EXPECT_EQ(j["refused_for_drag"], nlohmann::json(d.refused_for_drag));
+}
+
+// The same case on draw 32 (tests/data/pair_bearing_calibration_roll_
+// torque_draw32.yaml), searched once, without joint sets: a roll torque
+// and a false body yaw asymmetry leave the record structured, a reading
+// lag (a probe) outdoes every catalog effect, and the bearing moment, 205
+// lower in BIC at that round, is refused for moving Cm_alpha toward the
+// truth (-0.2306 -> -0.2294). The final model is the nominal fit, Cm_alpha
+// 6.8 of its errors off; the contenders refused for their drag widen its
+// error bars where a probe outdoes the catalog too.
+TEST(Diagnose, AContenderRefusedForItsDragWidensTheErrorBarsBesideAProbe) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  DiagnoseOptions once;
+  once.joint_sets = false;
+  const Diagnosis d = Diagnose(
+      LoadConfig(testing::SourcePath(
+          "tests/data/pair_bearing_calibration_roll_torque_draw32.yaml")),
+      once);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_FALSE(d.outside_catalog.effect.empty()) << text;
+  EXPECT_TRUE(std::count(
+      d.refused_for_drag.begin(), d.refused_for_drag.end(), "bearing_moment"))
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
+// The same record searched in full: the third search (every bound judged
+// within two errors) admits the calibration error alone at 0.349 deg at
+// 8.2 deg (bound 0.246) and then judged it at its point fit once others
+// joined it, refusing the bearing moment beside it (0.249) and the three
+// fitted as one (0.250 +- 0.012, truth 0.215, where the true model's own
+// fit lands): `not_explained`. An effect admitted within its errors is
+// now judged so beside others (ImplausibleAmongAsJudged): the three are
+// named.
+TEST(Diagnose, AnEffectAdmittedWithinItsErrorsIsJudgedSoBesideOthers) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_bearing_calibration_roll_torque_draw32.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(
+      d,
+      {"bearing_moment", "calibration_nonlinearity", "roll_torque"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"Cm_bearing", -0.00451},
+       {"theta_cal3", 0.0486},
+       {"Cl_0", -2.99e-7}},
+      text);
+}
+
+// tools/diagnose_suite's `coning` Magnus moment + nonlinear damping +
+// calibration nonlinearity (draw 42, --vary; tests/data/coning_magnus_
+// damping_calibration_draw42.yaml). On the steady cone the Magnus moment
+// keeps 0.014% of its information apart from the free parameters: no fit
+// sees it, the calibration alone is named, and Cm_q carries the moment
+// (-0.24 +- 0.009 own against a truth of -5.5). The answer lists it among
+// the effects not seen apart from the coefficients, in the text too.
+TEST(Diagnose, AnEffectTheCoefficientsAbsorbIsListedAsUnseen) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_magnus_damping_calibration_draw42.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  const auto magnus = std::find_if(
+      d.coefficient_twins.begin(),
+      d.coefficient_twins.end(),
+      [](const CoefficientTwin& t) { return t.score.effect == "magnus"; });
+  ASSERT_NE(magnus, d.coefficient_twins.end()) << text;
+  EXPECT_LT(magnus->score.novelty, 0.01) << text;
+  EXPECT_NE(text.find("not seen apart from the fitted coefficients: magnus"),
+            std::string::npos)
+      << text;
+  // It says what the fitted Cm_q stands for, and that holds: refitted with
+  // the Magnus moment held at m, Cm_q moves by -per_unit m.
+  ASSERT_TRUE(magnus->in_final_model) << text;
+  ASSERT_EQ(magnus->shifts.size(), 1u) << text;
+  const TwinShift& shift = magnus->shifts[0];
+  EXPECT_EQ(shift.term, "Cm_p_alpha");
+  EXPECT_EQ(shift.parameter, "Cm_q");
+  EXPECT_NE(text.find("the fitted Cm_q stands for Cm_q "), std::string::npos)
+      << text;
+  Case held = CaseAtSolution(d.final_case, d.FinalFit());
+  constexpr double kHeld = -20.0;
+  held.parameters[FindParameter(held.model, "Cm_p_alpha")] =
+      ParameterSetting{kHeld, false};
+  std::vector<TimeHistory> data;
+  for (const SegmentFit& segment : d.FinalFit().segments) {
+    data.push_back(segment.data);
+  }
+  const FitResult refit = FitSamples(held, data);
+  const double moved = SharedEstimate(refit.parameters, "Cm_q")->value -
+                       SharedEstimate(d.FinalFit().parameters, "Cm_q")->value;
+  EXPECT_NEAR(moved, -shift.per_unit * kHeld, 0.02 * std::abs(moved)) << text;
+  // Eq. 43's tunnel terms, twins on every record, are not listed.
+  for (const CoefficientTwin& t : d.coefficient_twins) {
+    EXPECT_NE(t.score.effect, "tunnel_stiffness") << text;
+    EXPECT_NE(t.score.effect, "tunnel_damping") << text;
+  }
+}
+
+// A record at the noise with nothing added lists its nominal fit's near
+// twins too: the `short` run of another body (tests/data/short_weak_
+// nonlinear_damping_varied78.yaml, Cm_q -1.967) with a nonlinear damping
+// of 114.36 that leaves the fit without it at 1.04 times the noise. The
+// fitted Cm_q is 55 of its errors from the true one; what it stands for
+// (Cm_q + per_unit Cm_q_delta2) is within 3.
+TEST(Diagnose, ANoiseLevelAnswerSaysWhatItsCoefficientsCarry) {
+  const Diagnosis d =
+      DiagnoseConfig("short_weak_nonlinear_damping_varied78.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kNoiseLevel) << text;
+  const auto damping =
+      std::find_if(d.coefficient_twins.begin(),
+                   d.coefficient_twins.end(),
+                   [](const CoefficientTwin& t) {
+                     return t.score.effect == "nonlinear_damping";
+                   });
+  ASSERT_NE(damping, d.coefficient_twins.end()) << text;
+  EXPECT_TRUE(damping->in_final_model) << text;
+  ASSERT_EQ(damping->shifts.size(), 1u) << text;
+  EXPECT_EQ(damping->shifts[0].parameter, "Cm_q");
+  constexpr double kTrueCmq = -1.967, kTrueDelta2 = 114.36;
+  const ParameterEstimate* cm_q =
+      SharedEstimate(d.FinalFit().parameters, "Cm_q");
+  ASSERT_NE(cm_q, nullptr);
+  EXPECT_GT(std::abs(cm_q->value - kTrueCmq), 10.0 * cm_q->standard_error)
+      << text;
+  const double carried = kTrueCmq + damping->shifts[0].per_unit * kTrueDelta2;
+  EXPECT_LT(std::abs(cm_q->value - carried), 3.0 * cm_q->standard_error)
+      << text;
+  EXPECT_NE(text.find("the fitted Cm_q stands for Cm_q + "), std::string::npos)
+      << text;
+}
+
+// tools/diagnose_suite's `short` tunnel stiffness + nonlinear damping +
+// body yaw asymmetry (draw 35, --vary; tests/data/short_stiffness_damping_
+// asymmetry_draw35.yaml). The search's answer was `ambiguous` (a roll
+// torque or a tunnel damping, nothing added) with the asymmetry, the
+// damping and the stiffness lowering BIC by 93.2, 40.7 and 11.8 beside
+// it, not excluded. An ambiguous answer is searched past the noise too,
+// and the three are named.
+TEST(Diagnose, AnAmbiguousAnswerIsSearchedPastTheNoise) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_stiffness_damping_asymmetry_draw35.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kExplained) << text;
+  std::set<std::string> added;
+  for (const DiagnosisStep& s : d.steps) added.insert(s.effect);
+  EXPECT_EQ(added,
+            std::set<std::string>(
+                {"asymmetric_body", "tunnel_stiffness", "nonlinear_damping"}))
+      << text;
+  ExpectCovers(d.final_parameters,
+               {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}, {"Cm_q_alpha2", 937.5}},
+               text);
+}
+
+// The same case on draw 60 (t1 1.03e-3, t3 -3.61e-4, Cm_q_delta2 386.8,
+// body yaw -0.37%; tests/data/short_stiffness_damping_asymmetry_draw60
+// .yaml). The first search named the asymmetry and a tunnel damping (t2
+// 4.4 +- 2.6, false), the nonlinear damping lowering BIC by 22.7 beside
+// them; past the noise the damping earned its place and the tunnel damping
+// tied with the tunnel stiffness, but only an explained second answer could
+// replace an explained first. Now a tie can, by the ambiguous answer's
+// rule (its complete model lower, counting what lowers BIC beside each).
+TEST(Diagnose, AnExplainedAnswerGivesWayToATiePastTheNoise) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_stiffness_damping_asymmetry_draw60.yaml");
+  ExpectAsymmetryAndDampingBesideAStiffnessTie(d, 386.8, 1.03e-3, -3.61e-4);
+}
+
+// The same case on draw 62 (t1 8.69e-4, t3 -3.04e-4, Cm_q_delta2 895.7,
+// body yaw -0.25%; tests/data/short_stiffness_damping_asymmetry_draw62
+// .yaml). The asymmetry, refused at the first step for moving Cm_alpha,
+// lost to a Magnus moment; swapped in for it at the end the asymmetry
+// lowered BIC by 37, a tie left open and not adopted. Past the noise a
+// false bearing moment made the Magnus moment look better, and it was
+// named beside a five-way tie. A tie whose rival outdid the followed
+// effect so is searched without it: the asymmetry and the damping are
+// named, the stiffness tied with its Eq. 39 twins.
+TEST(Diagnose, AnEffectOutdoneInASwapIsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_stiffness_damping_asymmetry_draw62.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectAsymmetryAndDampingNamed(d, 895.7, text);
+  EXPECT_FALSE(EffectIds(d.ambiguous).count("bearing_moment")) << text;
+  EXPECT_NE(text.find("a Magnus moment, followed in a tie"), std::string::npos)
+      << text;
+}
+
+// The same case on draw 64 (t1 -9.69e-4, t3 3.39e-4, Cm_q_delta2 -640.6,
+// body yaw -0.30%; tests/data/short_stiffness_damping_asymmetry_draw64
+// .yaml). A roll damping tied four ways (a roll torque, a tunnel damping,
+// the tunnel stiffness); after it the asymmetry and the damping reached
+// the noise, but were not adopted: with the tunnel damping in the roll
+// damping's place Cm_q slid along Eq. 43's ridge to -0.33, and the
+// nonlinear damping's bound, 4 times |Cm_q|, refused it there. The bound
+// weighs against Cm_q plus the tunnel term when that is larger.
+TEST(Diagnose, ANonlinearTermsBoundFollowsTheTunnelRidge) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_stiffness_damping_asymmetry_draw64.yaml");
+  ExpectAsymmetryAndDampingBesideAStiffnessTie(d, -640.6, -9.69e-4, 3.39e-4);
+}
+
+// tools/diagnose_suite's `coning` tunnel stiffness + nonlinear damping +
+// body yaw asymmetry (draw 43, --vary; tests/data/coning_stiffness_damping_
+// asymmetry_draw43.yaml). After the asymmetry a tunnel damping led the
+// tunnel stiffness by 10.4 (a near tie), and after it a bearing friction
+// outdid the catalog: `not_explained`, the nominal Cm_q -0.45 +- 0.04
+// against a truth of -5.5. Searched without the damping the three are
+// found, 5.7 below the friction's model: not enough to set the probe
+// aside, so the verdict stands, but it names them and the final error
+// bars cover their model.
+TEST(Diagnose, ACatalogAnswerAlikeWithAProbeWidensTheUnexplainedAnswer) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_stiffness_damping_asymmetry_draw43.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  const std::set<std::string> alike(d.catalog_alike.begin(),
+                                    d.catalog_alike.end());
+  EXPECT_EQ(alike,
+            std::set<std::string>(
+                {"asymmetric_body", "tunnel_stiffness", "nonlinear_damping"}))
+      << text;
+  EXPECT_LT(std::abs(d.catalog_alike_bic), DiagnoseOptions().ambiguity_bic)
+      << text;
+  EXPECT_NE(text.find("explain the record alike"), std::string::npos) << text;
+  ExpectCovers(d.final_parameters, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
+// tools/diagnose_suite's `pair` tunnel stiffness + roll reading error +
+// flow angularity (draw 41, --vary; tests/data/pair_stiffness_roll_error_
+// angularity_draw41.yaml). The roll error and a trim moment tied at their
+// step (BIC 107.1 and 99.5), and at 30 and 60 deg/s, far below the pitch
+// frequency, the two are roll-locked twins whose swap was held a tie
+// unfitted. But the trim moment's two terms cannot follow this reading
+// error's four: with the stiffness and the angularity in its place the
+// probable error stayed at 1.20 (0.999 with the roll error), and since
+// that complete model left the noise the drag rule was applied at the
+// tie, refusing the stiffness (Cm_alpha moved along Eq. 43's ridge by
+// 1640 of the nominal fit's errors): `ambiguous`, nothing added. A twin
+// whose swap is far worse (structured residuals, BIC 10 or more above)
+// no longer holds the tie (FarWorse): the three are named.
+TEST(Diagnose, ATwinWhoseSwapIsFarWorseHoldsNoTie) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_stiffness_roll_error_angularity_draw41.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(
+      d,
+      {"tunnel_stiffness", "roll_interaction", "flow_angularity"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"tunnel_Cm_theta", 1.25e-3},
+       {"theta_cos_phi", -0.0248},
+       {"psi_T", -0.0196}},
+      text);
+}
+
+// tools/diagnose_suite's `pair` tunnel damping + Magnus moment + flow
+// angularity (draw 15, --vary; tests/data/pair_damping_magnus_angularity_
+// vary15.yaml). Alone, the Magnus moment and the angularity predicted the
+// held-out part worse, a body yaw asymmetry dragged Cm_alpha and the
+// tunnel damping Cm_q: the asymmetry, first of the two dragged, led every
+// joint set, none earned its place, and the record ended `not_explained`
+// with Cm_q 82 of its errors off. Each dragged contender now leads its sets
+// in turn: led by the damping, the three are named.
+TEST(Diagnose, EachDraggedContenderLeadsJointSetsInTurn) {
+  const Diagnosis d =
+      DiagnoseConfig("pair_damping_magnus_angularity_vary15.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(d,
+                     {"flow_angularity", "magnus", "tunnel_damping"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"tunnel_Cm_thetadot", 2.331},
+                      {"tunnel_Cn_psidot", -3.165},
+                      {"Cm_p_alpha", 4.337},
+                      {"theta_T", -0.01574},
+                      {"psi_T", -0.01785}},
+                     text);
+}
+
+// The same case on draw 18 (tests/data/pair_damping_magnus_angularity_
+// vary18.yaml). The Magnus moment is added first; at the next round the
+// flow angularity leads and fails alone to predict the held-out part, and
+// the tunnel damping, second, drags Cm_q by 72 of its errors. Its joint
+// sets had drawn on the contenders after it first, three of them, and left
+// the angularity out: the record ended `not_explained`, Cm_q 75 of its
+// errors off. The pool is drawn in the order of BIC (JointPool): the three
+// are named.
+TEST(Diagnose, AJointSetDrawsOnItsPoolInTheOrderOfBic) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_damping_magnus_angularity_vary18.yaml");
+  ExpectNamedExactly(d,
+                     {"flow_angularity", "magnus", "tunnel_damping"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"tunnel_Cm_thetadot", 2.578},
+                      {"tunnel_Cn_psidot", -3.500},
+                      {"Cm_p_alpha", 5.013},
+                      {"theta_T", -0.01815},
+                      {"psi_T", -0.02058}},
+                     FormatDiagnosis(d, {0.01, 0.01, 0.01}));
+}
+
+// tools/diagnose_suite --vary's `coning` tunnel stiffness (t1 -3.1e-4, t3
+// 1.1e-4) + nonlinear damping (Cm_q_delta2 259) + body yaw asymmetry
+// (Cn_beta 0.2% above -Cm_alpha), draw 18, kept as tests/data/coning_
+// stiffness_damping_asymmetry_vary18.csv. The asymmetry is added first;
+// then the damping drags Cn_r by 188 of its errors and is the round's only
+// contender, the stiffness lowering BIC by 3 alone: no joint set had a
+// member to draw on, and nothing was adopted (Cm_q 62 of its errors off).
+// A joint set draws on the round's lesser refits too: the three are named.
+TEST(Diagnose, AJointSetDrawsOnTheRoundsLesserRefits) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_stiffness_damping_asymmetry_vary18.csv");
+  ExpectNamedExactly(
+      d,
+      {"asymmetric_body", "nonlinear_damping", "tunnel_stiffness"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"Cm_q_alpha2", 259.2},
+       {"Cn_beta", 0.230515},
+       {"tunnel_Cm_theta", -3.146e-4},
+       {"tunnel_Cn_psi", 1.101e-4}},
+      FormatDiagnosis(d, {0.01, 0.01, 0.01}));
+}
+
+// The same case on draw 25 (t1 -3.3e-4, t3 1.1e-4, Cm_q_delta2 247, body
+// yaw +0.24%), kept as tests/data/coning_stiffness_damping_asymmetry_
+// vary25.csv. The asymmetry and the damping reach the noise; the
+// stiffness, 4 lower in BIC beside the asymmetry alone (a lesser refit),
+// was never tried beside them, where it is 35 lower. The effects not
+// excluded outdid the asymmetry, and the search without it named a
+// tunnel damping and a Magnus moment (Cm_q 10.6 of its errors off), 16
+// above the true model. The lesser refits are tried beside the complete
+// model too: the false pair is not named.
+TEST(Diagnose, ALesserRefitIsTriedBesideTheCompleteModel) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_stiffness_damping_asymmetry_vary25.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  const std::set<std::string> named = EffectIds(d.steps);
+  EXPECT_FALSE(named.count("tunnel_damping") || named.count("magnus")) << text;
+  EXPECT_TRUE(named.count("asymmetric_body")) << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("tunnel_stiffness") ||
+              named.count("tunnel_stiffness"))
+      << text;
+  ExpectFinalCovers(d, kShortCoefficients, text);
+}
+
+// tools/diagnose_suite's `short` body yaw asymmetry (Cn_beta 0.19% off
+// -Cm_alpha, draw 0), kept as tests/data/short_asymmetric_body_draw0.csv.
+// With every lesser refit its score test calls for tried beside the
+// model, a bearing moment whose angle the record leaves open (+- 29 deg)
+// was not excluded, and with a Magnus moment it stood in for the
+// asymmetry (BIC +5.0): a named answer became a tie. A lesser refit
+// widens the error bars but never stands in for a step
+// (Diagnosis::lesser_refits): the asymmetry is named.
+TEST(Diagnose, ALesserRefitDoesNotStandInForAStep) {
+  const Diagnosis d = DiagnoseRecord("short_asymmetric_body_draw0.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(d,
+                     {"asymmetric_body"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"Cn_beta", 0.23 * (1.0 + 0.0018779)}},
+                     text);
+}
+
+// tools/diagnose_suite --vary's `short` tunnel damping (t2 -2.56, t4 3.30)
+// + Magnus moment (Cm_p_alpha 5.08) + flow angularity, draw 18, kept as
+// tests/data/short_damping_magnus_angularity_vary18.csv. A body yaw
+// asymmetry leads the first round by 26 of BIC; once in, every other
+// effect fails alone to predict the held-out part, none drags, and the
+// asymmetry, leaving the residuals structured, is not adopted: the record
+// was `not_explained`, nothing added, Cm_q 55 of its errors off. The
+// search without that first step (DeadEndBranch) names the three (or the
+// damping and the Magnus moment, the angularity tied with a roll reading
+// error).
+// The kept `short` tunnel damping + Magnus + angularity record `file`
+// (tests/data) diagnosed: the three named with their true terms (t2, t4,
+// Cm_p_alpha, theta_T, psi_T), or the angularity tied with its twin
+// (ExpectDampingMagnusWithAngularityOrItsTwin), the body yaw asymmetry that led
+// the first round among the rejected or dropped again (Diagnosis::pruned).
+void ExpectDampingMagnusAngularityNamed(const std::string& file,
+                                        double t2,
+                                        double t4,
+                                        double magnus,
+                                        double theta_t,
+                                        double psi_t) {
+  const Diagnosis d = DiagnoseRecord(file);
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectDampingMagnusWithAngularityOrItsTwin(d,
+                                             {{"Cm_alpha", -0.23},
+                                              {"Cm_q", -5.5},
+                                              {"tunnel_Cm_thetadot", t2},
+                                              {"tunnel_Cn_psidot", t4},
+                                              {"Cm_p_alpha", magnus},
+                                              {"theta_T", theta_t},
+                                              {"psi_T", psi_t}},
+                                             text);
+  // The false lead, refused or taken and dropped again, is on record.
+  const bool dropped =
+      std::any_of(d.pruned.begin(), d.pruned.end(), [](const auto& s) {
+        return s.effect == "asymmetric_body";
+      });
+  EXPECT_TRUE(EffectIds(d.rejected).count("asymmetric_body") || dropped)
+      << text;
+}
+
+TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  ExpectDampingMagnusAngularityNamed(
+      "short_damping_magnus_angularity_vary18.csv",
+      -2.558,
+      3.300,
+      5.078,
+      0.01952,
+      0.02214);
+}
+
+// The same case on draw 23 (t2 -2.09, t4 2.84, Cm_p_alpha -5.0), kept as
+// tests/data/short_damping_magnus_angularity_vary23.csv. The body yaw
+// asymmetry leads the Magnus moment by 33.6 at the first round, past the
+// near tie's 20 of BIC then; with it in, the tunnel damping and the Magnus
+// moment tie and neither is added: `ambiguous`, the asymmetry added, the
+// true model's BIC 39 lower. A near tie is now anything within 40
+// (DiagnoseOptions::near_tie_bic): searched without the asymmetry, the
+// three are named.
+TEST(Diagnose, AFirstStepLeadingBy34IsSearchedWithout) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  ExpectDampingMagnusAngularityNamed(
+      "short_damping_magnus_angularity_vary23.csv",
+      -2.0901,
+      2.8374,
+      -5.0,
+      0.017358,
+      0.019690);
+}
+
+// The same case on draw 37 (t2 2.01, t4 -2.72, Cm_p_alpha -5.0, theta_T
+// -0.0155, psi_T 0.0176 deg), kept as tests/data/short_damping_magnus_
+// angularity_draw37.csv. The body yaw asymmetry led the first round by 42,
+// past any near tie, and was added; the angularity tied with a roll
+// reading error and the Magnus moment with a bearing moment: `ambiguous`,
+// the tunnel damping not excluded beside the answer (3.6 lower in BIC),
+// the true model 33 lower than the answer's. A first step taken alone is
+// searched without wherever an effect not excluded still lowers BIC
+// beside an ambiguous answer: the three are named.
+TEST(Diagnose, AFirstStepLeadingBy42IsSearchedWithoutBesideWhatItLeftOut) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  ExpectDampingMagnusAngularityNamed(
+      "short_damping_magnus_angularity_draw37.csv",
+      2.0061,
+      -2.7235,
+      -5.0,
+      -0.015503,
+      0.017586);
+}
+
+// The same case on draw 24 (t2 2.69, t4 -3.65, Cm_p_alpha 4.38), kept as
+// tests/data/short_damping_magnus_angularity_vary24.csv. The body yaw
+// asymmetry leads (BIC drop 80.7), drags Cm_q and leads a joint set with
+// the tunnel damping and the angularity that reaches the noise: explained,
+// Cm_alpha 8.3 of its errors off. The Magnus moment, sixth by score, was
+// refitted at no round; scored beside the set's model (31.9 on its one
+// parameter) it is tried there (Unrefitted, FindNotExcluded), searched
+// past the noise (PastNoise), and the asymmetry is pruned: the three
+// named, BIC 45 lower.
+TEST(Diagnose, AnEffectNoRoundRefittedIsTriedBesideTheFinalModel) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  ExpectDampingMagnusAngularityNamed(
+      "short_damping_magnus_angularity_vary24.csv",
+      2.6863,
+      -3.6469,
+      4.3844,
+      0.016541,
+      0.018763);
+}
+
+// tools/diagnose_suite --vary's `pair` tunnel stiffness (t1 1.01e-3, t3
+// -3.53e-4) + roll reading error + flow angularity, draw 20, kept as
+// tests/data/pair_stiffness_roll_angularity_vary20.yaml. The search names
+// the reading error and the stiffness and stops at the noise, the
+// angularity 47.7 lower beside them; the effects not excluded then seemed
+// to replace the stiffness (ReplacedStep), and the search without it took
+// a tunnel damping and the angularity: `ambiguous`, Cm_alpha 18.4 of its
+// errors off. The search goes one round past the noise for the
+// angularity (PastNoise), which earns its place there: the three named.
+TEST(Diagnose, AnEffectBesideAnExplainedModelIsSearchedPastTheNoise) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_stiffness_roll_angularity_vary20.yaml");
+  ExpectNamedExactly(
+      d,
+      {"flow_angularity", "roll_interaction", "tunnel_stiffness"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"tunnel_Cm_theta", 1.009e-3},
+       {"tunnel_Cn_psi", -3.530e-4},
+       {"theta_cos_phi", 0.01682},
+       {"theta_sin_phi", 0.01009},
+       {"psi_cos_phi", 0.01346},
+       {"psi_sin_phi", 0.006728},
+       {"theta_T", -0.0134},
+       {"psi_T", 0.0152}},
+      FormatDiagnosis(d, {0.01, 0.01, 0.01}));
+}
+
+// tools/diagnose_suite --vary's `coning` tunnel stiffness (t1 -2.67e-4, t3
+// 9.3e-5) + nonlinear damping (Cm_q_delta2 168) + body yaw asymmetry
+// (Cn_beta 0.2% below -Cm_alpha), draw 20, kept as tests/data/coning_
+// stiffness_damping_asymmetry_vary20.csv. The asymmetry and the damping
+// reach the noise; the stiffness, 22.8 lower beside them, was only not
+// excluded. Past the noise it earns its place: the three named.
+TEST(Diagnose, AStiffnessBesideAnExplainedModelIsSearchedPastTheNoise) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_stiffness_damping_asymmetry_vary20.csv");
+  ExpectNamedExactly(
+      d,
+      {"asymmetric_body", "nonlinear_damping", "tunnel_stiffness"},
+      {{"Cm_alpha", -0.23},
+       {"Cm_q", -5.5},
+       {"Cm_q_alpha2", 167.55},
+       {"Cn_beta", 0.229550},
+       {"tunnel_Cm_theta", -2.665e-4},
+       {"tunnel_Cn_psi", 9.33e-5}},
+      FormatDiagnosis(d, {0.01, 0.01, 0.01}));
+}
+
+// tools/diagnose_suite --vary's `coning` tunnel stiffness (t1 -3.7e-4, t3
+// 1.3e-4) + nonlinear damping (Cm_q_delta2 -127) + body yaw asymmetry
+// (Cn_beta 0.2% above -Cm_alpha), draw 22, kept as tests/data/coning_
+// stiffness_damping_asymmetry_vary22.csv. The damping drags Cm_q alone and
+// the asymmetry earns its place; the damping's joint sets were fitted
+// pairs and triples at once, and the lowest-BIC one that earned, {damping,
+// Magnus, tunnel damping}, was taken: `ambiguous` with a false tunnel
+// damping added. A pair that earns comes first (JointlyLedBy): the
+// damping and the asymmetry, the stiffness not excluded beside them.
+TEST(Diagnose, AJointPairThatEarnsComesBeforeTheTriples) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseRecord("coning_stiffness_damping_asymmetry_vary22.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ExpectNamedExactly(d,
+                     {"asymmetric_body", "nonlinear_damping"},
+                     {{"Cm_alpha", -0.23},
+                      {"Cm_q", -5.5},
+                      {"Cm_q_alpha2", -126.85},
+                      {"Cn_beta", 0.230504}},
+                     text);
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("tunnel_stiffness")) << text;
+}
+
+// sigma: auto, the noise unknown as on a real record. Each fit would set
+// its own weights, so the diagnosis holds the noise the nominal fit and
+// the data show (WithNoiseHeld) and goes on past it while an effect earns
+// its place. tools/diagnose_suite's `short` Magnus moment (draw 0, 1.3
+// times the noise; kept as tests/data/short_magnus_seed0.csv) had been
+// called `noise_level` with sigma: auto: the residuals were white at their
+// own level. Now the Magnus moment is named as with sigma given, and the
+// rerun config keeps sigma: auto. A clean record stays at the noise level,
+// and a drift of the pitch reading (outside the catalog) is not explained:
+// its level is judged against the data's own noise, which a partial
+// explanation does not reach.
+TEST(Diagnose, SigmaAutoHoldsTheNoiseTheDataShow) {
+  Case magnus_config =
+      ShortConfig({testing::SourcePath("tests/data/short_magnus_seed0.csv")});
+  magnus_config.sigma_auto = {{true, true, true}};
+  const Diagnosis d = Diagnose(magnus_config, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.noise_held) << text;
+  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
+  EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"magnus"})) << text;
+  ExpectFinalCovers(
+      d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}, {"Cm_p_alpha", 2.474}}, text);
+  EXPECT_NE(d.verdict_text.find("sigma: auto, the noise held"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(d.verdict_text.find("sigma is larger than the noise"),
+            std::string::npos)
+      << text;
+  for (int ch = 0; ch < 3; ++ch) EXPECT_TRUE(d.final_case.sigma_auto[ch]);
+  // The held noise is the data's, near the simulated 0.01 deg.
+  const ChannelValues& held = d.FinalFit().segments[0].sigma_deg;
+  for (double s : {held.theta, held.psi}) EXPECT_NEAR(s, 0.01, 0.004) << text;
+  // The report quotes that level, not the config's placeholder.
+  const ChannelValues quoted = DiagnosedNoise(d, magnus_config.sigma);
+  EXPECT_EQ(quoted.theta, held.theta);
+  const nlohmann::json j =
+      nlohmann::json::parse(DiagnosisJson(d, magnus_config));
+  EXPECT_EQ(j["noise_sigma_deg"]["psi"].get<double>(), held.psi);
+
+  if (testing::kSanitized) return;  // one record there
+  const std::string dir = testing::ScratchDirectory("diagnose_sigma_auto");
+  Case clean = ShortConfig(
+      {SimulateShort(UntrimmedShortTruth(30.0), dir + "/clean.csv", 17)});
+  clean.sigma_auto = {{true, true, true}};
+  const Diagnosis e = Diagnose(clean, DiagnoseOptions());
+  EXPECT_EQ(e.verdict, Verdict::kNoiseLevel) << e.verdict_text;
+
+  Case drift =
+      ShortConfig(ShortRunWith(dir + "/drift.csv", "theta_drift", 0.015, 3));
+  drift.sigma_auto = {{true, true, true}};
+  const Diagnosis f = Diagnose(drift, DiagnoseOptions());
+  EXPECT_EQ(f.verdict, Verdict::kNotExplained) << f.verdict_text;
+  EXPECT_TRUE(f.steps.empty()) << f.verdict_text;
+}
+
+// Contenders refused for predicting nothing held out lead joint sets
+// when nothing else ends the round: on a 3-s run of another body at 39
+// deg/s (tests/data/short_roll_error_magnus_varied79.yaml, sigma: auto)
+// a roll reading error and a Magnus moment each failed the held-out part
+// alone (log-likelihood gains -17.6 and -4.7), and the record was left
+// `not_explained`. Together they explain it: the Magnus moment is named,
+// the reading error tied with a drift in time (121 deg of roll).
+TEST(Diagnose, EffectsThatPredictNothingAloneMayLeadASet) {
+  if (testing::kSanitized) GTEST_SKIP() << "joint sets; plain build";
+  const Diagnosis d = DiagnoseConfig("short_roll_error_magnus_varied79.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"magnus"})) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("roll_interaction")) << text;
+  ExpectFinalCovers(
+      d,
+      {{"Cm_alpha", -0.1506}, {"Cm_q", -7.019}, {"Cm_p_alpha", -3.0904}},
+      text);
+}
+
+// sigma: auto holds the noise at the least of the nominal fit's RMS
+// residual and the model-free levels of the data and of that residual: on
+// a 3-s run at 9 points per cycle (tests/data/short_pitch_lag_varied79.yaml)
+// the pitch data's level was 0.0122 deg against a true 0.01, and a lag of
+// the pitch reading (outside the catalog) left 2.0 times the noise in
+// pitch, under the held level's limit: a Magnus moment and a body
+// asymmetry were named. The residual's level holds it `not_explained`.
+TEST(Diagnose, SigmaAutoHoldsTheResidualsModelFreeLevel) {
+  const Diagnosis d = DiagnoseConfig("short_pitch_lag_varied79.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_LT(DiagnosedNoise(d, {}).theta, 0.0115) << text;
+}
+
+// The effects tied in an answer are candidates past the noise beside it
+// (PastNoise): on a cone of another body
+// (tests/data/coning_damping_magnus_angularity_varied80.yaml) a Magnus
+// moment tied with the tunnel damping and a flow angularity were in; past
+// the noise a roll torque took the damping's roll part (Eq. 39) and was
+// added at 4.8 of its errors, the damping only not excluded. With the
+// tied effects weighed there too, the damping is named, no roll torque.
+TEST(Diagnose, TiedEffectsAreWeighedPastTheNoise) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_damping_magnus_angularity_varied80.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  const std::set<std::string> added = EffectIds(d.steps);
+  EXPECT_TRUE(added.count("tunnel_damping")) << text;
+  EXPECT_FALSE(added.count("roll_torque")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.1473}, {"Cm_q", -8.716}}, text);
+}
+
+// The probes are refitted in the order of their scores, two at a time,
+// until one has its physical sign: on a 3-s run of another body with the
+// pitch reading's gain 16% low (tests/data/short_pitch_gain_varied82.yaml)
+// the frictions about both axes and about the yaw axis scored first and
+// drove the motion; the gain probe was never fitted, and a tunnel damping
+// cancelling 85% of the yaw damping was named. Now the gain probe outdoes
+// every catalog effect and the record is not explained by the catalog.
+TEST(Diagnose, ProbesAreFittedPastThoseOfTheWrongSign) {
+  const Diagnosis d = DiagnoseConfig("short_pitch_gain_varied82.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_EQ(d.outside_catalog.effect, "reading_gain") << text;
+}
+
+// A rival that tied with a step where the step was added and loses its
+// swap by far is fitted again from its own terms first (Unresolved): on a
+// 3-s run of another body with a gas-bearing moment, a calibration error
+// and a roll torque, sigma: auto
+// (tests/data/short_bearing_calibration_roll_torque_varied85.yaml), the
+// roll damping and the roll torque lowered BIC alike at their step (twins
+// at one spin rate), but the torque swapped in for the damping ran the
+// bearing's angle along its ridge and stopped 30.8 worse: the roll damping
+// was named. From its own terms first the swap is as good: a tie.
+TEST(Diagnose, ASwapFarWorseIsRefittedFromTheRivalsOwnTerms) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_bearing_calibration_roll_torque_varied85.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.ambiguous),
+            (std::set<std::string>{"roll_damping", "roll_torque"}))
+      << text;
+  EXPECT_FALSE(EffectIds(d.steps).count("roll_damping")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.1534}, {"Cm_q", -7.049}}, text);
+}
+
+// A final model with no effect, a tie's short of the noise, lists its own
+// near twins (FindNotExcluded): on a cone of another body with a tunnel
+// damping, a Magnus moment and a flow angularity, sigma: auto
+// (tests/data/coning_damping_magnus_angularity_varied81.yaml), a trim
+// moment tied with a drift in time and nothing was added; the Magnus
+// moment was Cm_q's twin beside the search's model only, and the final
+// Cm_q, 22.6 of its errors off the truth, was said to carry nothing. Now
+// the answer says what it carries, and holds that.
+TEST(Diagnose, AFinalModelShortOfTheTieSaysWhatItsCoefficientsCarry) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_damping_magnus_angularity_varied81.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_TRUE(d.steps.empty()) << text;
+  const auto magnus = std::find_if(
+      d.coefficient_twins.begin(),
+      d.coefficient_twins.end(),
+      [](const CoefficientTwin& t) { return t.score.effect == "magnus"; });
+  ASSERT_NE(magnus, d.coefficient_twins.end()) << text;
+  EXPECT_TRUE(magnus->in_final_model) << text;
+  ASSERT_EQ(magnus->shifts.size(), 1u) << text;
+  EXPECT_EQ(magnus->shifts[0].parameter, "Cm_q");
+  constexpr double kTrueCmq = -3.829, kTrueMagnus = -17.643;
+  const ParameterEstimate* cm_q =
+      SharedEstimate(d.FinalFit().parameters, "Cm_q");
+  ASSERT_NE(cm_q, nullptr);
+  EXPECT_GT(std::abs(cm_q->value - kTrueCmq), 10.0 * cm_q->standard_error)
+      << text;
+  const double carried = kTrueCmq + magnus->shifts[0].per_unit * kTrueMagnus;
+  EXPECT_LT(std::abs(cm_q->value - carried), 3.0 * cm_q->standard_error)
+      << text;
+  EXPECT_NE(text.find("the fitted Cm_q stands for Cm_q + "), std::string::npos)
+      << text;
+}
+
 }  // namespace
 }  // namespace fit3dof

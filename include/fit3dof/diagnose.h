@@ -416,6 +416,11 @@ struct DiagnoseOptions {
   // flow angularity is a sum of the roll interaction's terms, and the
   // answer found without it cannot exclude it.
   std::vector<std::string> searched_without;
+  // Set by diagnose for the search that weighs a probe outside the catalog
+  // with the catalog's effects beside it (its model the probe's): that
+  // search's second thoughts do not search again without a step whose
+  // joint set's partner tied (the catalog's own search had them).
+  bool beside_probe = false;
 };
 
 struct ResidualCheck {
