@@ -755,9 +755,9 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   // there still widen the final error bars (they are the final model's),
   // but each effect is listed beside the search's model (the tied effect
   // it followed in) when not excluded there.
-  if (!d->final.at_noise_level && complete.size() > 1) {
-    std::swap(complete[0], complete[1]);
-  }
+  const bool search_model_first =
+      !d->final.at_noise_level && complete.size() > 1;
+  if (search_model_first) std::swap(complete[0], complete[1]);
   // Whether each model reaches the noise, for the words (checked once per
   // model, not per effect tried beside it).
   std::map<const FitResult*, bool> at_noise;
@@ -773,6 +773,16 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
           ? std::vector<Candidate>()
           : ScoredCandidates(first[0].c, *first[0].fit, options);
   if (first[0].effects.empty()) NominalTwins(first[0], options, d);
+  // A final model with no effect (the nominal fit, the tie short of the
+  // noise) carries its own twins whatever the search's model holds: on a
+  // cone of another body with a tunnel damping, a Magnus moment and a flow
+  // angularity (--vary-conditions draw 81), a trim moment tied with a drift
+  // in time and nothing was added; the Magnus moment was listed as Cm_q's
+  // twin beside the search's model only, and the final Cm_q, 22.6 of its
+  // errors off the truth, was said to carry nothing.
+  if (search_model_first && complete[1].effects.empty()) {
+    NominalTwins(complete[1], options, d);
+  }
   // A tied effect's models are the tie's (WidenForTie).
   std::vector<const Effect*> effects;
   for (const Effect* e : contended) {
