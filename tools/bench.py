@@ -253,7 +253,9 @@ def main():
     # and on the 48-s Table 6 record (draw 41's slowest); draw 65's two
     # over 5 s: a pitch reading's gain error on a pair of runs (outside the
     # catalog, where sets of a bearing moment crawl along its ridge) and a
-    # bearing moment, calibration error and roll torque on Table 6.
+    # bearing moment, calibration error and roll torque on Table 6; the
+    # --vary-conditions draws' slowest, a bearing moment, calibration error
+    # and roll torque on a 3-s run of another body (draw 84).
     print("== fit3dof diagnose against a plain fit of the same record "
           "(median of 3)")
     rows = []
@@ -261,7 +263,8 @@ def main():
                  "pair_damping_magnus_angularity_vary15",
                  "table6_damping_magnus_angularity_draw41",
                  "pair_pitch_gain_draw65",
-                 "table6_bearing_calibration_roll_torque_draw65"):
+                 "table6_bearing_calibration_roll_torque_draw65",
+                 "short_bearing_calibration_roll_torque_varied84"):
         config = os.path.join(root, "tests", "data", name + ".yaml")
         seconds, fit_seconds, d = time_diagnose(root, config)
         rows.append({"record": name, "diagnose_seconds": seconds,
