@@ -3487,6 +3487,35 @@ TEST(Diagnose, AnEffectTheCoefficientsAbsorbIsListedAsUnseen) {
   }
 }
 
+// `d`'s final model lists `effect` as a twin of Cm_q alone, its fitted
+// Cm_q is 10 or more of its errors from `true_cmq`, and within 3 of what
+// it stands for (Cm_q + per_unit times `true_term`), which the answer
+// says.
+void ExpectCmqCarries(const Diagnosis& d,
+                      const std::string& effect,
+                      double true_cmq,
+                      double true_term,
+                      const std::string& text) {
+  const auto twin = std::find_if(
+      d.coefficient_twins.begin(),
+      d.coefficient_twins.end(),
+      [&](const CoefficientTwin& t) { return t.score.effect == effect; });
+  ASSERT_NE(twin, d.coefficient_twins.end()) << text;
+  EXPECT_TRUE(twin->in_final_model) << text;
+  ASSERT_EQ(twin->shifts.size(), 1u) << text;
+  EXPECT_EQ(twin->shifts[0].parameter, "Cm_q");
+  const ParameterEstimate* cm_q =
+      SharedEstimate(d.FinalFit().parameters, "Cm_q");
+  ASSERT_NE(cm_q, nullptr);
+  EXPECT_GT(std::abs(cm_q->value - true_cmq), 10.0 * cm_q->standard_error)
+      << text;
+  const double carried = true_cmq + twin->shifts[0].per_unit * true_term;
+  EXPECT_LT(std::abs(cm_q->value - carried), 3.0 * cm_q->standard_error)
+      << text;
+  EXPECT_NE(text.find("the fitted Cm_q stands for Cm_q + "), std::string::npos)
+      << text;
+}
+
 // A record at the noise with nothing added lists its nominal fit's near
 // twins too: the `short` run of another body (tests/data/short_weak_
 // nonlinear_damping_varied78.yaml, Cm_q -1.967) with a nonlinear damping
@@ -3498,27 +3527,7 @@ TEST(Diagnose, ANoiseLevelAnswerSaysWhatItsCoefficientsCarry) {
       DiagnoseConfig("short_weak_nonlinear_damping_varied78.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(d.verdict, Verdict::kNoiseLevel) << text;
-  const auto damping =
-      std::find_if(d.coefficient_twins.begin(),
-                   d.coefficient_twins.end(),
-                   [](const CoefficientTwin& t) {
-                     return t.score.effect == "nonlinear_damping";
-                   });
-  ASSERT_NE(damping, d.coefficient_twins.end()) << text;
-  EXPECT_TRUE(damping->in_final_model) << text;
-  ASSERT_EQ(damping->shifts.size(), 1u) << text;
-  EXPECT_EQ(damping->shifts[0].parameter, "Cm_q");
-  constexpr double kTrueCmq = -1.967, kTrueDelta2 = 114.36;
-  const ParameterEstimate* cm_q =
-      SharedEstimate(d.FinalFit().parameters, "Cm_q");
-  ASSERT_NE(cm_q, nullptr);
-  EXPECT_GT(std::abs(cm_q->value - kTrueCmq), 10.0 * cm_q->standard_error)
-      << text;
-  const double carried = kTrueCmq + damping->shifts[0].per_unit * kTrueDelta2;
-  EXPECT_LT(std::abs(cm_q->value - carried), 3.0 * cm_q->standard_error)
-      << text;
-  EXPECT_NE(text.find("the fitted Cm_q stands for Cm_q + "), std::string::npos)
-      << text;
+  ExpectCmqCarries(d, "nonlinear_damping", -1.967, 114.36, text);
 }
 
 // tools/diagnose_suite's `short` tunnel stiffness + nonlinear damping +
@@ -4111,25 +4120,7 @@ TEST(Diagnose, AFinalModelShortOfTheTieSaysWhatItsCoefficientsCarry) {
       DiagnoseConfig("coning_damping_magnus_angularity_varied81.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_TRUE(d.steps.empty()) << text;
-  const auto magnus = std::find_if(
-      d.coefficient_twins.begin(),
-      d.coefficient_twins.end(),
-      [](const CoefficientTwin& t) { return t.score.effect == "magnus"; });
-  ASSERT_NE(magnus, d.coefficient_twins.end()) << text;
-  EXPECT_TRUE(magnus->in_final_model) << text;
-  ASSERT_EQ(magnus->shifts.size(), 1u) << text;
-  EXPECT_EQ(magnus->shifts[0].parameter, "Cm_q");
-  constexpr double kTrueCmq = -3.829, kTrueMagnus = -17.643;
-  const ParameterEstimate* cm_q =
-      SharedEstimate(d.FinalFit().parameters, "Cm_q");
-  ASSERT_NE(cm_q, nullptr);
-  EXPECT_GT(std::abs(cm_q->value - kTrueCmq), 10.0 * cm_q->standard_error)
-      << text;
-  const double carried = kTrueCmq + magnus->shifts[0].per_unit * kTrueMagnus;
-  EXPECT_LT(std::abs(cm_q->value - carried), 3.0 * cm_q->standard_error)
-      << text;
-  EXPECT_NE(text.find("the fitted Cm_q stands for Cm_q + "), std::string::npos)
-      << text;
+  ExpectCmqCarries(d, "magnus", -3.829, -17.643, text);
 }
 
 // A tunnel term of Eq. 39 not excluded beside the complete model stands in
