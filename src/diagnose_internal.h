@@ -149,6 +149,18 @@ std::string Drags(const FitResult& before,
                   const std::vector<std::string>& added,
                   double max_drag);
 
+// Why the BIC drop `bic_drop` from `before` to `after` (the same samples
+// and weights) rests on one reading: that reading's weighted square
+// residual falls by more than half the whole drop, and the record without
+// it would lower BIC by less than `min_bic_drop`; or empty. A sample far
+// off every model (a wild point, a filter's start-up transient) lets any
+// term that bends the motion near it buy a large drop in the sum of
+// squares while the rest of the record fits no better.
+std::string RestsOnOneReading(const FitResult& before,
+                              const FitResult& after,
+                              double bic_drop,
+                              double min_bic_drop);
+
 // Each segment cut into `blocks` runs of samples, alternately kept for
 // training (the first, where the initial conditions hold, among them) and
 // held out: the held-out samples span the record's amplitudes and spin

@@ -185,6 +185,10 @@ void Judge(const FitResult& current,
     c->dragged = !why.empty();
   }
   if (why.empty()) {
+    why = RestsOnOneReading(
+        current, c->fit, c->record.bic_drop, options.min_bic_drop);
+  }
+  if (why.empty()) {
     const double gain = out_of_sample->Gain(FromSolution(k.c, c->fit));
     c->record.prediction_gain = gain;
     const double needed = GainNeeded(static_cast<int>(k.added.size()), options);

@@ -483,6 +483,48 @@ std::string Drags(const FitResult& before,
   return worst;
 }
 
+std::string RestsOnOneReading(const FitResult& before,
+                              const FitResult& after,
+                              double bic_drop,
+                              double min_bic_drop) {
+  CHECK_EQ(before.segments.size(), after.segments.size());
+  double total = 0.0, top = 0.0, at_t = 0.0;
+  int top_channel = 0;
+  for (size_t s = 0; s < before.segments.size(); ++s) {
+    const SegmentFit& b = before.segments[s];
+    const SegmentFit& a = after.segments[s];
+    CHECK_EQ(b.data.size(), a.data.size());
+    for (int ch = 0; ch < 3; ++ch) {
+      const std::vector<double> rb = ChannelResidual(b, ch);
+      const std::vector<double> ra = ChannelResidual(a, ch);
+      for (size_t i = 0; i < rb.size(); ++i) {
+        double x = rb[i], y = ra[i];
+        if (ch == 0) {
+          x -= WholeTurns(x);
+          y -= WholeTurns(y);
+        }
+        const double drop = (x / b.sigma_deg[ch]) * (x / b.sigma_deg[ch]) -
+                            (y / a.sigma_deg[ch]) * (y / a.sigma_deg[ch]);
+        total += drop;
+        if (drop > top) {
+          top = drop;
+          at_t = b.data.t[i];
+          top_channel = ch;
+        }
+      }
+    }
+  }
+  if (!(top > 0.5 * total) || bic_drop - top >= min_bic_drop) return "";
+  static const char* const kChannels[] = {"phi", "theta", "psi"};
+  return "its BIC drop (" + FormatNumber("%.3g", bic_drop) +
+         ") rests on one reading, " + kChannels[top_channel] +
+         " at t = " + FormatNumber("%.4g", at_t) + " s (" +
+         FormatNumber("%.3g", top) + " of the sum of squares' " +
+         FormatNumber("%.3g", total) +
+         "): without it the record would lower BIC by " +
+         FormatNumber("%.3g", bic_drop - top);
+}
+
 HeldOut HoldOut(const std::vector<TimeHistory>& data, int blocks) {
   HeldOut h;
   for (const TimeHistory& d : data) {

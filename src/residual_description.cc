@@ -3,7 +3,10 @@
 // What structured residuals show (DescribeResiduals, diagnose.h), in the
 // terms an engineer checks a missing effect by: which frequencies (the
 // motion's own modes, the spin and its harmonics), a trend in time, a
-// dependence on the angle the bearing sits at, a dependence on roll.
+// dependence on the angle the bearing sits at, a dependence on roll; and
+// the readings far off the fitted motion (wild_points.h), which a smooth
+// missing effect does not leave: a wild point, or a transient the model
+// lacks (a filter in the signal conditioning starting at rest).
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -11,6 +14,7 @@
 
 #include "fit3dof/angles.h"
 #include "fit3dof/diagnose.h"
+#include "fit3dof/wild_points.h"
 #include "format.h"
 #include "line_statistics.h"
 #include "spectral_lines.h"
@@ -144,10 +148,29 @@ std::string DescribeChannel(const Channel& c,
   return text.empty() ? "" : std::string(c.name) + ": " + text;
 }
 
+// The readings the residual screen (ScreenResiduals) finds far off the
+// fitted motion, the first three described, or empty.
+std::string FarReadings(const SegmentFit& s) {
+  constexpr int kDescribed = 3;
+  const std::vector<WildPoint> far = ScreenResiduals(s.data, s.computed, {});
+  if (far.empty()) return "";
+  std::string text =
+      std::string(far.size() == 1 ? "a reading" : "readings") +
+      " far off the fitted motion (a wild point, or a transient the model "
+      "lacks): ";
+  for (size_t i = 0; i < far.size() && i < kDescribed; ++i) {
+    text += (i > 0 ? "; " : "") + far[i].Describe();
+  }
+  if (far.size() > kDescribed) {
+    text += "; " + std::to_string(far.size() - kDescribed) + " more";
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string DescribeResiduals(const FitResult& fit) {
-  std::string text;
+  std::string text, far;
   for (const SegmentFit& s : fit.segments) {
     const int n = s.data.size();
     if (n < 16) continue;
@@ -171,16 +194,23 @@ std::string DescribeResiduals(const FitResult& fit) {
       const std::string part = DescribeChannel(c, t, roll, spin_hz);
       if (!part.empty()) segment += (segment.empty() ? "" : "; ") + part;
     }
+    std::string readings = FarReadings(s);
+    if (fit.segments.size() > 1 && !readings.empty()) {
+      readings = "'" + s.name + "': " + readings;
+    }
+    if (!readings.empty()) far += (far.empty() ? "" : "; ") + readings;
     if (segment.empty()) continue;
     if (fit.segments.size() > 1) segment = "'" + s.name + "': " + segment;
     text += (text.empty() ? "" : "; ") + segment;
   }
+  if (!far.empty()) far = "; " + far;
   if (text.empty()) {
     return "no line, trend, angle or roll dependence stands out: the "
-           "residual is broadband";
+           "residual is broadband" +
+           far;
   }
   return "the residuals show " + text +
-         " (shares: of the channel's residual variance)";
+         " (shares: of the channel's residual variance)" + far;
 }
 
 }  // namespace fit3dof

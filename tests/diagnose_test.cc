@@ -4051,6 +4051,32 @@ TEST(Diagnose, SigmaAutoHoldsTheResidualsModelFreeLevel) {
   EXPECT_LT(DiagnosedNoise(d, {}).theta, 0.0115) << text;
 }
 
+// An effect earns its place on the record, not on one reading
+// (RestsOnOneReading): on a 3-s run of another body with the pitch reading
+// through a lag whose filter starts at rest
+// (tests/data/short_pitch_lag_varied90.yaml), the first pitch reading lay
+// 0.22 deg off the fitted motion, and a nonlinear damping that bent the
+// motion there lowered BIC by 19.8 while every other reading fitted worse
+// (without that one, by -60.7): it was added beside a Magnus moment tied
+// with a reading lag. Refused, the record is `not_explained`, and its
+// residuals' description names that reading.
+TEST(Diagnose, AnEffectCarriedByOneReadingDoesNotEarnItsPlace) {
+  const Diagnosis d = DiagnoseConfig("short_pitch_lag_varied90.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  bool one_reading = false;
+  for (const CandidateFit& k : d.rejected) {
+    one_reading |= k.effect == "nonlinear_damping" &&
+                   k.rejected.find("rests on one reading, theta at t = 0 s") !=
+                       std::string::npos;
+  }
+  EXPECT_TRUE(one_reading) << text;
+  EXPECT_NE(d.residual_description.find("a reading far off the fitted motion"),
+            std::string::npos)
+      << d.residual_description;
+}
+
 // The effects tied in an answer are candidates past the noise beside it
 // (PastNoise): on a cone of another body
 // (tests/data/coning_damping_magnus_angularity_varied80.yaml) a Magnus

@@ -205,5 +205,19 @@ TEST(DescribeResiduals, NamesNoChanceStructureOnAShortRun) {
   EXPECT_GE(trends, 8);
 }
 
+// A reading far off the fitted motion is named with its time, whatever
+// else the residual shows: a smooth missing effect never leaves one, a
+// wild point or a transient the model lacks (a filter starting at rest) do.
+TEST(DescribeResiduals, NamesAReadingFarOffTheFittedMotion) {
+  FitResult fit = ShortRun(0.0, 7);
+  EXPECT_EQ(DescribeResiduals(fit).find("far off"), std::string::npos);
+  fit.segments[0].data.theta[20] += 20.0 * kNoise;
+  const std::string text = DescribeResiduals(fit);
+  EXPECT_NE(text.find("a reading far off the fitted motion"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("theta = "), std::string::npos) << text;
+  EXPECT_NE(text.find("at t = 1.30435 s"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace fit3dof

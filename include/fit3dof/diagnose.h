@@ -78,6 +78,12 @@
 //     residual, so no error bar of the fit without it covers the move; an
 //     effect that explains everything may move them as far as it must,
 //     one that explains a little must not move them far);
+//   - not carried by one reading: a reading whose weighted square residual
+//     falls by more than half the whole drop, the rest of the record
+//     lowering BIC by less than `min_bic_drop` without it, refuses the
+//     effect (a lag filter starting at rest left the first pitch reading
+//     12 robust sigmas off; a nonlinear damping bent the motion there and
+//     lowered BIC by 19.8, every other reading fitting worse);
 //     Effects that only together explain the record may each drag alone
 //     (each moves the coefficients that the others biased): when a
 //     contender is refused for its drag and none with a lower BIC earned
@@ -744,7 +750,8 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options);
 // spin's harmonics, a trend in time, a dependence on the pitch or yaw
 // angle, a dependence on the roll angle (residual_description.cc), each
 // named only above the share of the residual's variance that noise takes
-// with chance 1e-3.
+// with chance 1e-3; and the readings far off the fitted motion
+// (ScreenResiduals, wild_points.h), with channel and time.
 std::string DescribeResiduals(const FitResult& fit);
 
 // The noise level the diagnosis weighed the residuals by: the record's own
