@@ -185,6 +185,37 @@ bool InTie(const Diagnosis& d, const std::string& id) {
          std::any_of(d.later_ties.begin(), d.later_ties.end(), in);
 }
 
+namespace {
+
+// The nominal fit's wild points, one line each (at most kShown, then how
+// many more): the search fits the samples that fit kept, so a wild point
+// kept under `outliers: warn` is in every candidate's residuals, and a
+// dropped one in none.
+std::string WildPointLines(const Diagnosis& d) {
+  constexpr size_t kShown = 5;
+  if (d.fits.empty()) return "";
+  const std::vector<Outlier>& outliers = d.fits[0].outliers;
+  std::string out;
+  for (size_t i = 0; i < outliers.size() && i < kShown; ++i) {
+    const Outlier& o = outliers[i];
+    out += "wild point" +
+           (d.fits[0].segments.size() > 1 ? " in segment '" + o.segment + "'"
+                                          : std::string()) +
+           ": " + o.point.Describe() +
+           (o.dropped ? "; dropped, the search fits the rest"
+                      : "; kept in every fit of the search (data: {outliers: "
+                        "reject} leaves it out)") +
+           "\n";
+  }
+  if (outliers.size() > kShown) {
+    out += std::to_string(outliers.size() - kShown) +
+           " more wild points (diagnosis.json's outliers)\n";
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   json out;
   out["name"] = c.name;
@@ -268,6 +299,9 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
     out["residual_description"] = d.residual_description;
   }
   out["rejected"] = Contenders(d.rejected);
+  // The nominal fit's wild points: the search saw the samples it kept.
+  out["outliers"] = OutliersJson(d.fits.empty() ? std::vector<Outlier>()
+                                                : d.fits[0].outliers);
   out["outside_catalog"] = d.outside_catalog.effect.empty()
                                ? json(nullptr)
                                : Contender(d.outside_catalog);
@@ -317,7 +351,7 @@ ChannelValues DiagnosedNoise(const Diagnosis& d, const ChannelValues& stated) {
 }
 
 std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
-  std::string out;
+  std::string out = WildPointLines(d);
   if (!d.absent.empty()) {
     std::string ids;
     for (const std::string& id : d.absent)

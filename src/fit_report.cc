@@ -98,20 +98,7 @@ ordered_json ReportObject(const FitResult& r) {
   }
   report["correlation"] = {{"names", r.correlation_names}, {"matrix", matrix}};
   report["warnings"] = r.warnings;
-  json outliers = json::array();
-  for (const Outlier& o : r.outliers) {
-    static const char* const kTests[] = {"reach", "jump", "residual"};
-    outliers.push_back({{"segment", o.segment},
-                        {"t", o.point.t},
-                        {"channel", ChannelName(o.point.channel)},
-                        {"value", JsonNumber(o.point.value)},
-                        {"deviation", JsonNumber(o.point.deviation)},
-                        {"robust_sigmas", JsonNumber(o.point.sigmas)},
-                        {"test", kTests[static_cast<int>(o.point.test)]},
-                        {"action", o.dropped ? "dropped" : "kept"},
-                        {"reason", o.point.Describe()}});
-  }
-  report["outliers"] = outliers;
+  report["outliers"] = OutliersJson(r.outliers);
   json segments = json::array();
   for (const SegmentFit& s : r.segments) {
     segments.push_back(

@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "fit3dof/case.h"
+#include "fit3dof/fit.h"
+#include "fit3dof/time_history.h"
 
 namespace fit3dof {
 
@@ -31,6 +33,24 @@ inline nlohmann::json JsonChannels(const ChannelValues& v) {
   return {{"phi", JsonNumber(v.phi)},
           {"theta", JsonNumber(v.theta)},
           {"psi", JsonNumber(v.psi)}};
+}
+
+// A fit's wild points (report.json's and diagnosis.json's `outliers`).
+inline nlohmann::json OutliersJson(const std::vector<Outlier>& outliers) {
+  static const char* const kTests[] = {"reach", "jump", "residual"};
+  nlohmann::json out = nlohmann::json::array();
+  for (const Outlier& o : outliers) {
+    out.push_back({{"segment", o.segment},
+                   {"t", o.point.t},
+                   {"channel", ChannelName(o.point.channel)},
+                   {"value", JsonNumber(o.point.value)},
+                   {"deviation", JsonNumber(o.point.deviation)},
+                   {"robust_sigmas", JsonNumber(o.point.sigmas)},
+                   {"test", kTests[static_cast<int>(o.point.test)]},
+                   {"action", o.dropped ? "dropped" : "kept"},
+                   {"reason", o.point.Describe()}});
+  }
+  return out;
 }
 
 }  // namespace fit3dof

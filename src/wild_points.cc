@@ -124,7 +124,8 @@ struct Jump {
 // neighbours without it, so that a spike does not drag its neighbours out.
 std::vector<Jump> FindJumps(const std::vector<double>& t,
                             const std::vector<double>& x,
-                            std::vector<char> flagged) {
+                            std::vector<char> flagged,
+                            double quantum) {
   const int n = static_cast<int>(x.size());
   if (n < kMinSamples) return {};
   std::vector<Real> z(n, 0);
@@ -140,7 +141,12 @@ std::vector<Jump> FindJumps(const std::vector<double>& t,
   for (int i = 0; i < n; ++i) {
     if (valid[i]) all.push_back(z[i]);
   }
-  const Real floor = std::max<Real>(kGlobalFloor * RobustSigma(all), kFloorDeg);
+  // A grid's rounding error is uniform over a step (sigma q / sqrt(12));
+  // at ten of those no rounding reaches the threshold, whatever the
+  // neighbours' weights (the error is at most (q / 2)(1 + sum |w|), under
+  // 1.12 q times the gain).
+  const Real floor = std::max<Real>(
+      {kGlobalFloor * RobustSigma(all), kFloorDeg, quantum / std::sqrt(12.0)});
   const int blocks = (n + kBlock - 1) / kBlock;
   std::vector<Real> scale(blocks);
   for (int b = 0; b < blocks; ++b) {
@@ -211,6 +217,126 @@ std::vector<Jump> FindJumps(const std::vector<double>& t,
   return jumps;
 }
 
+// Quantum's candidates and tests.
+constexpr int kQuantumQuantiles = 8;
+constexpr double kOnGrid = 0.1;      // of a step
+constexpr double kGridShare = 0.95;  // of the readings
+constexpr int kLeastSteps = 4;
+
+// The step of the grid near `guess` that the readings `x` sit on, or 0.
+// The step is fitted by least squares to the sample-to-sample `changes`
+// and their whole counts c_i (q = sum c_i d_i / sum c_i^2); each reading's
+// count is the sum of the counts before it, and the readings must lie
+// within kOnGrid of a step of the grid, kGridShare of them, the grid's
+// offset taken per block of kBlock samples (a wild point may shift the
+// counts after it by one; the step's own error drifts the grid by 0.015
+// deg over a block of Table 6's roll in 2-deg counts). Readings off any
+// grid lie that close 20% of the time. Changes alone do not tell: 18 and
+// 19 counts of 2.13 deg are within a fifth of 5 of 7.77 deg.
+double GridStep(const std::vector<double>& x,
+                const std::vector<double>& changes,
+                double guess) {
+  if (!(guess > 0.0)) return 0.0;
+  double cd = 0.0, cc = 0.0;
+  for (double d : changes) {
+    const double counts = std::round(d / guess);
+    cd += counts * d;
+    cc += counts * counts;
+  }
+  if (!(cc > 0.0)) return 0.0;
+  const double step = cd / cc;
+  const int n = static_cast<int>(x.size());
+  std::vector<Real> offsets(n);
+  Real counts = 0;
+  for (int i = 0; i < n; ++i) {
+    if (i > 0) counts += std::round(changes[i - 1] / step);
+    offsets[i] = x[i] - counts * step;
+  }
+  int on = 0;
+  for (int b = 0; b * kBlock < n; ++b) {
+    const auto first = offsets.begin() + b * kBlock;
+    const auto last = offsets.begin() + std::min(n, (b + 1) * kBlock);
+    const Real center = Median(std::vector<Real>(first, last));
+    for (auto o = first; o != last; ++o) {
+      on += std::abs(*o - center) <= kOnGrid * step;
+    }
+  }
+  return on >= kGridShare * n ? step : 0.0;
+}
+
+// Whether rounding to `step` shows in the cubic prediction errors of the
+// series (sigma step / sqrt(12) where the rounding wraps): the 90th
+// percentile of their size at least a quarter of that. A few spikes on a
+// smooth series leave it at the noise.
+bool Rounded(const std::vector<double>& t,
+             const std::vector<double>& x,
+             double step) {
+  constexpr double kShare = 0.9;
+  constexpr double kLeast = 0.25;
+  const int n = static_cast<int>(x.size());
+  const std::vector<char> none(n, 0);
+  std::vector<Real> sizes;
+  std::array<int, 4> nodes;
+  for (int i = 0; i < n; ++i) {
+    if (!Neighbours(none, i, &nodes)) continue;
+    const Prediction p = Predict(t, x, i, nodes);
+    sizes.push_back(std::abs(p.error / p.gain));
+  }
+  if (sizes.empty()) return false;
+  const size_t at =
+      std::min(sizes.size() - 1, static_cast<size_t>(kShare * sizes.size()));
+  std::nth_element(sizes.begin(), sizes.begin() + at, sizes.end());
+  return sizes[at] >= kLeast * step / std::sqrt(12.0);
+}
+
+// The step of a channel's readings when they lie on a grid (an encoder's
+// count, a converter's least bit, with noise well below the step), or 0.
+// On such a channel the reading's own error is the rounding, up to half a
+// step, and the slow sawtooth it traces against a smooth motion jumps by a
+// step where it wraps: on 2-deg roll counts at 1.9 deg a sample, wraps 49
+// robust sigmas of the sawtooth off the cubic through their neighbours
+// had been called wild.
+// Candidates are quantiles of the sample-to-sample changes and of their
+// changes (a fast roll moves many counts a sample, 18 or 19 of them:
+// its second differences are whole counts), and their halves and thirds.
+// Each is refined by least squares on the whole counts of the changes,
+// and taken when nearly all the readings lie on its grid (GridStep) over a
+// span of at least four steps, and the rounding roughens the series
+// (Rounded): a roll
+// at a constant rate is a grid of its own, 38 deg a sample on Table 6,
+// and taken for one it would hide spikes of 100 deg. Of the steps taken,
+// the largest (a grid's halves are grids too).
+double Quantum(const std::vector<double>& t, const std::vector<double>& x) {
+  const int n = static_cast<int>(x.size());
+  if (n < kMinSamples) return 0.0;
+  for (double v : x) {
+    if (!std::isfinite(v)) return 0.0;
+  }
+  const auto [low, high] = std::minmax_element(x.begin(), x.end());
+  std::vector<double> changes(n - 1), second(n - 2);
+  for (int i = 0; i + 1 < n; ++i) changes[i] = x[i + 1] - x[i];
+  for (int i = 0; i + 2 < n; ++i) second[i] = changes[i + 1] - changes[i];
+  double best = 0.0;
+  for (const std::vector<double>* differences : {&changes, &second}) {
+    std::vector<double> sizes;
+    for (double d : *differences) {
+      if (d != 0.0) sizes.push_back(std::abs(d));
+    }
+    std::sort(sizes.begin(), sizes.end());
+    for (int k = 0; k < kQuantumQuantiles && !sizes.empty(); ++k) {
+      const double size = sizes[sizes.size() * k / kQuantumQuantiles];
+      for (int divisor = 1; divisor <= 3; ++divisor) {
+        const double step = GridStep(x, changes, size / divisor);
+        if (step > best && *high - *low >= kLeastSteps * step &&
+            Rounded(t, x, step)) {
+          best = step;
+        }
+      }
+    }
+  }
+  return best;
+}
+
 // The robust sigma of the prediction errors of a whole series.
 Real Roughness(const std::vector<double>& t,
                const std::vector<double>& x,
@@ -230,17 +356,32 @@ Real Roughness(const std::vector<double>& t,
 // INTGRL), so a record may hold it wrapped into a turn; unwrapped, the test
 // sees the motion rather than the wraps. A record whose roll already runs
 // on (possibly faster than half a turn per sample) is left as it is.
+// `quantum`: the step of the channel's readings (Quantum), or 0.
 std::vector<Jump> FindChannelJumps(const std::vector<double>& t,
                                    const std::vector<double>& x,
                                    int channel,
-                                   const std::vector<char>& flagged) {
+                                   const std::vector<char>& flagged,
+                                   double quantum) {
   if (channel == 0) {
     const std::vector<double> u = UnwrapDegrees(x, flagged);
     if (Roughness(t, u, flagged) < Roughness(t, x, flagged)) {
-      return FindJumps(t, u, flagged);
+      return FindJumps(t, u, flagged, quantum);
     }
   }
-  return FindJumps(t, x, flagged);
+  return FindJumps(t, x, flagged, quantum);
+}
+
+// Quantum of a channel's readings; roll's unwrapped when that is the
+// smoother series (FindChannelJumps): a wrap into the turn is no count.
+double ReadingQuantum(const std::vector<double>& t,
+                      const std::vector<double>& x,
+                      int channel) {
+  if (channel == 0) {
+    const std::vector<char> none(x.size(), 0);
+    const std::vector<double> u = UnwrapDegrees(x, none);
+    if (Roughness(t, u, none) < Roughness(t, x, none)) return Quantum(t, u);
+  }
+  return Quantum(t, x);
 }
 
 WildPoint FromJump(const Jump& j,
@@ -324,7 +465,8 @@ std::vector<WildPoint> ScreenData(const TimeHistory& data) {
                           WildPointTest::kReach});
       }
     }
-    for (const Jump& j : FindChannelJumps(data.t, x, channel, flagged)) {
+    for (const Jump& j : FindChannelJumps(
+             data.t, x, channel, flagged, ReadingQuantum(data.t, x, channel))) {
       points.push_back(FromJump(j, data, channel, WildPointTest::kJump));
     }
   }
@@ -352,7 +494,9 @@ std::vector<WildPoint> ScreenResiduals(const TimeHistory& data,
       finite &= std::isfinite(r[i]) || flagged[i];
     }
     if (!finite) continue;  // a motion that blew up has no residuals to judge
-    std::vector<Jump> jumps = FindChannelJumps(data.t, r, channel, flagged);
+    const double quantum = ReadingQuantum(data.t, x, channel);
+    std::vector<Jump> jumps =
+        FindChannelJumps(data.t, r, channel, flagged, quantum);
     for (const Jump& j : jumps) flagged[j.sample] = 1;
     // Beyond ten robust sigmas of the channel's residuals.
     std::vector<Real> kept;
@@ -361,7 +505,8 @@ std::vector<WildPoint> ScreenResiduals(const TimeHistory& data,
     }
     if (!kept.empty()) {
       const Real center = Median(kept);
-      const Real sigma = std::max<Real>(RobustSigma(kept), kFloorDeg);
+      const Real sigma = std::max<Real>(
+          {RobustSigma(kept), kFloorDeg, quantum / std::sqrt(12.0)});
       for (int i = 0; i < n; ++i) {
         const Real out = std::abs(r[i] - center) / sigma;
         if (!flagged[i] && out > kThreshold) {

@@ -4077,6 +4077,32 @@ TEST(Diagnose, AnEffectCarriedByOneReadingDoesNotEarnItsPlace) {
       << d.residual_description;
 }
 
+// The nominal fit's wild points are said, with what the search did with
+// them (the data's policy): on the lag record above, the first pitch
+// reading, kept under `outliers: warn`, dropped under `reject`.
+TEST(Diagnose, SaysWhatItDidWithTheWildPoints) {
+  const Case c = LoadConfig(
+      testing::SourcePath("tests/data/short_pitch_lag_varied90.yaml"));
+  Diagnosis d = Diagnose(c, DiagnoseOptions());
+  std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_NE(text.find("wild point: theta = 9.00289 deg at t = 0 s"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("kept in every fit of the search"), std::string::npos)
+      << text;
+  const nlohmann::json json = nlohmann::json::parse(DiagnosisJson(d, c));
+  ASSERT_EQ(json["outliers"].size(), 1u) << json["outliers"];
+  EXPECT_EQ(json["outliers"][0]["action"], "kept");
+  EXPECT_EQ(json["outliers"][0]["channel"], "theta");
+  Case rejecting = c;
+  rejecting.segments[0].outliers = OutlierPolicy::kReject;
+  d = Diagnose(rejecting, DiagnoseOptions());
+  text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_NE(text.find("dropped, the search fits the rest"), std::string::npos)
+      << text;
+  EXPECT_EQ(d.fits[0].segments[0].data.size(), 57) << text;
+}
+
 // The effects tied in an answer are candidates past the noise beside it
 // (PastNoise): on a cone of another body
 // (tests/data/coning_damping_magnus_angularity_varied80.yaml) a Magnus

@@ -84,6 +84,61 @@ TEST(WildPoints, ColoredErrorsAreNotWild) {
   }
 }
 
+// The computed angles a fit would give for `clean` (phi, theta, psi per
+// sample).
+std::vector<double> Computed(const TimeHistory& clean) {
+  std::vector<double> computed;
+  for (int i = 0; i < clean.size(); ++i) {
+    computed.insert(computed.end(),
+                    {clean.phi[i], clean.theta[i], clean.psi[i]});
+  }
+  return computed;
+}
+
+// Readings on a grid: roll in counts of about 2 deg, 1.05 times a whole
+// fraction of its turn per sample (as 2-deg counts at 1.9 deg a sample),
+// 0.01 deg of
+// noise added after (tools/diagnose_suite's quantized roll); pitch from a
+// converter with a 0.02-deg least bit, its 0.01 deg of noise before the
+// rounding. Against the motion the roll's rounding traces a slow sawtooth
+// that jumps by a count where it wraps, 49 robust sigmas of the sawtooth
+// off the cubic through its neighbours (draw 88's quantized runs had 10
+// and 8 such samples called wild). Not wild, in the data or in the
+// residuals; spikes of ten counts in roll, of a hundred in pitch (2 deg:
+// the motion's own curvature between Table 6's samples is what a pitch
+// spike is judged by) still are.
+TEST(WildPoints, QuantizedReadingsAreNotWild) {
+  for (const char* name : kRecords) {
+    const TimeHistory clean = Record(name);
+    // About 2 deg, 1.05 times a whole fraction of the turn per sample.
+    const double turn = std::abs(clean.phi[1] - clean.phi[0]);
+    const double count = 1.05 * turn / std::max(1.0, std::floor(turn / 2.0));
+    for (int seed = 1; seed <= testing::Repetitions(10); ++seed) {
+      GaussianSource gauss(seed);
+      TimeHistory data = clean;
+      const double zero = 0.037 * seed * count;
+      for (int i = 0; i < data.size(); ++i) {
+        data.phi[i] = count * std::round((data.phi[i] - zero) / count) + zero +
+                      0.01 * gauss.Next();
+        data.theta[i] =
+            0.02 * std::round((data.theta[i] + 0.01 * gauss.Next()) / 0.02);
+      }
+      std::vector<WildPoint> found = ScreenData(data);
+      EXPECT_TRUE(found.empty())
+          << name << " seed " << seed << ": " << found[0].Describe();
+      found = ScreenResiduals(data, Computed(clean), {});
+      EXPECT_TRUE(found.empty())
+          << name << " seed " << seed << ": " << found[0].Describe();
+      data.phi[data.size() / 2] += 10.0 * count;
+      data.theta[data.size() / 3] += 2.0;
+      found = ScreenData(data);
+      ASSERT_EQ(found.size(), 2u) << name << " seed " << seed << ": " << (found.empty() ? "" : found[0].Describe()) << (found.size() > 1 ? found[1].Describe() : "");
+      EXPECT_EQ(found[0].sample, data.size() / 3);
+      EXPECT_EQ(found[1].sample, data.size() / 2);
+    }
+  }
+}
+
 // Every second sample of the record (half the sampling rate): still none.
 TEST(WildPoints, CoarseSamplingHasNone) {
   const TimeHistory clean = Record("table6_clean.csv");
