@@ -707,8 +707,13 @@ Diagnosis OutdoneTieBranch(const Case& c,
   const std::string followed = d.alternatives[0].effect;
   double with = 0.0, without = 0.0;
   TieSidesBic(d, followed, &with, &without);
+  VLOG(1) << "tie sides: with " << followed << " " << with << ", without "
+          << without;
   if (!(without < with - options.ambiguity_bic)) return d;
   Diagnosis other = SearchedWithout(c, nominal, options, followed);
+  VLOG(1) << "searched without " << followed << ": "
+          << VerdictToString(other.verdict) << ", complete BIC "
+          << CompleteBic(other) << " against " << CompleteBic(d);
   // As well: within a unit of BIC, since the search's fits stop within a
   // few tenths of their minimum (kSearchBicTolerance), and the search
   // without the followed effect most often finds that other side itself.
