@@ -4130,6 +4130,25 @@ TEST(Diagnose, SigmaAutoHoldsTheNoiseAgainAtAFitsLevel) {
                     text);
 }
 
+// A probe outside the catalog that outdid every catalog effect earning its
+// place makes the record `not_explained` even where the final model is
+// within the noise level's limit: on a pair of 3-s runs with a reading
+// error at the second harmonic of roll, sigma: auto
+// (tests/data/pair_second_roll_harmonic_varied92.yaml), the nominal fit
+// passed at 1.37 times the held level while a trim moment lowered BIC by 71
+// and that probe by 97; the answer had been `noise_level`.
+TEST(Diagnose, AProbeThatOutdidTheCatalogLeavesTheRecordUnexplained) {
+  const Diagnosis d = DiagnoseConfig("pair_second_roll_harmonic_varied92.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_EQ(d.outside_catalog.effect, "second_roll_harmonic") << text;
+  EXPECT_TRUE(d.final.at_noise_level) << text;
+  EXPECT_NE(d.verdict_text.find("yet effects earn their place"),
+            std::string::npos)
+      << text;
+}
+
 // The effects tied in an answer are candidates past the noise beside it
 // (PastNoise): on a cone of another body
 // (tests/data/coning_damping_magnus_angularity_varied80.yaml) a Magnus
