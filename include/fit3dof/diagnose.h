@@ -27,7 +27,8 @@
 // data's model-free level (noise_relaxation.h DataNoiseDeg), pooled over
 // the segments; held again, and searched once more, at a fit of the
 // search's level when that leaves a channel 1.3 times or more below it
-// (structure near the Nyquist frequency passes for noise model-free). The level limit widens by that estimate's own spread,
+// (structure near the Nyquist frequency passes for noise model-free).
+// The level limit widens by that estimate's own spread,
 // E^2 <= 1 + 3.09 sqrt(2 / dof + 7.3 / n) (1.51 on 47 samples, 1.14 on 800),
 // and the search goes on past the noise level while an effect earns its
 // place (a round there refits only when some candidate's score, less
