@@ -236,7 +236,7 @@ constexpr int kLeastSteps = 4;
 double GridStep(const std::vector<double>& x,
                 const std::vector<double>& changes,
                 double guess) {
-  if (!(guess > 0.0)) return 0.0;
+  if (!(guess >= kFloorDeg)) return 0.0;  // finer than any sensor resolves
   double cd = 0.0, cc = 0.0;
   for (double d : changes) {
     const double counts = std::round(d / guess);

@@ -139,6 +139,27 @@ TEST(WildPoints, QuantizedReadingsAreNotWild) {
   }
 }
 
+// Readings that are no motion at all do not trip the grid test: a
+// channel held constant, one moving by 1e-300 deg a sample (finer than
+// any sensor's count), one on a coarse grid at 1e300 deg, one alternating
+// between two values. None is called wild, and nothing overflows (the
+// sanitized build checks).
+TEST(WildPoints, OddGridsAreNotWild) {
+  TimeHistory data;
+  for (int i = 0; i < 64; ++i) {
+    data.Append(0.1 * i, 1e-300 * i, 5.0, i % 2 == 0 ? 0.25 : -0.25);
+  }
+  EXPECT_TRUE(ScreenData(data).empty()) << ScreenData(data)[0].Describe();
+  std::vector<double> computed;
+  for (int i = 0; i < data.size(); ++i) {
+    computed.insert(computed.end(), {data.phi[i], data.theta[i], data.psi[i]});
+  }
+  EXPECT_TRUE(ScreenResiduals(data, computed, {}).empty());
+  TimeHistory huge;
+  for (int i = 0; i < 64; ++i) huge.Append(0.1 * i, 1e300 * (i % 7), 1.0, 0.0);
+  ScreenData(huge);  // whatever it finds, it finds without overflow
+}
+
 // Every second sample of the record (half the sampling rate): still none.
 TEST(WildPoints, CoarseSamplingHasNone) {
   const TimeHistory clean = Record("table6_clean.csv");
