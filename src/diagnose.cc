@@ -325,6 +325,24 @@ bool BoundedLead(const std::vector<Contender>& contenders,
                      [](const Contender& k) { return k.out_of_bounds; });
 }
 
+// Into notes->blocker (the first only): the effect added before that alone
+// refused the round's best contender (Contender::blocked_by) when that
+// contender lowered BIC by min_bic_drop more than any that earned its
+// place, or than the model if none did.
+void NoteBlocker(const std::vector<Contender>& contenders,
+                 const std::vector<int>& earned,
+                 const DiagnoseOptions& options,
+                 SearchNotes* notes) {
+  if (!notes->blocker.empty() || contenders.empty()) return;
+  const Contender& best = contenders[0];
+  if (best.blocked_by.empty()) return;
+  if (!earned.empty() &&
+      !(best.bic < contenders[earned[0]].bic - options.min_bic_drop)) {
+    return;
+  }
+  notes->blocker = best.blocked_by;
+}
+
 // Whether a contender after the best that earned its place (`earned`,
 // Earned) and not refused comes within near_tie_bic of it. Earned judges
 // none beyond ambiguity_bic; the search without the best judges them.
@@ -612,6 +630,7 @@ bool SearchRound(const std::vector<Candidate>& candidates,
   const std::vector<int> earned =
       Earned(s->fit, added, options, &out_of_sample, &contenders);
   notes->bounded_lead |= BoundedLead(contenders, earned);
+  NoteBlocker(contenders, earned, options, notes);
   std::vector<Candidate> probes;
   Contender probe;
   const bool probed = WeighProbes(s->current,

@@ -62,6 +62,9 @@ struct Contender {
   bool out_of_bounds = false;  // refused for leaving its bounds (Judge)
   bool unpredicted = false;    // refused for predicting nothing held out
   bool minor = false;  // lowered BIC by less than min_bic_drop (Contenders)
+  // The effect added before that went out of its bounds beside it, when
+  // that alone refused it (Judge), else empty.
+  std::string blocked_by;
 };
 
 // Whether the engineer declared the effect or probe `id` absent
@@ -678,6 +681,10 @@ struct SearchNotes {
   std::string outdone;
   std::optional<Diagnosis> outdone_tie;
   bool bounded_lead = false;
+  // An effect added before that alone refused a round's best contender,
+  // which lowered BIC by min_bic_drop more than any that earned its place
+  // (BlockerBranch): the first such.
+  std::string blocker;
   Case probe_case;
   FitResult probe_fit;
   // The answer is the catalog's without probes (CatalogAlone), whose

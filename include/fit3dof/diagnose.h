@@ -430,6 +430,10 @@ struct DiagnoseOptions {
   // search's second thoughts do not search again without a step whose
   // joint set's partner tied (the catalog's own search had them).
   bool beside_probe = false;
+  // Set by diagnose for the diagnosis without an effect that, taken early,
+  // alone refused a later round's best contender (BlockerBranch): that
+  // diagnosis does not search without another such.
+  bool without_blocker = false;
 };
 
 struct ResidualCheck {
