@@ -460,10 +460,14 @@ std::string ImplausibleAsJudged(const Effect& effect,
 std::string ImplausibleAmongAsJudged(const std::vector<const Effect*>& effects,
                                      const Case& c,
                                      const FitResult& fit,
-                                     const DiagnoseOptions& options) {
-  return FirstImplausible(effects, [&](const Effect& e) {
-    return ImplausibleAsJudged(e, c, fit, TermsIn(c, e), options);
-  });
+                                     const DiagnoseOptions& options,
+                                     const Effect** first) {
+  return FirstImplausible(
+      effects,
+      [&](const Effect& e) {
+        return ImplausibleAsJudged(e, c, fit, TermsIn(c, e), options);
+      },
+      first);
 }
 
 namespace {

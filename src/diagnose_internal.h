@@ -133,10 +133,12 @@ std::vector<const ParameterEstimate*> WrongSignTerms(const Effect& probe,
                                                      const FitResult& fit);
 // The first of `effects` that `why` (an effect -> why it lies outside
 // its bounds, empty when within them) finds outside: "<id> (added
-// before): <why>", or empty.
+// before): <why>", or empty; that effect into *first when given (else
+// untouched).
 std::string FirstImplausible(
     const std::vector<const Effect*>& effects,
-    const std::function<std::string(const Effect&)>& why);
+    const std::function<std::string(const Effect&)>& why,
+    const Effect** first = nullptr);
 // FirstImplausible with each effect judged at `fit` (Implausible).
 std::string ImplausibleAmong(const std::vector<const Effect*>& effects,
                              const Case& c,

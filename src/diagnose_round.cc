@@ -176,10 +176,9 @@ void Judge(const FitResult& current,
   // roll-synchronous reading error of 0.15 deg to 0.23 once a trim moment
   // came in beside it): the pair is then no more plausible than that one.
   if (why.empty()) {
-    why = ImplausibleAmongAsJudged(added, k.c, c->fit, options);
-    for (const Effect* e : added) {
-      if (why.rfind(e->id + " (added before)", 0) == 0) c->blocked_by = e->id;
-    }
+    const Effect* blocker = nullptr;
+    why = ImplausibleAmongAsJudged(added, k.c, c->fit, options, &blocker);
+    if (blocker != nullptr) c->blocked_by = blocker->id;
   }
   // A coefficient may move far only when the new model explains the record
   // down to the noise: a missing effect's bias hides in the fit (the part

@@ -474,10 +474,12 @@ std::string ImplausibleAsJudged(const Effect& effect,
 // torque, the calibration came in within its errors at the third search
 // (0.349 deg at 8.2 deg, bound 0.246) and then refused the bearing moment
 // beside it at its point fit (0.249).
+// The effect found outside its bounds goes into *first when given.
 std::string ImplausibleAmongAsJudged(const std::vector<const Effect*>& effects,
                                      const Case& c,
                                      const FitResult& fit,
-                                     const DiagnoseOptions& options);
+                                     const DiagnoseOptions& options,
+                                     const Effect** first = nullptr);
 
 // Eq. 43's tunnel terms: effects whose pitch and yaw terms each lie on a
 // ridge with a body coefficient (Cm_alpha + t1, Cm_q + t2), so that with

@@ -418,10 +418,13 @@ std::string WrongSign(const Effect& probe, const FitResult& fit) {
 
 std::string FirstImplausible(
     const std::vector<const Effect*>& effects,
-    const std::function<std::string(const Effect&)>& why) {
+    const std::function<std::string(const Effect&)>& why,
+    const Effect** first) {
   for (const Effect* e : effects) {
     const std::string outside = why(*e);
-    if (!outside.empty()) return e->id + " (added before): " + outside;
+    if (outside.empty()) continue;
+    if (first != nullptr) *first = e;
+    return e->id + " (added before): " + outside;
   }
   return "";
 }
