@@ -874,6 +874,23 @@ const DiagnosisStep* PartnerTied(const Diagnosis& d) {
   return nullptr;
 }
 
+// Whether a branch that searches the record again without a step
+// (WithoutTiedPartner, BlockerBranch) may run on the answer of a search
+// with `options` and `notes`. Once: not in a search without an effect (the
+// first answer had them), nor in the search past the noise (PastNoise's;
+// the first answer had them: on a 3-s run of another body with a bearing
+// moment, a calibration error and a roll torque, --vary-conditions draw
+// 84, that search's catalog-alone answer ran WithoutTiedPartner a second
+// time, 11 s in all, 6.2 without), nor on the catalog's answer to a probe
+// (its search had them), nor in the search that weighs a probe with the
+// catalog's effects beside it (SearchedBeside; the catalog's search had
+// them: on that record it ran again from the probe's model, 11.1 s in all,
+// 3.0 s without, the same answer).
+bool SearchesAgain(const DiagnoseOptions& options, const SearchNotes& notes) {
+  return options.searched_without.empty() && options.past_noise.empty() &&
+         !notes.catalog_alone && !options.beside_probe;
+}
+
 // A step adopted in a joint set (its lead refused alone for dragging the
 // coefficients or leaving its bounds) stands on its partners: when a
 // partner then ties with other effects and is not adopted, the step is
@@ -892,21 +909,7 @@ Diagnosis WithoutTiedPartner(const Case& c,
                              SearchNotes* notes,
                              Diagnosis d) {
   const DiagnosisStep* step = PartnerTied(d);
-  // Once: not in a search without an effect (the first answer had them),
-  // nor in the search past the noise (PastNoise's; the first answer had
-  // them: on a 3-s run of another body with a bearing moment, a
-  // calibration error and a roll torque, --vary-conditions draw 84, that
-  // search's catalog-alone answer ran it a second time, 11 s in all, 6.2
-  // without), nor on the catalog's answer to a probe (its search had them),
-  // nor in the search that weighs a probe with the catalog's effects
-  // beside it (SearchedBeside; the catalog's search had them: on that
-  // record it ran again from the probe's model, 11.1 s in all, 3.0 s
-  // without, the same answer).
-  if (step == nullptr || !options.searched_without.empty() ||
-      !options.past_noise.empty() || notes->catalog_alone ||
-      options.beside_probe) {
-    return d;
-  }
+  if (step == nullptr || !SearchesAgain(options, *notes)) return d;
   SearchNotes again;
   Diagnosis other =
       Searched(c, nominal, Without(options, step->effect), &again);
@@ -937,16 +940,15 @@ Diagnosis WithoutTiedPartner(const Case& c,
 // beside the Magnus moment, 102 lower; a body yaw asymmetry then stood in
 // for the damping's yaw part and was named. Without the calibration error
 // the damping and the Magnus moment are named, the angularity tied with a
-// roll reading error. Once: not inside such a diagnosis, nor in a search
-// without an effect.
+// roll reading error. Once (SearchesAgain), and not inside such a
+// diagnosis.
 Diagnosis BlockerBranch(const Case& c,
                         const FitResult& nominal,
                         const DiagnoseOptions& options,
                         const SearchNotes& notes,
                         Diagnosis d) {
-  if (notes.blocker.empty() || !options.searched_without.empty() ||
-      !options.past_noise.empty() || notes.catalog_alone ||
-      options.beside_probe || options.without_blocker) {
+  if (notes.blocker.empty() || !SearchesAgain(options, notes) ||
+      options.without_blocker) {
     return d;
   }
   // The whole diagnosis with the blocker known absent, second thoughts
