@@ -113,6 +113,10 @@ Real RobustSigma(const std::vector<Real>& v) {
   return kMadToSigma * Median(spread);
 }
 
+// The standard deviation of rounding to a grid of `step` (uniform over a
+// step); 0 for no grid.
+Real RoundingSigma(double step) { return step / std::sqrt(12.0); }
+
 struct Jump {
   int sample;
   double deviation;  // deg
@@ -146,7 +150,7 @@ std::vector<Jump> FindJumps(const std::vector<double>& t,
   // neighbours' weights (the error is at most (q / 2)(1 + sum |w|), under
   // 1.12 q times the gain).
   const Real floor = std::max<Real>(
-      {kGlobalFloor * RobustSigma(all), kFloorDeg, quantum / std::sqrt(12.0)});
+      {kGlobalFloor * RobustSigma(all), kFloorDeg, RoundingSigma(quantum)});
   const int blocks = (n + kBlock - 1) / kBlock;
   std::vector<Real> scale(blocks);
   for (int b = 0; b < blocks; ++b) {
@@ -286,7 +290,7 @@ bool Rounded(const std::vector<double>& t,
   const size_t at =
       std::min(sizes.size() - 1, static_cast<size_t>(kShare * sizes.size()));
   std::nth_element(sizes.begin(), sizes.begin() + at, sizes.end());
-  return sizes[at] >= kLeast * step / std::sqrt(12.0);
+  return sizes[at] >= kLeast * RoundingSigma(step);
 }
 
 // The step of a channel's readings when they lie on a grid (an encoder's
@@ -351,37 +355,39 @@ Real Roughness(const std::vector<double>& t,
   return RobustSigma(z);
 }
 
-// The jump test on a channel; for roll, on the smoother of the series as
-// given and unwrapped. Roll is compared modulo 360 deg (the listing's
-// INTGRL), so a record may hold it wrapped into a turn; unwrapped, the test
-// sees the motion rather than the wraps. A record whose roll already runs
-// on (possibly faster than half a turn per sample) is left as it is.
-// `quantum`: the step of the channel's readings (Quantum), or 0.
+// The series the jump test screens for a channel: for roll, the smoother
+// of the series as given and unwrapped. Roll is compared modulo 360 deg (the
+// listing's INTGRL), so a record may hold it wrapped into a turn; unwrapped,
+// the test sees the motion rather than the wraps. A record whose roll already
+// runs on (possibly faster than half a turn per sample) is left as it is.
+std::vector<double> ScreenedSeries(const std::vector<double>& t,
+                                   const std::vector<double>& x,
+                                   int channel,
+                                   const std::vector<char>& flagged) {
+  if (channel == 0) {
+    std::vector<double> u = UnwrapDegrees(x, flagged);
+    if (Roughness(t, u, flagged) < Roughness(t, x, flagged)) return u;
+  }
+  return x;
+}
+
+// The jump test on a channel's series as ScreenedSeries gives it.
+// `quantum`: the step of the channel's readings (ReadingQuantum), or 0.
 std::vector<Jump> FindChannelJumps(const std::vector<double>& t,
                                    const std::vector<double>& x,
                                    int channel,
                                    const std::vector<char>& flagged,
                                    double quantum) {
-  if (channel == 0) {
-    const std::vector<double> u = UnwrapDegrees(x, flagged);
-    if (Roughness(t, u, flagged) < Roughness(t, x, flagged)) {
-      return FindJumps(t, u, flagged, quantum);
-    }
-  }
-  return FindJumps(t, x, flagged, quantum);
+  return FindJumps(t, ScreenedSeries(t, x, channel, flagged), flagged, quantum);
 }
 
-// Quantum of a channel's readings; roll's unwrapped when that is the
-// smoother series (FindChannelJumps): a wrap into the turn is no count.
+// Quantum of a channel's readings as ScreenedSeries gives them (nothing
+// flagged): a wrap of roll into the turn is no count.
 double ReadingQuantum(const std::vector<double>& t,
                       const std::vector<double>& x,
                       int channel) {
-  if (channel == 0) {
-    const std::vector<char> none(x.size(), 0);
-    const std::vector<double> u = UnwrapDegrees(x, none);
-    if (Roughness(t, u, none) < Roughness(t, x, none)) return Quantum(t, u);
-  }
-  return Quantum(t, x);
+  return Quantum(t,
+                 ScreenedSeries(t, x, channel, std::vector<char>(x.size(), 0)));
 }
 
 WildPoint FromJump(const Jump& j,
@@ -506,7 +512,7 @@ std::vector<WildPoint> ScreenResiduals(const TimeHistory& data,
     if (!kept.empty()) {
       const Real center = Median(kept);
       const Real sigma = std::max<Real>(
-          {RobustSigma(kept), kFloorDeg, quantum / std::sqrt(12.0)});
+          {RobustSigma(kept), kFloorDeg, RoundingSigma(quantum)});
       for (int i = 0; i < n; ++i) {
         const Real out = std::abs(r[i] - center) / sigma;
         if (!flagged[i] && out > kThreshold) {
