@@ -57,6 +57,55 @@ Case FinalCase(const Case& user, const Case& current, const FitResult& fit) {
   return final_case;
 }
 
+// Whether every term of `form` is free in `fit`: the effect is in that
+// form there (FormHeld's rule, read from the fit).
+bool InFormThere(const Effect* form, const FitResult& fit) {
+  if (form == nullptr) return false;
+  for (const std::string& name : form->Terms(fit.model)) {
+    const auto e = std::find_if(
+        fit.parameters.begin(),
+        fit.parameters.end(),
+        [&](const ParameterEstimate& p) { return p.name == name; });
+    if (e == fit.parameters.end() || !e->free) return false;
+  }
+  return true;
+}
+
+// The names of `step`'s values in `fit`: its effect's terms in the form
+// the effect has there, and what else the step held. A step taken in one
+// form may be reported by a model that holds the other (a search's later
+// round took a calibration back to its cube; the final model, the one
+// before a tie, kept the signed square): the held terms of the other form
+// had read as the effect's values (theta_cal3 = 0 (held) on draw 95's pair
+// of runs, whose final model held theta_cal2 = -0.038 +- 0.025).
+std::vector<std::string> FinalNames(const DiagnosisStep& step,
+                                    const FitResult& fit) {
+  const Effect* effect = FindEffect(step.effect);
+  if (effect == nullptr) {
+    std::vector<std::string> names;
+    for (const ParameterEstimate& e : step.step_parameters) {
+      names.push_back(e.name);
+    }
+    return names;
+  }
+  const Effect* form = OtherForm(*effect);
+  const std::vector<std::string>& own = effect->Terms(fit.model);
+  const std::vector<std::string>& terms =
+      InFormThere(form, fit) ? form->Terms(fit.model) : own;
+  const auto either = [&](const std::string& name) {
+    return std::find(own.begin(), own.end(), name) != own.end() ||
+           (form != nullptr && std::find(form->Terms(fit.model).begin(),
+                                         form->Terms(fit.model).end(),
+                                         name) != form->Terms(fit.model).end());
+  };
+  std::vector<std::string> names;
+  for (const ParameterEstimate& e : step.step_parameters) {
+    if (!either(e.name)) names.push_back(e.name);
+  }
+  names.insert(names.end(), terms.begin(), terms.end());
+  return names;
+}
+
 }  // namespace
 
 void FinalValues(Diagnosis* d) {
@@ -66,16 +115,7 @@ void FinalValues(Diagnosis* d) {
     const FitResult& fit =
         steps == &d->partial ? d->fits[d->partial_fit] : d->FinalFit();
     for (DiagnosisStep& step : *steps) {
-      std::vector<std::string> names;
-      for (const ParameterEstimate& e : step.step_parameters) {
-        names.push_back(e.name);
-      }
-      const Effect* effect = FindEffect(step.effect);
-      if (effect != nullptr) {
-        const std::vector<std::string>& own = effect->Terms(fit.model);
-        names.insert(names.end(), own.begin(), own.end());
-      }
-      step.parameters = Own(fit, names);
+      step.parameters = Own(fit, FinalNames(step, fit));
     }
   }
 }
