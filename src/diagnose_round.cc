@@ -732,13 +732,17 @@ bool FitFrom(const Case& c,
   }
 }
 
+double ScoreBicDrop(const Candidate& k, const FitResult& fit) {
+  const double log_n = std::log(3.0 * std::max(1, fit.points));
+  return k.score.score - k.score.dof * log_n;
+}
+
 bool ScoreMayEarn(const std::vector<Candidate>& candidates,
                   const FitResult& fit,
                   const DiagnoseOptions& options) {
-  const double log_n = std::log(3.0 * std::max(1, fit.points));
   return std::any_of(
       candidates.begin(), candidates.end(), [&](const Candidate& k) {
-        return k.score.score - k.score.dof * log_n >= options.min_bic_drop;
+        return ScoreBicDrop(k, fit) >= options.min_bic_drop;
       });
 }
 

@@ -107,6 +107,10 @@ bool ScoreMayEarn(const std::vector<Candidate>& candidates,
                   const FitResult& fit,
                   const DiagnoseOptions& options);
 
+// The drop in BIC a refit of `k` beside `fit` is predicted to bring: its
+// score less ln(n) per parameter (ScoreMayEarn's measure).
+double ScoreBicDrop(const Candidate& k, const FitResult& fit);
+
 // Each model (`cases`, fitted as `fits`) refitted from its solution
 // without each of `steps` in turn, all in parallel: (*without)[k], for
 // k = m * steps.size() + i, is model m without steps[i], and (*fitted)[k]
