@@ -35,11 +35,13 @@ struct RelaxationOutcome {
 };
 
 // A model-free estimate of a channel's noise (deg) from its samples: the
-// least, over difference orders d = 2..8, of the RMS of the d-th
-// differences over sqrt(C(2d, d)), their gain for white noise. A motion
+// RMS of the d-th differences over sqrt(C(2d, d)), their gain for white
+// noise, at the first of the lowest two orders of d = 2..8 that each keep
+// 0.9 of the order before (the least over the orders where none do). A motion
 // sampled more than six times per cycle shrinks with each order, white
-// noise keeps its level, so the least is about the noise (errors slower
-// than the sampling, a calibration curve, count less; a wild point more).
+// noise keeps its level, so the first order where it stops shrinking has
+// the noise and the least spread (errors slower than the sampling, a
+// calibration curve, count less; a wild point more).
 // At least 1e-4 deg: a record without noise must not get a weight that
 // the integration's own error exceeds. Times are taken as evenly spaced.
 double DataNoiseDeg(const std::vector<double>& samples);

@@ -4149,6 +4149,23 @@ TEST(Diagnose, AProbeThatOutdidTheCatalogLeavesTheRecordUnexplained) {
       << text;
 }
 
+// sigma: auto holds each channel's noise at its first flat difference
+// order (DataNoiseDeg), not the least over the orders: on a pair of 3-s
+// runs with a roll reading error and a Magnus moment
+// (tests/data/pair_roll_error_magnus_varied92.yaml) the roll readings'
+// levels fell from 0.0083 deg at the 2nd difference to 0.0051 at the 8th
+// (true 0.01); held at 0.0051, the two effects, both found, left roll 1.8
+// times that and the record `not_explained`.
+TEST(Diagnose, SigmaAutoHoldsTheNoiseWhereTheMotionIsGone) {
+  const Diagnosis d = DiagnoseConfig("pair_roll_error_magnus_varied92.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kExplained) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            std::set<std::string>({"magnus", "roll_interaction"}))
+      << text;
+  EXPECT_GT(d.FinalFit().segments[0].sigma_deg[0], 0.007) << text;
+}
+
 // A lesser refit (one that lowered BIC by less than 10 at its round)
 // whose score beside the complete model says the record may not exclude
 // it is tried there: on a pair of 3-s runs with a tunnel stiffness, a

@@ -43,6 +43,29 @@ TEST(DataNoise, FindsWhiteNoiseUnderTheMotion) {
   }
 }
 
+// On short records the level is unbiased and seldom far low: a spin's
+// roll readings, 60 samples of a ramp with white noise, 400 draws. The
+// least over the difference orders, the rule until the fiftieth session,
+// held them at 0.946 of the noise on average and 10.5% of them under 0.75
+// (a noise draw short of power at the highest frequencies, which the high
+// orders weigh most); the first flat order holds 0.989 and 3.0%.
+TEST(DataNoise, IsUnbiasedOnShortRecords) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  double sum = 0.0;
+  int low = 0;
+  constexpr int kDraws = 400;
+  for (int k = 0; k < kDraws; ++k) {
+    std::vector<double> roll(60);
+    for (size_t i = 0; i < roll.size(); ++i) roll[i] = 2.3 * i + noise(rng);
+    const double ratio = DataNoiseDeg(roll) / 0.01;
+    sum += ratio;
+    low += ratio < 0.75;
+  }
+  EXPECT_NEAR(sum / kDraws, 1.0, 0.03);
+  EXPECT_LT(low, 0.06 * kDraws);
+}
+
 // Roll sensed in 2-deg steps: the error is uniform over a step, RMS
 // 2 / sqrt(12) = 0.577 deg.
 TEST(DataNoise, FindsQuantization) {
