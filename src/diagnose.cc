@@ -80,28 +80,22 @@ bool InFormThere(const Effect* form, const FitResult& fit) {
 // of runs, whose final model held theta_cal2 = -0.038 +- 0.025).
 std::vector<std::string> FinalNames(const DiagnosisStep& step,
                                     const FitResult& fit) {
+  static const std::vector<std::string> kNone;
   const Effect* effect = FindEffect(step.effect);
-  if (effect == nullptr) {
-    std::vector<std::string> names;
-    for (const ParameterEstimate& e : step.step_parameters) {
-      names.push_back(e.name);
-    }
-    return names;
-  }
-  const Effect* form = OtherForm(*effect);
-  const std::vector<std::string>& own = effect->Terms(fit.model);
-  const std::vector<std::string>& terms =
-      InFormThere(form, fit) ? form->Terms(fit.model) : own;
-  const auto either = [&](const std::string& name) {
-    return std::find(own.begin(), own.end(), name) != own.end() ||
-           (form != nullptr && std::find(form->Terms(fit.model).begin(),
-                                         form->Terms(fit.model).end(),
-                                         name) != form->Terms(fit.model).end());
+  const Effect* form = effect == nullptr ? nullptr : OtherForm(*effect);
+  const std::vector<std::string>& own =
+      effect == nullptr ? kNone : effect->Terms(fit.model);
+  const std::vector<std::string>& other =
+      form == nullptr ? kNone : form->Terms(fit.model);
+  const auto in = [](const std::vector<std::string>& terms,
+                     const std::string& name) {
+    return std::find(terms.begin(), terms.end(), name) != terms.end();
   };
   std::vector<std::string> names;
   for (const ParameterEstimate& e : step.step_parameters) {
-    if (!either(e.name)) names.push_back(e.name);
+    if (!in(own, e.name) && !in(other, e.name)) names.push_back(e.name);
   }
+  const std::vector<std::string>& terms = InFormThere(form, fit) ? other : own;
   names.insert(names.end(), terms.begin(), terms.end());
   return names;
 }
