@@ -57,20 +57,6 @@ Case FinalCase(const Case& user, const Case& current, const FitResult& fit) {
   return final_case;
 }
 
-// Whether every term of `form` is free in `fit`: the effect is in that
-// form there (FormHeld's rule, read from the fit).
-bool InFormThere(const Effect* form, const FitResult& fit) {
-  if (form == nullptr) return false;
-  for (const std::string& name : form->Terms(fit.model)) {
-    const auto e = std::find_if(
-        fit.parameters.begin(),
-        fit.parameters.end(),
-        [&](const ParameterEstimate& p) { return p.name == name; });
-    if (e == fit.parameters.end() || !e->free) return false;
-  }
-  return true;
-}
-
 // The names of `step`'s values in `fit`: its effect's terms in the form
 // the effect has there, and what else the step held. A step taken in one
 // form may be reported by a model that holds the other (a search's later
@@ -95,12 +81,26 @@ std::vector<std::string> FinalNames(const DiagnosisStep& step,
   for (const ParameterEstimate& e : step.step_parameters) {
     if (!in(own, e.name) && !in(other, e.name)) names.push_back(e.name);
   }
-  const std::vector<std::string>& terms = InFormThere(form, fit) ? other : own;
+  const std::vector<std::string>& terms =
+      effect != nullptr && InOtherFormIn(*effect, fit) ? other : own;
   names.insert(names.end(), terms.begin(), terms.end());
   return names;
 }
 
 }  // namespace
+
+bool InOtherFormIn(const Effect& effect, const FitResult& fit) {
+  const Effect* form = OtherForm(effect);
+  if (form == nullptr) return false;
+  for (const std::string& name : form->Terms(fit.model)) {
+    const auto e = std::find_if(
+        fit.parameters.begin(),
+        fit.parameters.end(),
+        [&](const ParameterEstimate& p) { return p.name == name; });
+    if (e == fit.parameters.end() || !e->free) return false;
+  }
+  return true;
+}
 
 void FinalValues(Diagnosis* d) {
   d->final_parameters = d->FinalFit().parameters;

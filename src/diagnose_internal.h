@@ -55,6 +55,10 @@ const Effect* FindOpenForm(const std::string& id);
 // The effect's other form (Effect::other_form), nullptr if it has none.
 const Effect* OtherForm(const Effect& effect);
 
+// Whether `fit` holds `effect` in its other form: every one of that form's
+// terms free there (FormHeld's rule, read from a fit).
+bool InOtherFormIn(const Effect& effect, const FitResult& fit);
+
 // The case `at` with the effect's parameters free at zero (converted to the
 // asymmetric program when the effect needs it), their names in `added`;
 // false when the effect does not apply or is already in the model.

@@ -1056,8 +1056,20 @@ Case WithoutStep(const Case& at, const DiagnosisStep& step) {
   Case without = at;
   const Effect* effect = FindEffect(step.effect);
   CHECK(effect != nullptr) << step.effect;
+  // The step's terms, and the effect's in the form `at` holds it in: a
+  // later round may have taken the step back to its own form
+  // (BackToOwnForms) while an earlier model still holds the other.
+  std::vector<std::string> names;
   for (const ParameterEstimate& e : step.step_parameters) {
-    const int position = AddedTermPosition(without.model, e.name);
+    names.push_back(e.name);
+  }
+  for (const std::string& name : TermsIn(at, *effect)) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      names.push_back(name);
+    }
+  }
+  for (const std::string& term : names) {
+    const int position = AddedTermPosition(without.model, term);
     if (position < 0) continue;
     const std::string& name = ParameterTable(without.model)[position].name;
     ParameterSetting& p = without.parameters[position];
@@ -1068,7 +1080,7 @@ Case WithoutStep(const Case& at, const DiagnosisStep& step) {
       continue;
     }
     p.free = false;
-    if (!IsCompanion(*effect, e.name)) p.value = 0.0;
+    if (!IsCompanion(*effect, name)) p.value = 0.0;
   }
   without.SettleTies();
   return without;

@@ -214,6 +214,37 @@ std::string WildPointLines(const Diagnosis& d) {
   return out;
 }
 
+// An added effect whose form (Effect::other_form) in the final model
+// differs from its form in the model the partial steps were fitted in.
+struct FormApart {
+  std::string effect;
+  std::string final_form;    // the effect's id or its other form's
+  std::string partial_form;  // the same, in d.fits[d.partial_fit]
+};
+
+// The steps of `d` whose effect the final model holds in one form and the
+// search's model with the partial steps (the tied effects, those not
+// adopted) in the other: without those effects the form takes up part of
+// them (on draw 95's pair of runs with a bearing moment, a cubic
+// calibration error and a roll torque, the signed square before the
+// bearing moment, tied with a reading-gain error, and the cube beside it).
+std::vector<FormApart> FormsApart(const Diagnosis& d) {
+  std::vector<FormApart> apart;
+  if (d.partial.empty() || d.partial_fit >= d.fits.size()) return apart;
+  const FitResult& partial = d.fits[d.partial_fit];
+  for (const DiagnosisStep& s : d.steps) {
+    const Effect* effect = FindEffect(s.effect);
+    if (effect == nullptr || OtherForm(*effect) == nullptr) continue;
+    const bool final_other = InOtherFormIn(*effect, d.FinalFit());
+    if (final_other == InOtherFormIn(*effect, partial)) continue;
+    const std::string& other = OtherForm(*effect)->id;
+    apart.push_back({s.effect,
+                     final_other ? other : s.effect,
+                     final_other ? s.effect : other});
+  }
+  return apart;
+}
+
 }  // namespace
 
 std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
@@ -338,6 +369,12 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   }
   out["partial"] = json::array();
   for (const DiagnosisStep& s : d.partial) out["partial"].push_back(Step(s));
+  out["forms_apart"] = json::array();
+  for (const FormApart& f : FormsApart(d)) {
+    out["forms_apart"].push_back({{"effect", f.effect},
+                                  {"final_form", f.final_form},
+                                  {"partial_form", f.partial_form}});
+  }
   out["pruned"] = json::array();
   for (const DiagnosisStep& s : d.pruned) out["pruned"].push_back(Step(s));
   return out.dump(2) + "\n";
@@ -378,6 +415,18 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   }
   for (const DiagnosisStep& s : d.pruned) {
     out += "  dropped again: " + s.description + ": " + s.note + "\n";
+  }
+  for (const FormApart& f : FormsApart(d)) {
+    std::vector<std::string> partial;
+    for (const DiagnosisStep& s : d.partial) partial.push_back(s.effect);
+    const auto form = [&](const std::string& id) {
+      return id == f.effect ? std::string("in its own form") : "as " + id;
+    };
+    out += "  form: " + f.effect + " " + form(f.final_form) +
+           " in the final model, " + form(f.partial_form) + " beside " +
+           Joined(partial, " and ") +
+           " (not adopted): in the final model its form takes up part of "
+           "what the effects not adopted explain\n";
   }
   for (const CandidateFit& a : Tied(d)) {
     // drift_in_time, a roll-locked effect's rival, has no fit to quote.

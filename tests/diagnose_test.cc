@@ -4149,6 +4149,39 @@ TEST(Diagnose, AProbeThatOutdidTheCatalogLeavesTheRecordUnexplained) {
       << text;
 }
 
+// An effect the final model holds in one form and the search's model with
+// the effects not adopted in the other is said so, and its final values
+// are the final model's form's: on a pair of 3-s runs with a bearing
+// moment, a cubic calibration error and a roll torque, sigma: auto
+// (tests/data/pair_bearing_calibration_torque_varied95.yaml), the bearing
+// moment tied with a reading-gain error at the last step; the model
+// before it, the final one, holds the calibration as the signed square,
+// the search's model beside the bearing moment as the cube. The answer had
+// read "theta_cal3 = 0 deg (held)".
+TEST(Diagnose, SaysWhereAFormFollowsTheEffectsNotAdopted) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Case c = LoadConfig(testing::SourcePath(
+      "tests/data/pair_bearing_calibration_torque_varied95.yaml"));
+  const Diagnosis d = Diagnose(c, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  const auto step =
+      std::find_if(d.steps.begin(), d.steps.end(), [](const DiagnosisStep& s) {
+        return s.effect == "calibration_nonlinearity";
+      });
+  ASSERT_NE(step, d.steps.end()) << text;
+  ASSERT_FALSE(step->parameters.empty()) << text;
+  EXPECT_EQ(step->parameters[0].name, "theta_cal2") << text;
+  EXPECT_NE(text.find("form: calibration_nonlinearity as "
+                      "calibration_signed_square in the final model, in its "
+                      "own form beside bearing_moment"),
+            std::string::npos)
+      << text;
+  const nlohmann::json json = nlohmann::json::parse(DiagnosisJson(d, c));
+  ASSERT_EQ(json["forms_apart"].size(), 1u) << json["forms_apart"];
+  EXPECT_EQ(json["forms_apart"][0]["final_form"], "calibration_signed_square");
+}
+
 // sigma: auto holds each channel's noise at its first flat difference
 // order (DataNoiseDeg), not the least over the orders: on a pair of 3-s
 // runs with a roll reading error and a Magnus moment

@@ -1,7 +1,8 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
-// FinalValues (src/diagnose.cc): each step's values as the final model has
-// them, in the form its effect has there.
+// A step's effect in the form a model holds it in (Effect::other_form):
+// FinalValues (src/diagnose.cc), each step's values as the final model has
+// them; WithoutStep (src/diagnose_ties.cc), a model without the step.
 
 #include <string>
 #include <tuple>
@@ -82,6 +83,46 @@ TEST(FinalValues, ReportsTheOwnFormWhereTheFinalModelWentBack) {
             (std::vector<std::string>{"theta_cal3", "psi_cal3"}));
   EXPECT_DOUBLE_EQ(d.steps[0].parameters[1].value, 0.02);
   EXPECT_EQ(Names(d.final_parameters).size(), 5u);
+}
+
+// A case of the symmetric model with the calibration's terms named in
+// `free` free (cal_range held at 8 deg, as the search holds it).
+Case WithFreeTerms(const std::vector<std::string>& free) {
+  Case c;
+  c.parameters.assign(NumParameters(ModelKind::kSymmetric), {});
+  for (const std::string& name : free) {
+    c.parameters[FindParameter(c.model, name)].free = true;
+    c.parameters[FindParameter(c.model, name)].value = 0.05;
+  }
+  c.parameters[FindParameter(c.model, "cal_range")].value = 8.0;
+  return c;
+}
+
+bool IsFree(const Case& c, const std::string& name) {
+  return c.parameters[FindParameter(c.model, name)].free;
+}
+
+// A step the search later took back to the cube (its step_parameters),
+// taken out of a model that still holds the signed square: the square's
+// terms are held at zero too. By the step's terms alone the square had
+// stayed free, and "without the calibration" still held it.
+TEST(WithoutStep, TakesOutTheFormTheModelHolds) {
+  const Case square = WithFreeTerms({"theta_cal2", "psi_cal2"});
+  DiagnosisStep step;
+  step.effect = "calibration_nonlinearity";
+  for (const char* name : {"theta_cal3", "psi_cal3"}) {
+    step.step_parameters.push_back(Estimate(name, 0.0, true));
+  }
+  const Case without = WithoutStep(square, step);
+  for (const char* name :
+       {"theta_cal2", "psi_cal2", "theta_cal3", "psi_cal3"}) {
+    EXPECT_FALSE(IsFree(without, name)) << name;
+    EXPECT_EQ(without.parameters[FindParameter(without.model, name)].value, 0.0)
+        << name;
+  }
+  // The range is no term of either form's: it keeps its value.
+  EXPECT_EQ(without.parameters[FindParameter(without.model, "cal_range")].value,
+            8.0);
 }
 
 }  // namespace
