@@ -721,11 +721,11 @@ std::vector<const Effect*> Unrefitted(
 // record may not exclude them (ScoreBicDrop above -ambiguity_bic, which
 // takes in those that may earn a place). Each lesser refit tried beside
 // every complete model had cost 9% more time over nine draws (a Table 6
-// triple 4.9 -> 5.2 s). Only those that may earn had been tried: on a cone
-// with a tunnel stiffness, a nonlinear damping and a body asymmetry
-// (varied draw 94) the stiffness, refitted in the last round at BIC +3.0,
-// was never tried beside the final model, whose Cm_alpha carried its
-// pitch term, 4.7 of the widened errors off the truth.
+// triple 4.9 -> 5.2 s). Only those that may earn had been tried: on a pair
+// of 3-s runs with a tunnel stiffness, a roll reading error and a flow
+// angularity (varied draw 95) the angularity, refitted in a round at BIC
+// +8.5, was never tried beside the search's model (+6.7 there), and the
+// answer did not say the record allows it.
 std::vector<Candidate> Lesser(const std::vector<Candidate>& scored,
                               const std::vector<const Effect*>& lesser,
                               const FitResult& fit,
