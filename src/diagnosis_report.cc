@@ -416,9 +416,9 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
   for (const DiagnosisStep& s : d.pruned) {
     out += "  dropped again: " + s.description + ": " + s.note + "\n";
   }
+  std::vector<std::string> partial;  // the effects not adopted
+  for (const DiagnosisStep& s : d.partial) partial.push_back(s.effect);
   for (const FormApart& f : FormsApart(d)) {
-    std::vector<std::string> partial;
-    for (const DiagnosisStep& s : d.partial) partial.push_back(s.effect);
     const auto form = [&](const std::string& id) {
       return id == f.effect ? std::string("in its own form") : "as " + id;
     };

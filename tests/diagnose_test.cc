@@ -33,6 +33,16 @@ std::set<std::string> EffectIds(const std::vector<T>& items) {
   return ids;
 }
 
+// Whether `fits` (a diagnosis's rejected or not_excluded) list `effect`
+// with `why` in its reason.
+bool ListedWith(const std::vector<CandidateFit>& fits,
+                const std::string& effect,
+                const std::string& why) {
+  return std::any_of(fits.begin(), fits.end(), [&](const CandidateFit& k) {
+    return k.effect == effect && k.rejected.find(why) != std::string::npos;
+  });
+}
+
 // The parameters of `c` named in `values` (name-value pairs) set to theirs.
 template <typename Values>
 void SetValues(Case* c, const Values& values) {
@@ -1566,11 +1576,10 @@ TEST(Diagnose, FollowsTheOtherBranchOfATieThatLeavesTheRecordUnexplained) {
   const std::set<std::string> added = EffectIds(d.steps);
   EXPECT_TRUE(added.count("magnus")) << text;
   EXPECT_FALSE(added.count("asymmetric_body")) << text;
-  bool left = false;
+  const bool left =
+      ListedWith(d.rejected, "asymmetric_body", "whatever followed it");
   bool outdone = false;
   for (const CandidateFit& k : d.rejected) {
-    left |= k.effect == "asymmetric_body" &&
-            k.rejected.find("whatever followed it") != std::string::npos;
     outdone |=
         k.rejected.find("catalog's effects together") != std::string::npos;
   }
@@ -1613,13 +1622,9 @@ TEST(Diagnose, TheCatalogsEffectsTogetherOutdoAProbeThatLedARound) {
       << text;
   EXPECT_TRUE(EffectIds(d.ambiguous).count("roll_torque")) << text;
   EXPECT_TRUE(d.outside_catalog.effect.empty()) << text;
-  bool outdone = false;
-  for (const CandidateFit& k : d.rejected) {
-    outdone |=
-        k.effect == "pressure_drift" &&
-        k.rejected.find("catalog's effects together") != std::string::npos;
-  }
-  EXPECT_TRUE(outdone) << text;
+  EXPECT_TRUE(
+      ListedWith(d.rejected, "pressure_drift", "catalog's effects together"))
+      << text;
   for (const auto& [name, truth] : {std::pair{"Cm_bearing", -0.02},
                                     {"theta_cal3", 0.0371},
                                     {"psi_cal3", -0.0371}}) {
@@ -1792,12 +1797,8 @@ TEST(Diagnose, TakesTheOtherBranchOfATieWhenItEndsAmbiguous) {
       EXPECT_NEAR(e.value, 98.5, 3 * e.standard_error);
     if (e.name == "Cm_q") EXPECT_NEAR(e.value, -5.5, 3 * e.standard_error);
   }
-  bool left = false;
-  for (const CandidateFit& k : d.rejected) {
-    left |= k.effect == "trim_moment" &&
-            k.rejected.find("whatever followed it") != std::string::npos;
-  }
-  EXPECT_TRUE(left) << text;
+  EXPECT_TRUE(ListedWith(d.rejected, "trim_moment", "whatever followed it"))
+      << text;
   ExpectTruthAddedOrTied(Diagnose(c, DiagnoseOptions()),
                          {"roll_interaction", "nonlinear_damping"});
 }
@@ -4065,13 +4066,10 @@ TEST(Diagnose, AnEffectCarriedByOneReadingDoesNotEarnItsPlace) {
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
   EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
   EXPECT_TRUE(d.steps.empty()) << text;
-  bool one_reading = false;
-  for (const CandidateFit& k : d.rejected) {
-    one_reading |= k.effect == "nonlinear_damping" &&
-                   k.rejected.find("rests on one reading, theta at t = 0 s") !=
-                       std::string::npos;
-  }
-  EXPECT_TRUE(one_reading) << text;
+  EXPECT_TRUE(ListedWith(d.rejected,
+                         "nonlinear_damping",
+                         "rests on one reading, theta at t = 0 s"))
+      << text;
   EXPECT_NE(d.residual_description.find("a reading far off the fitted motion"),
             std::string::npos)
       << d.residual_description;
@@ -4216,11 +4214,7 @@ TEST(Diagnose, ALesserRefitTheRecordCannotExcludeIsListed) {
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"tunnel_stiffness"}))
       << text;
-  bool angularity = false;
-  for (const CandidateFit& k : d.not_excluded) {
-    angularity |= k.effect == "flow_angularity";
-  }
-  EXPECT_TRUE(angularity) << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("flow_angularity")) << text;
 }
 
 // An effect taken early that alone refused a later round's best
@@ -4241,13 +4235,10 @@ TEST(Diagnose, AnEarlyStepThatRefusedABetterOneIsSearchedWithout) {
       << text;
   EXPECT_TRUE(EffectIds(d.ambiguous).count("flow_angularity")) << text;
   EXPECT_TRUE(d.absent.empty()) << text;
-  bool dropped = false;
-  for (const CandidateFit& k : d.rejected) {
-    dropped |= k.effect == "calibration_nonlinearity" &&
-               k.rejected.find("went out of its bounds beside a later") !=
-                   std::string::npos;
-  }
-  EXPECT_TRUE(dropped) << text;
+  EXPECT_TRUE(ListedWith(d.rejected,
+                         "calibration_nonlinearity",
+                         "went out of its bounds beside a later"))
+      << text;
   ExpectFinalCovers(d,
                     {{"Cm_alpha", -0.3311},
                      {"Cm_q", -3.699},
