@@ -86,6 +86,7 @@ void SegmentCostFunction::set_ties(std::vector<ParameterTie> ties) {
         << "tied parameter " << tie.image << " is free";
   }
   ties_ = std::move(ties);
+  remembered_.valid = false;  // residuals of other full values
 }
 
 std::vector<double> SegmentCostFunction::FullValues(
@@ -120,6 +121,7 @@ void SegmentCostFunction::set_innovation_weights(
     }
   }
   innovation_weights_ = std::move(w);
+  remembered_.valid = false;  // residuals weighted otherwise
 }
 
 bool SegmentCostFunction::ComputeAngles(const std::vector<double>& full,
@@ -262,7 +264,13 @@ bool SegmentCostFunction::EvaluateOrFail(double const* const* parameters,
   }
   // The residuals from the model's motion, the Jacobian from the coarser
   // one (its residuals discarded), or from the model's where that fails.
-  if (!EvaluateResiduals(u.data(), residuals)) return false;
+  // Ceres evaluates the Jacobian of an accepted step at the trial point
+  // whose residuals it has just had: those, when remembered, are the same
+  // numbers (a third of the fine integrations of a fit).
+  if (!RememberedResiduals(u, residuals) &&
+      !EvaluateResiduals(u.data(), residuals)) {
+    return false;
+  }
   std::vector<double> coarse(num_residuals());
   if (EvaluateJacobian(
           *jacobian_model_, u.data(), lanes, coarse.data(), jacobians)) {
@@ -339,6 +347,14 @@ double SegmentCostFunction::remembered_cost() const {
   return 0.5 * Eigen::Map<const Eigen::VectorXd>(remembered_.residuals.data(),
                                                  num_residuals())
                    .squaredNorm();
+}
+
+bool SegmentCostFunction::RememberedResiduals(const std::vector<double>& u,
+                                              double* residuals) const {
+  if (!remembered_.valid || u != remembered_.u) return false;
+  std::copy(
+      remembered_.residuals.begin(), remembered_.residuals.end(), residuals);
+  return true;
 }
 
 bool SegmentCostFunction::SkippedJacobian(const std::vector<double>& u,

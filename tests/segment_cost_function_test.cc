@@ -439,6 +439,38 @@ TEST(SegmentCostFunction, ASkippedJacobianReturnsTheRememberedResiduals) {
   EXPECT_EQ(s.cost->jacobian_evaluations(), 2);
 }
 
+// With Jacobians from a coarser motion, the residuals of an evaluation
+// with Jacobians are the model's: at the point of the last residual-only
+// evaluation (a solve's accepted step) the remembered ones, the same to the
+// bit; after the ties change, those of the tied motion, never the stale
+// ones.
+TEST(SegmentCostFunction, AJacobianAtTheRememberedPointKeepsItsResiduals) {
+  const int cm_alpha = FindParameter(ModelKind::kSymmetric, "Cm_alpha");
+  Block s = Make(ModelKind::kSymmetric,
+                 {cm_alpha, FindParameter(ModelKind::kSymmetric, "Cm_q")},
+                 {});
+  const int m = s.cost->num_residuals();
+  double* blocks[] = {s.blocks[0].data()};
+  std::vector<double> trial(m), residuals(m), jacobian(2 * m);
+  double* jacobians[] = {jacobian.data()};
+  s.cost->set_jacobian_step(4 * 0.01);
+  s.cost->set_remember_residuals(true);
+  ASSERT_TRUE(s.cost->Evaluate(blocks, trial.data(), nullptr));
+  ASSERT_TRUE(s.cost->Evaluate(blocks, residuals.data(), jacobians));
+  EXPECT_EQ(residuals, trial);
+  EXPECT_EQ(s.cost->jacobian_evaluations(), 1);
+
+  s.cost->set_ties({{FindParameter(ModelKind::kSymmetric, "Cm_alpha_delta2"),
+                     cm_alpha,
+                     1.0}});
+  std::vector<double> tied(m);
+  ASSERT_TRUE(s.cost->Evaluate(blocks, residuals.data(), jacobians));
+  s.cost->set_remember_residuals(false);
+  ASSERT_TRUE(s.cost->Evaluate(blocks, tied.data(), nullptr));
+  EXPECT_NE(tied, trial);
+  EXPECT_EQ(residuals, tied);
+}
+
 TEST(SegmentCostFunction, BlowUpReturnsFalse) {
   Block s = Make(ModelKind::kSymmetric, {0}, {});
   std::vector<double> unstable = {+40.0};

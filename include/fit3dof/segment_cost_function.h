@@ -175,8 +175,11 @@ class SegmentCostFunction : public ceres::CostFunction {
   // residual-only evaluation keeps its point and residuals (the trial
   // point's); after skip_next_jacobian(), the next evaluation with
   // Jacobians at that same point returns those residuals and zero
-  // Jacobians without integrating (elsewhere it evaluates in full). Ceres
-  // evaluates a block on one thread at a time, which these rely on.
+  // Jacobians without integrating (elsewhere it evaluates in full). With
+  // a coarser Jacobian step (set_jacobian_step), any evaluation with
+  // Jacobians at the remembered point takes its residuals from there
+  // instead of integrating the model's motion again. Ceres evaluates a
+  // block on one thread at a time, which these rely on.
   void set_remember_residuals(bool on);
   // Half the sum of squares of the remembered residuals (Ceres' cost of
   // the block), or NaN when none are remembered.
@@ -196,6 +199,10 @@ class SegmentCostFunction : public ceres::CostFunction {
   bool EvaluateOrFail(double const* const* parameters,
                       double* residuals,
                       double** jacobians) const;
+  // Copies the remembered residuals into `residuals` if u is the
+  // remembered point; false otherwise.
+  bool RememberedResiduals(const std::vector<double>& u,
+                           double* residuals) const;
   // Returns the remembered residuals and zero Jacobians if skip_next_jacobian
   // was asked and u is the remembered point; clears the request.
   bool SkippedJacobian(const std::vector<double>& u,
