@@ -360,11 +360,9 @@ bool SegmentCostFunction::RememberedResiduals(const std::vector<double>& u,
 bool SegmentCostFunction::SkippedJacobian(const std::vector<double>& u,
                                           double* residuals,
                                           double** jacobians) const {
-  const bool skip = remembered_.skip && remembered_.valid && u == remembered_.u;
+  const bool skip = remembered_.skip;
   remembered_.skip = false;
-  if (!skip) return false;
-  std::copy(
-      remembered_.residuals.begin(), remembered_.residuals.end(), residuals);
+  if (!skip || !RememberedResiduals(u, residuals)) return false;
   const std::vector<int32_t>& sizes = parameter_block_sizes();
   for (size_t b = 0; b < sizes.size(); ++b) {
     if (jacobians[b] != nullptr) {
