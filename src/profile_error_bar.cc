@@ -10,6 +10,7 @@
 #include "fit3dof/input_error.h"
 #include "fit3dof/parameters.h"
 #include "fit3dof/thread_budget.h"
+#include "fit_memo.h"
 
 namespace fit3dof {
 namespace {
@@ -75,8 +76,12 @@ bool Rise(const Case& c,
   FitResult frozen;
   try {
     ++out->refits;
-    frozen = FitSamples(FrozenCase(c, fit, e.position, e.value + sign * offset),
-                        data);
+    // Memoized: diagnose reports one solution from several places (a step,
+    // a tie's model, the final model), and each profiles it; the refits
+    // from the same solution are the same fits (the suite's short bearing
+    // + calibration + roll torque record: 45 refits, 15 of them distinct).
+    frozen = MemoizedFitSamples(
+        FrozenCase(c, fit, e.position, e.value + sign * offset), data);
   } catch (const InputError& error) {
     VLOG(1) << e.name << " frozen at " << e.value + sign * offset << ": "
             << error.what();

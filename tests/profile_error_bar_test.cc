@@ -13,6 +13,7 @@
 
 #include "fit3dof/config.h"
 #include "fit3dof/parameters.h"
+#include "fit_memo.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
 
@@ -67,6 +68,28 @@ TEST(ProfileErrorBar, IsTheLinearOneOnAQuadraticProfile) {
   EXPECT_EQ(profile.refits, 2);  // one probe per side reached E^2
   EXPECT_LT(profile.rms_error, 1.15 * profile.linear);
   EXPECT_DOUBLE_EQ(profile.farthest, 3.0 * profile.linear);
+}
+
+// Profiling a solution again (diagnose reports one fit from a step, a
+// tie's model and the final model) takes its refits from the fit memo:
+// the same profile, and every refit a hit.
+TEST(ProfileErrorBar, ASecondProfileOfOneSolutionRefitsNothing) {
+  const std::string dir = testing::ScratchDirectory("profile_again");
+  Case c = ShortRunFit(dir, 3);
+  c.parameters[FindParameter(c.model, "Cm_bearing")].free = false;
+  c.parameters[FindParameter(c.model, "bearing_angle")].free = false;
+  c.parameters[FindParameter(c.model, "Cm_bearing")].value = kTruthBearing;
+  const FitResult fit = Fit(c);
+  ProfileErrorBar first, second;
+  ASSERT_TRUE(ProfileOf(c, Data(fit), fit, "Cm_alpha", &first));
+  const FitMemoCounts before = GetFitMemoCounts();
+  ASSERT_TRUE(ProfileOf(c, Data(fit), fit, "Cm_alpha", &second));
+  const FitMemoCounts after = GetFitMemoCounts();
+  EXPECT_EQ(after.calls - before.calls, second.refits);
+  EXPECT_EQ(after.hits - before.hits, second.refits);
+  EXPECT_EQ(second.refits, first.refits);
+  EXPECT_EQ(second.rms_error, first.rms_error);
+  EXPECT_EQ(second.farthest, first.farthest);
 }
 
 // A frozen or unknown parameter has no profile.
