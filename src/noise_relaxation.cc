@@ -102,7 +102,8 @@ constexpr double kFlatOrder = 0.9;
 // pooled over its segments with the residual's level, as diagnose holds
 // them) the least held 8.3% under 0.75 of the true noise and 4.1% over
 // 1.25; this rule 4.8% and 5.3% (a level held too high is held again lower
-// once a fit shows it, diagnose's HeldAgain; one held too low is not).
+// once a fit shows it, diagnose's HeldAgain; one held too low is held
+// again higher only where the search finds the record at the noise level).
 double MotionGoneLevel(const std::vector<double>& levels) {
   for (size_t i = 0; i + 2 < levels.size(); ++i) {
     if (levels[i + 1] >= kFlatOrder * levels[i] &&

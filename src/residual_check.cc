@@ -141,6 +141,7 @@ ResidualCheck CheckResiduals(const FitResult& fit,
   // true model's theta residual had -0.36, beyond the limit of 0.32.
   const double worst = std::max({lag[0], lag[1], lag[2]});
   check.noise_limit = noise_limit;
+  check.whiteness_limit = whiteness_limit;
   check.white = worst < whiteness_limit && check.peak_ratio < spectral_limit &&
                 check.line_ratio < line_limit;
   check.at_noise_level = fit.probable_error < noise_limit && check.white;

@@ -4128,6 +4128,28 @@ TEST(Diagnose, SigmaAutoHoldsTheNoiseAgainAtAFitsLevel) {
                     text);
 }
 
+// sigma: auto holds a channel again above its level where the search
+// found the record at the noise level and every fit left that channel
+// well above it, white (HeldAgain): on a 3-s run of 37 samples with a
+// cubic error of the pitch reading (tests/data/short_calibration_in_pitch_
+// varied101.yaml), yaw was held at 0.0053 deg (true 0.01), and the
+// probable error it inflated hid the calibration: `noise_level`, Cm_alpha
+// 10.8 of its errors off.
+TEST(Diagnose, SigmaAutoHoldsTheNoiseAgainAboveALevelHeldLow) {
+  const Diagnosis d =
+      DiagnoseConfig("short_calibration_in_pitch_varied101.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kExplained) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            std::set<std::string>({"calibration_nonlinearity"}))
+      << text;
+  EXPECT_GT(DiagnosedNoise(d, {}).psi, 0.008) << text;
+  ExpectFinalCovers(
+      d,
+      {{"Cm_alpha", -0.2059}, {"Cm_q", -3.038}, {"theta_cal3", 0.04287}},
+      text);
+}
+
 // A probe outside the catalog that outdid every catalog effect earning its
 // place makes the record `not_explained` even where the final model is
 // within the noise level's limit: on a pair of 3-s runs with a reading

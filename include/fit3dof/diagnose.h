@@ -25,9 +25,13 @@
 // compare. So the noise is held for the whole search (noise_held): each
 // auto channel's the lesser of the nominal fit's RMS residual and the
 // data's model-free level (noise_relaxation.h DataNoiseDeg), pooled over
-// the segments; held again, and searched once more, at a fit of the
-// search's level when that leaves a channel 1.3 times or more below it
-// (structure near the Nyquist frequency passes for noise model-free).
+// the segments; held again, and searched once more (twice at most), at a
+// fit of the search's level when that leaves a channel 1.3 times or more
+// below it (structure near the Nyquist frequency passes for noise
+// model-free), or, where the search found the record at the noise level,
+// when every fit leaves a channel 1.3 times or more above it, white (a
+// noise draw short of high frequencies holds it low model-free, and the
+// probable error it inflates blurs the other channels' evidence).
 // The level limit widens by that estimate's own spread,
 // E^2 <= 1 + 3.09 sqrt(2 / dof + 7.3 / n) (1.51 on 47 samples, 1.14 on 800),
 // and the search goes on past the noise level while an effect earns its
@@ -459,6 +463,9 @@ struct ResidualCheck {
   bool white = false;
   bool below_sigma = false;
   double noise_limit = 0.0;  // the largest probable error noise reaches
+  // The largest lag-1 autocorrelation of a channel's residual noise
+  // reaches (`white` holds every channel's below it).
+  double whiteness_limit = 0.0;
 };
 
 struct CandidateScore {
