@@ -157,6 +157,34 @@ TEST(ImplausibleAmongAsJudged, ACalibrationInItsOtherFormByItsOwnTerms) {
   EXPECT_NE(judged(0.01), "");
 }
 
+// Judged within its errors, a term on a ridge moves with the coefficient
+// it shares the ridge with (RidgeMoves): a nonlinear damping of 4.9 times
+// |Cm_q| at 6 deg, Cm_q_delta2 -1280 +- 73 and Cm_q -2.88 +- 0.36 at
+// -0.9996 correlation (suite draw 104's 3-s run, a true 3.6 times), moved
+// 2 errors toward zero with Cm_q following is within 4 times |Cm_q|; with
+// Cm_q held, or without the correlations, it is not.
+TEST(ImplausibleAmongAsJudged, ANonlinearDampingAlongItsRidge) {
+  Case c;
+  c.parameters.assign(NumParameters(ModelKind::kSymmetric), {});
+  c.parameters[FindParameter(c.model, "Cm_q_delta2")].free = true;
+  const Effect* damping = FindEffect("nonlinear_damping");
+  DiagnoseOptions options;
+  options.bounds_within_errors = true;
+  const auto judged = [&](double correlation) {
+    FitResult fit =
+        Fitted({{"Cm_q", -2.88}, {"Cm_q_delta2", -1280.0}}, 6.0, 1.0);
+    fit.parameters[0].standard_error = 0.36;
+    fit.parameters[1].standard_error = 73.0;
+    fit.correlation_names = {"Cm_q", "Cm_q_delta2"};
+    fit.correlation.resize(2, 2);
+    fit.correlation << 1.0, correlation, correlation, 1.0;
+    EXPECT_NE(Implausible(*damping, c, fit), "");
+    return ImplausibleAmongAsJudged({damping}, c, fit, options);
+  };
+  EXPECT_EQ(judged(-0.9996), "");
+  EXPECT_NE(judged(0.0), "");
+}
+
 // A tunnel stiffness added before is judged within its errors by the
 // terms its own list names t1 and t3 (the fit names them tunnel_Cm_theta
 // and tunnel_Cn_psi). Draw 70's 3-s run with a tunnel stiffness, a
