@@ -47,6 +47,16 @@ Case ShortRunFit(const std::string& dir, std::uint64_t seed) {
   return c;
 }
 
+// ShortRunFit with the bearing moment held at its truth: Cm_alpha and
+// Cm_q free, their profiles quadratic.
+Case BearingHeldFit(const std::string& dir, std::uint64_t seed) {
+  Case c = ShortRunFit(dir, seed);
+  c.parameters[FindParameter(c.model, "Cm_bearing")].free = false;
+  c.parameters[FindParameter(c.model, "bearing_angle")].free = false;
+  c.parameters[FindParameter(c.model, "Cm_bearing")].value = kTruthBearing;
+  return c;
+}
+
 std::vector<TimeHistory> Data(const FitResult& fit) {
   std::vector<TimeHistory> data;
   for (const SegmentFit& s : fit.segments) data.push_back(s.data);
@@ -57,10 +67,7 @@ std::vector<TimeHistory> Data(const FitResult& fit) {
 // secant gives the linear error bar back: 15% at most wider.
 TEST(ProfileErrorBar, IsTheLinearOneOnAQuadraticProfile) {
   const std::string dir = testing::ScratchDirectory("profile_quadratic");
-  Case c = ShortRunFit(dir, 3);
-  c.parameters[FindParameter(c.model, "Cm_bearing")].free = false;
-  c.parameters[FindParameter(c.model, "bearing_angle")].free = false;
-  c.parameters[FindParameter(c.model, "Cm_bearing")].value = kTruthBearing;
+  const Case c = BearingHeldFit(dir, 3);
   const FitResult fit = Fit(c);
   ProfileErrorBar profile;
   ASSERT_TRUE(ProfileOf(c, Data(fit), fit, "Cm_alpha", &profile));
@@ -75,10 +82,7 @@ TEST(ProfileErrorBar, IsTheLinearOneOnAQuadraticProfile) {
 // the same profile, and every refit a hit.
 TEST(ProfileErrorBar, ASecondProfileOfOneSolutionRefitsNothing) {
   const std::string dir = testing::ScratchDirectory("profile_again");
-  Case c = ShortRunFit(dir, 3);
-  c.parameters[FindParameter(c.model, "Cm_bearing")].free = false;
-  c.parameters[FindParameter(c.model, "bearing_angle")].free = false;
-  c.parameters[FindParameter(c.model, "Cm_bearing")].value = kTruthBearing;
+  const Case c = BearingHeldFit(dir, 3);
   const FitResult fit = Fit(c);
   ProfileErrorBar first, second;
   ASSERT_TRUE(ProfileOf(c, Data(fit), fit, "Cm_alpha", &first));
