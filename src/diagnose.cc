@@ -885,6 +885,15 @@ double LeastResidual(const Diagnosis& d, int ch, const FitResult** at) {
   return least;
 }
 
+// Whether channel `ch` of `fit` has a residual whose lag-1
+// autocorrelation is within what noise reaches (CheckResiduals).
+bool WhiteChannel(const FitResult& fit,
+                  int ch,
+                  const DiagnoseOptions& options) {
+  const ResidualCheck check = CheckResiduals(fit, options);
+  return check.lag1[ch] < check.whiteness_limit;
+}
+
 // Whether some fit of the search `d` (held at held->sigma) left an auto
 // channel's residual (LeastResidual) below the held level by kHeldTooHigh
 // or more, or, where `d` found the record at the noise level, every fit
@@ -920,11 +929,8 @@ bool HeldAgain(const Case& c,
     const double level = held->sigma[ch];
     const bool too_high = least * kHeldTooHigh <= level;
     const bool too_low = d.verdict == Verdict::kNoiseLevel &&
-                         least >= kHeldTooLow * level && [&] {
-                           const ResidualCheck check =
-                               CheckResiduals(*at, options);
-                           return check.lag1[ch] < check.whiteness_limit;
-                         }();
+                         least >= kHeldTooLow * level &&
+                         WhiteChannel(*at, ch, options);
     if (!too_high && !too_low) continue;
     VLOG(1) << c.name << ": " << ChannelName(ch) << " noise held again at "
             << least << " deg (" << level << " before)";

@@ -503,12 +503,10 @@ std::string ImplausibleWithin(const Effect& effect,
                               const std::vector<std::string>& added,
                               double k) {
   const std::string why = Implausible(effect, c, fit);
+  if (why.empty()) return "";
   for (const bool follow : {false, true}) {
-    if (why.empty() ||
-        Implausible(effect, c, Shrunk(fit, c.model, effect, added, k, follow))
-            .empty()) {
-      return "";
-    }
+    const FitResult shrunk = Shrunk(fit, c.model, effect, added, k, follow);
+    if (Implausible(effect, c, shrunk).empty()) return "";
   }
   return why;
 }
