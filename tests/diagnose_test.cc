@@ -4189,6 +4189,26 @@ TEST(Diagnose, ATunnelTermIsTriedInEveryStepsPlace) {
       << text;
 }
 
+// A step before a tie that has no rivals and that the pruning of the
+// complete model takes away is taken out of the final model too
+// (TieDissolves, WithoutPrunedBeforeTie): on a coning run with a bearing
+// moment, a calibration error and a roll torque tied with a roll damping
+// (tests/data/coning_bearing_calibration_torque_varied105.yaml) a tunnel
+// damping taken first stayed, t2 = 0.058 +- 0.062 and t4 = 0.033 +- 0.068,
+// each complete model 9 lower in BIC without it.
+TEST(Diagnose, AStepTheCompleteModelPrunesLeavesTheFinalModel) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_bearing_calibration_torque_varied105.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("roll_torque")) << text;
+  EXPECT_EQ(
+      EffectIds(d.steps),
+      std::set<std::string>({"bearing_moment", "calibration_nonlinearity"}))
+      << text;
+}
+
 // A probe outside the catalog that outdid every catalog effect earning its
 // place makes the record `not_explained` even where the final model is
 // within the noise level's limit: on a pair of 3-s runs with a reading
