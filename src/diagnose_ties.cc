@@ -363,6 +363,14 @@ bool SeparatedOutOfSample(const CandidateFit& rival,
          rival.prediction_gain < step.prediction_gain;
 }
 
+// Whether `steps` hold the effect `effect`.
+bool HoldsEffect(const std::vector<DiagnosisStep>& steps,
+                 const std::string& effect) {
+  return std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
+    return s.effect == effect;
+  });
+}
+
 // The rivals of `step` (recorded when the search added it) that still
 // explain the record as well in the explained model `fit` (of case `at`,
 // whose effects are `steps`): swapped in for it, BIC within ambiguity_bic
@@ -399,11 +407,7 @@ std::vector<CandidateFit> Unresolved(
   // more, WiderRivals, must win the swap).
   std::vector<Swap> swaps;
   for (const CandidateFit& rival : rivals) {
-    if (std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
-          return s.effect == rival.effect;
-        })) {
-      continue;
-    }
+    if (HoldsEffect(steps, rival.effect)) continue;
     if (SeparatedOutOfSample(rival, step, options)) {
       VLOG(1) << step.effect << "'s rival " << rival.effect
               << " failed out of sample where it explained the record";
@@ -479,13 +483,6 @@ std::vector<CandidateFit> Unresolved(
   return open;
 }
 
-// Whether `steps` hold `step`'s effect.
-bool Kept(const std::vector<DiagnosisStep>& steps, const DiagnosisStep& step) {
-  return std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
-    return s.effect == step.effect;
-  });
-}
-
 // Ties (the first at step *tie; `rivals` holds each step's) on the way to
 // a record explained: the pruning (Prune) of every step, then the rivals
 // of each step still in the model swapped in for it (Unresolved). A roll torque
@@ -545,7 +542,9 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
     // 0.068 in the final model, each complete model 9 lower in BIC
     // without it.
     for (int i = 0; i < first; ++i) {
-      if (!rivals[i].empty() || Kept(pruned.steps, d->steps[i])) continue;
+      if (!rivals[i].empty() || HoldsEffect(pruned.steps, d->steps[i].effect)) {
+        continue;
+      }
       (*tied)[i] = true;
       (*redundant)[i] = true;
     }
