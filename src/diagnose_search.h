@@ -713,6 +713,19 @@ Diagnosis Search(const Case& c,
                  const DiagnoseOptions& options,
                  SearchNotes* notes);
 
+// The search from `nominal`, the fit of `c`, without the catalog effect
+// `id` (a second thought's other answer), for a caller that takes it only
+// when it explains the record with a complete model below `explain_below`
+// (DiagnoseOptions::explain_below; infinity takes any). A probe that
+// outdoes the catalog there is weighed as in any search (diagnose.h),
+// but not beside a catalog answer the caller could not take
+// (diagnose_second_thoughts.cc).
+Diagnosis SearchedWithout(const Case& c,
+                          const FitResult& nominal,
+                          const DiagnoseOptions& options,
+                          const std::string& id,
+                          double explain_below);
+
 // The search from `nominal`, the fit of `c`, and its second thoughts: an
 // effect past the noise, a step outdone, the other branch of a tie, a
 // first step that led nowhere, joint sets led by an effect out of its

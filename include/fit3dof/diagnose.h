@@ -438,6 +438,13 @@ struct DiagnoseOptions {
   // alone refused a later round's best contender (BlockerBranch): that
   // diagnosis does not search without another such.
   bool without_blocker = false;
+  // Set by diagnose for a second thought's search whose answer is taken
+  // only when it explains the record with a complete model below this BIC:
+  // where a probe outside the catalog outdid that search, the catalog's
+  // answer above it is not weighed against the probe beside its effects
+  // (it could not be taken, whoever won). One search's: the diagnoses
+  // nested in it do without.
+  double explain_below = std::numeric_limits<double>::infinity();
 };
 
 struct ResidualCheck {
