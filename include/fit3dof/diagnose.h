@@ -257,8 +257,9 @@
 // same.
 // When the record is explained by several effects, each is checked again
 // with the others in (backward elimination): one whose removal keeps the
-// residuals at the noise level and costs less than `min_bic_drop` of BIC
-// is dropped (Diagnosis::pruned). Segments diagnosed together (runs
+// residuals at the noise level and costs less than `min_bic_drop` of BIC,
+// the others within their bounds without it, is dropped
+// (Diagnosis::pruned). Segments diagnosed together (runs
 // at different spin rates) separate what one run cannot. When the
 // residuals stay structured and nothing earns its place the verdict is
 // `not_explained`, with a description of what the residuals show (lines
