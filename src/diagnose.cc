@@ -866,6 +866,15 @@ constexpr double kHeldTooLow = 1.3;
 // How many times the search runs again at levels held again.
 constexpr int kHeldRounds = 2;
 
+// Channel `ch`'s RMS residual in `fit` taken over the residuals' degrees
+// of freedom (sqrt(n / (n - p)) on the whole fit); infinity without one.
+double CorrectedResidual(const FitResult& fit, int ch) {
+  const int n = 3 * fit.points;
+  if (n <= fit.free_parameters) return std::numeric_limits<double>::infinity();
+  return fit.rms_residual_deg[ch] *
+         std::sqrt(1.0 * n / (n - fit.free_parameters));
+}
+
 // The least RMS residual of channel `ch` any fit of the search `d` left,
 // taken over the residuals' degrees of freedom (sqrt(n / (n - p)) on the
 // whole fit); *at is that fit (nullptr when none has a degree of freedom).
@@ -873,16 +882,51 @@ double LeastResidual(const Diagnosis& d, int ch, const FitResult** at) {
   double least = std::numeric_limits<double>::infinity();
   *at = nullptr;
   for (const FitResult& fit : d.fits) {
-    const int n = 3 * fit.points;
-    if (n <= fit.free_parameters) continue;
-    const double rms = fit.rms_residual_deg[ch] *
-                       std::sqrt(1.0 * n / (n - fit.free_parameters));
+    const double rms = CorrectedResidual(fit, ch);
     if (rms < least) {
       least = rms;
       *at = &fit;
     }
   }
   return least;
+}
+
+// The catalog effects `d`, an answer that leaves the record unexplained,
+// took or refused after they lowered BIC by min_bic_drop or more (its
+// partial steps and its rejected contenders), fitted together from its
+// final model into *fit; false when there are fewer than two or the fit
+// fails. A level held too high shows in no single fit of such a search:
+// on a 3-s run with a bearing moment, a cubic calibration error and a roll
+// torque (draw 105) pitch was held at 0.0225 deg (true 0.01: the cube's
+// third harmonic, at a third of the sampling rate, passes the model-free
+// estimate for noise); each contender left 0.022, a pressure-drift probe
+// 0.019, and at that level the probe explained the record.
+bool FittedTogether(const Diagnosis& d,
+                    const DiagnoseOptions& options,
+                    FitResult* fit) {
+  if (d.verdict != Verdict::kNotExplained) return false;
+  std::vector<const Effect*> effects;
+  const auto take = [&](const std::string& id, double bic_drop) {
+    const Effect* e = FindEffect(id);
+    if (e != nullptr && bic_drop >= options.min_bic_drop &&
+        std::find(effects.begin(), effects.end(), e) == effects.end()) {
+      effects.push_back(e);
+    }
+  };
+  for (const DiagnosisStep& s : d.partial) take(s.effect, s.bic_drop);
+  for (const CandidateFit& k : d.rejected) take(k.effect, k.bic_drop);
+  if (effects.size() < 2) return false;
+  Case together = CaseAtSolution(d.final_case, d.FinalFit());
+  for (const Effect* e : effects) {
+    Case with;
+    std::vector<std::string> added;
+    if (CandidateCase(together, *e, &with, &added)) together = std::move(with);
+  }
+  return FitFrom(together,
+                 d.FinalFit(),
+                 FittedData(d.FinalFit()),
+                 "the effects that lowered BIC together",
+                 fit);
 }
 
 // Whether channel `ch` of `fit` has a residual whose lag-1
@@ -895,21 +939,22 @@ bool WhiteChannel(const FitResult& fit,
 }
 
 // Whether some fit of the search `d` (held at held->sigma) left an auto
-// channel's residual (LeastResidual) below the held level by kHeldTooHigh
-// or more, or, where `d` found the record at the noise level, every fit
-// left it above by kHeldTooLow or more, white (its lag-1 autocorrelation
-// within what noise reaches); if so, held->sigma holds that channel at the
-// least level. Too high: the model-free level takes structure near the
-// Nyquist frequency for noise: a calibration error's cube puts the pitch
-// motion's third harmonic there at 8 points per cycle, and on a pair of
-// 3-s runs with a bearing moment, that calibration and a roll torque the
-// pitch level was held at 0.0218 deg while the three fitted together
-// left 0.0094 (true noise 0.01). Weighed at 0.0218 the calibration's other
-// form and a gain error of the pitch reading, 0.019 deg, passed for the
-// noise. Too low: a noise draw short of power at high frequencies holds a
-// channel low by its differences, and the probable error it inflates
-// blurs every other channel's evidence (the score is in units of E^2). On
-// a 3-s run of 37 samples with a cubic error of the pitch reading
+// channel's residual (LeastResidual; where `d` leaves the record
+// unexplained, the effects it found fitted together too, FittedTogether)
+// below the held level by kHeldTooHigh or more, or, where `d` found the record
+// at the noise level, every fit left it above by kHeldTooLow or more, white
+// (its lag-1 autocorrelation within what noise reaches); if so, held->sigma
+// holds that channel at the least level. Too high: the model-free level takes
+// structure near the Nyquist frequency for noise: a calibration error's cube
+// puts the pitch motion's third harmonic there at 8 points per cycle, and on a
+// pair of 3-s runs with a bearing moment, that calibration and a roll torque
+// the pitch level was held at 0.0218 deg while the three fitted together left
+// 0.0094 (true noise 0.01). Weighed at 0.0218 the calibration's other form and
+// a gain error of the pitch reading, 0.019 deg, passed for the noise. Too low:
+// a noise draw short of power at high frequencies holds a channel low by its
+// differences, and the probable error it inflates blurs every other channel's
+// evidence (the score is in units of E^2). On a 3-s run of 37 samples with a
+// cubic error of the pitch reading
 // (tests/data/short_calibration_in_pitch_varied101.yaml) yaw was held at
 // 0.0053 deg (true 0.01; its residual 0.0108, lag-1 0.29), E was 1.48,
 // and the calibration's score, 14.5 at 2 terms, missed the 10 of BIC it
@@ -921,12 +966,17 @@ bool HeldAgain(const Case& c,
                const DiagnoseOptions& options,
                Case* held) {
   bool again = false;
+  FitResult together;
+  const bool fitted = FittedTogether(d, options, &together);
   for (int ch = 0; ch < 3; ++ch) {
     if (!c.sigma_auto[ch]) continue;
     const FitResult* at = nullptr;
-    const double least = LeastResidual(d, ch, &at);
+    double least = LeastResidual(d, ch, &at);
     if (at == nullptr) continue;
     const double level = held->sigma[ch];
+    if (fitted && CorrectedResidual(together, ch) * kHeldTooHigh <= level) {
+      least = std::min(least, CorrectedResidual(together, ch));
+    }
     const bool too_high = least * kHeldTooHigh <= level;
     const bool too_low = d.verdict == Verdict::kNoiseLevel &&
                          least >= kHeldTooLow * level &&
