@@ -974,8 +974,9 @@ bool HeldAgain(const Case& c,
     double least = LeastResidual(d, ch, &at);
     if (at == nullptr) continue;
     const double level = held->sigma[ch];
-    if (fitted && CorrectedResidual(together, ch) * kHeldTooHigh <= level) {
-      least = std::min(least, CorrectedResidual(together, ch));
+    if (fitted) {
+      const double joint = CorrectedResidual(together, ch);
+      if (joint * kHeldTooHigh <= level) least = std::min(least, joint);
     }
     const bool too_high = least * kHeldTooHigh <= level;
     const bool too_low = d.verdict == Verdict::kNoiseLevel &&

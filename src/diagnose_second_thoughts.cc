@@ -399,6 +399,20 @@ Diagnosis Searched(const Case& c,
   return d;
 }
 
+// The search (Searched) of `c` without the catalog effect `id`, taken
+// only below `explain_below` (SearchedWithout, diagnose_search.h); *notes
+// gets what it found.
+Diagnosis SearchWithout(const Case& c,
+                        const FitResult& nominal,
+                        const DiagnoseOptions& options,
+                        const std::string& id,
+                        double explain_below,
+                        SearchNotes* notes) {
+  DiagnoseOptions without = Without(options, id);
+  without.explain_below = explain_below;
+  return Searched(c, nominal, without, notes);
+}
+
 // A step that the effects not excluded beat together by ambiguity_bic or
 // more (FindSetReplacements, `outdone`) was the search's wrong turn: the
 // search without its effect is the answer when it explains the record
@@ -928,9 +942,8 @@ Diagnosis WithoutTiedPartner(const Case& c,
   const DiagnosisStep* step = PartnerTied(d);
   if (step == nullptr || !SearchesAgain(options, *notes)) return d;
   SearchNotes again;
-  DiagnoseOptions without = Without(options, step->effect);
-  without.explain_below = CompleteBic(d);
-  Diagnosis other = Searched(c, nominal, without, &again);
+  Diagnosis other =
+      SearchWithout(c, nominal, options, step->effect, CompleteBic(d), &again);
   const double margin = CompleteBic(d) - CompleteBic(other);
   VLOG(1) << "without " << step->effect << ", whose joint set's partner "
           << "tied: " << VerdictToString(other.verdict) << ", BIC "
@@ -1112,9 +1125,7 @@ Diagnosis SearchedWithout(const Case& c,
                           const std::string& id,
                           double explain_below) {
   SearchNotes unused;
-  DiagnoseOptions without = Without(options, id);
-  without.explain_below = explain_below;
-  return Searched(c, nominal, without, &unused);
+  return SearchWithout(c, nominal, options, id, explain_below, &unused);
 }
 
 // The search from `nominal`, the fit of `c`, and its second thoughts
