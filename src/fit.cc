@@ -407,8 +407,22 @@ void WarnOfSigma(const Case& c, FitResult* result) {
 constexpr double kCurvedRidge = 30.0;
 // The start of the warning on a bearing moment's ridge (CheckRidges).
 constexpr char kBearingRidge[] = "bearing_angle = ";
-// The pipeline's entry once Cm_bearing's error bar is the profile's.
-constexpr char kBearingProfile[] = "Cm_bearing's error bar from its profile";
+// The pipeline's entry once a parameter's error bar is the profile's,
+// after its name.
+constexpr char kProfileEntry[] = "'s error bar from its profile";
+// The stiffness a bearing moment trades with (bearing_moment.h: below its
+// angle it is one, M_y = Cm_bearing alpha, M_z = -Cm_bearing beta), whose
+// error bars its ridge widens too (CheckRidges).
+constexpr const char* kTradedStiffness[] = {"Cm_alpha", "Cn_beta"};
+
+// Whether `result`'s error bar of `name` is its profile's already.
+bool Profiled(const FitResult& result, const std::string& name) {
+  const std::string entry = name + kProfileEntry;
+  return std::any_of(
+      result.pipeline.begin(),
+      result.pipeline.end(),
+      [&](const std::string& p) { return p.rfind(entry, 0) == 0; });
+}
 
 // The warning on a bearing moment whose angle the record does not
 // determine; `error_bar` says what Cm_bearing's error bar is.
@@ -432,21 +446,21 @@ std::string BearingRidgeWarning(const ParameterEstimate& moment,
          "or quote the saturated moment";
 }
 
-// Cm_bearing's error bars widened to its profile's (`profile`); the
+// A parameter's error bars widened to its profile's (`profile`); the
 // description for the warning.
 std::string WidenToProfile(const ProfileErrorBar& profile,
-                           ParameterEstimate* moment,
+                           ParameterEstimate* e,
                            FitResult* result) {
-  const double linear = moment->standard_error;
+  const double linear = e->standard_error;
   const double scale = profile.rms_error / profile.linear;
-  moment->rms_error *= scale;
-  moment->standard_error *= scale;
-  result->pipeline.push_back(std::string(kBearingProfile) + ": " +
+  e->rms_error *= scale;
+  e->standard_error *= scale;
+  result->pipeline.push_back(e->name + kProfileEntry + ": " +
                              std::to_string(profile.refits) + " refits, x" +
                              FormatNumber("%.3g", scale));
   return "its error bar is the profile's (" +
-         FormatNumber("%.2g", moment->standard_error) +
-         ", refitted with Cm_bearing frozen out to +-" +
+         FormatNumber("%.2g", e->standard_error) + ", refitted with " +
+         e->name + " frozen out to +-" +
          FormatNumber("%.2g", profile.farthest) +
          (profile.bounded
               ? ""
@@ -478,36 +492,73 @@ void JudgeAdequacy(const Case& c, FitResult* result) {
       " looks for a missing effect");
 }
 
-}  // namespace
-
-void CheckRidges(const Case& c,
-                 const std::vector<TimeHistory>& data,
-                 FitResult* result) {
-  const ParameterEstimate* moment = SharedEstimate(*result, "Cm_bearing");
-  const ParameterEstimate* angle = SharedEstimate(*result, "bearing_angle");
+// Whether `fit` holds a free bearing moment on its curved ridge, where
+// Cm_bearing's linear error bar cannot be trusted (CheckRidges);
+// *undetermined: whether the record does not determine its angle.
+bool OnBearingRidge(const FitResult& fit, bool* undetermined) {
+  const ParameterEstimate* moment = SharedEstimate(fit, "Cm_bearing");
+  const ParameterEstimate* angle = SharedEstimate(fit, "bearing_angle");
   if (moment == nullptr || angle == nullptr || !moment->free || !angle->free) {
-    return;
+    return false;
   }
   // An angle within two of its errors of zero is not determined: on a
   // pair of runs the bearing moment's angle fitted 2.2 +- 1.6 deg (truth 1)
   // and Cm_bearing -0.0020 +- 0.00025 (truth -0.0033) along the ridge.
-  const bool undetermined =
-      !(2.0 * angle->standard_error < std::abs(angle->value));
+  *undetermined = !(2.0 * angle->standard_error < std::abs(angle->value));
   // A determined angle still bends the ridge: saturated, Cm_bearing goes
   // as 1 / bearing_angle, and 3 errors of an angle known to r of itself
   // move it 1 / (1 - 3 r) times as far as the linear error bar says. Past
   // r = 1/30 (10%) the profile is taken; an 800-sample run's angle of 1.31
   // +- 0.12 deg (truth 1) put Cm_bearing 4.6 linear errors off.
-  if (!undetermined &&
-      kCurvedRidge * angle->standard_error < std::abs(angle->value)) {
-    return;
+  return *undetermined ||
+         !(kCurvedRidge * angle->standard_error < std::abs(angle->value));
+}
+
+// The error bars of the stiffness a bearing moment on its ridge trades
+// with (kTradedStiffness), free and not profiled yet, widened to their
+// profiles' (WidenTradedStiffness); their names are added to *names. On a
+// 3-s run with the moment saturating at 2 deg (Cm_bearing -0.0082), fitted
+// at 0.71 +- 0.97 deg, Cm_alpha was -0.20131 +- 0.00028 against a truth of
+// -0.20020 (4 errors): frozen there, the refit's sum of squares rose by 2.3
+// E^2 (1.5 errors), the angle going to 2.35 deg; frozen 6.4 linear errors
+// out, by 3.3 E^2. Its profile error bar is 0.0016. Returns, for the
+// ridge's warning, what it widened ("; Cm_alpha's is its profile's too
+// (...)").
+std::string ProfileTradedStiffness(const Case& c,
+                                   const std::vector<TimeHistory>& data,
+                                   FitResult* result,
+                                   std::vector<std::string>* names) {
+  std::string widened;
+  for (const char* name : kTradedStiffness) {
+    const ParameterEstimate* e = SharedEstimate(*result, name);
+    ProfileErrorBar profile;
+    if (e == nullptr || !e->free || Profiled(*result, name) ||
+        !ProfileOf(c, data, *result, name, &profile) ||
+        !(profile.rms_error > profile.linear)) {
+      continue;
+    }
+    const double linear = e->standard_error;
+    ParameterEstimate* widen =
+        &result->parameters[e - result->parameters.data()];
+    WidenToProfile(profile, widen, result);
+    names->push_back(name);
+    widened += "; " + std::string(name) + "'s is its profile's too (" +
+               FormatNumber("%.2g", widen->standard_error) + ", not " +
+               FormatNumber("%.2g", linear) + ")";
   }
-  const auto& pipeline = result->pipeline;
-  if (std::any_of(pipeline.begin(), pipeline.end(), [](const std::string& p) {
-        return p.rfind(kBearingProfile, 0) == 0;
-      })) {
-    return;  // profiled already
-  }
+  return widened;
+}
+
+}  // namespace
+
+void CheckRidges(const Case& c,
+                 const std::vector<TimeHistory>& data,
+                 FitResult* result) {
+  bool undetermined = false;
+  if (!OnBearingRidge(*result, &undetermined)) return;
+  const ParameterEstimate* moment = SharedEstimate(*result, "Cm_bearing");
+  const ParameterEstimate* angle = SharedEstimate(*result, "bearing_angle");
+  if (Profiled(*result, "Cm_bearing")) return;
   std::string error_bar =
       std::isnan(moment->standard_error)
           ? "it has no error bar of its own"
@@ -532,6 +583,22 @@ void CheckRidges(const Case& c,
   if (undetermined) {
     warnings.push_back(BearingRidgeWarning(*moment, *angle, error_bar));
   }
+}
+
+std::vector<std::string> WidenTradedStiffness(
+    const Case& c, const std::vector<TimeHistory>& data, FitResult* fit) {
+  bool undetermined = false;
+  if (!OnBearingRidge(*fit, &undetermined)) return {};
+  std::vector<std::string> widened;
+  const std::string text = ProfileTradedStiffness(c, data, fit, &widened);
+  if (text.empty()) return widened;
+  for (std::string& w : fit->warnings) {
+    if (w.rfind(kBearingRidge, 0) != 0) continue;
+    // Before the advice at the warning's end (BearingRidgeWarning).
+    const size_t advice = w.rfind("; freeze bearing_angle");
+    w.insert(advice == std::string::npos ? w.size() : advice, text);
+  }
+  return widened;
 }
 
 namespace {
@@ -594,6 +661,7 @@ FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
   result.correlation = u.correlation;
   result.parameters = Estimates(c, problem, values, u);
   CheckRidges(c, data, &result);
+  if (c.solver.profile_ridges) WidenTradedStiffness(c, data, &result);
   FitSegments(c, problem, values, u, &result);
   JudgeAdequacy(c, &result);
   result.seconds = std::chrono::duration<double>(

@@ -4249,6 +4249,28 @@ TEST(Diagnose, APruningLeavesNoEffectOutOfItsBounds) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.2814}, {"Cm_q", -8.766}}, text);
 }
 
+// The final model's error bars cover the stiffness its bearing moment
+// trades with on its ridge (StiffnessOnTheRidge): on a 3-s run with the
+// moment fading at 2 deg (tests/data/short_bearing_two_degrees_vary111_
+// diagnose.yaml; diagnose starts the angle at 1), the moment was named at
+// 0.73 +- 1.2 deg and Cm_alpha, -0.20131 +- 0.00032, was 3.5 errors off
+// the truth: frozen there, the sum of squares rises by 2.3 E^2. Its error
+// bar is now its profile's, and the model's own error says so.
+TEST(Diagnose, TheFinalErrorBarsCoverTheStiffnessOnTheBearingRidge) {
+  const Diagnosis d =
+      DiagnoseConfig("short_bearing_two_degrees_vary111_diagnose.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kExplained) << text;
+  EXPECT_EQ(EffectIds(d.steps), std::set<std::string>({"bearing_moment"}))
+      << text;
+  // As diagnosis.json reports them.
+  ExpectCovers(
+      d.final_parameters, {{"Cm_alpha", -0.2002}, {"Cm_q", -7.411}}, text);
+  EXPECT_TRUE(testing::InPipeline(d.FinalFit(),
+                                  "Cm_alpha's error bar from its profile"))
+      << ::testing::PrintToString(d.FinalFit().pipeline);
+}
+
 // A probe outside the catalog that outdid every catalog effect earning its
 // place makes the record `not_explained` even where the final model is
 // within the noise level's limit: on a pair of 3-s runs with a reading

@@ -6,6 +6,7 @@
 
 #include "profile_error_bar.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -187,6 +188,46 @@ TEST(ProfileErrorBar, ProbesFurtherWhileTheProfileKeepsFlattening) {
         testing::InPipeline(fit, "Cm_bearing's error bar from its profile"))
         << file << ": " << ::testing::PrintToString(fit.pipeline);
   }
+}
+
+// The ridge widens the stiffness the bearing moment trades with too (fit.cc,
+// CheckRidges): below its angle the moment is a stiffness. On a 3-s run
+// with the moment fading at 2 deg (tools/diagnose_suite --vary
+// --vary-conditions, draw 111; diagnose starts the angle at 1 deg), the fit
+// lands on the ridge at 0.71 +- 0.97 deg, and Cm_alpha -0.20131 +- 0.00028
+// from the solution's curvature is 4 of those errors from the truth,
+// -0.2002: frozen there, the refit's sum of squares rises by 2.3 E^2 (the
+// angle going to 2.35 deg). Its error bar is its profile's, which covers
+// the truth, and the ridge's warning says so.
+TEST(ProfileErrorBar, CoversTheStiffnessTheBearingMomentTradesWith) {
+  const Case c = LoadConfig(
+      testing::SourcePath("tests/data/short_bearing_two_degrees_vary111.yaml"));
+  constexpr double kTruth = -0.2002;
+  Case linear_only = c;
+  linear_only.solver.profile_ridges = false;
+  const FitResult linear = Fit(linear_only);
+  const ParameterEstimate* at = SharedEstimate(linear, "Cm_alpha");
+  ASSERT_NE(at, nullptr);
+  EXPECT_GT(std::abs(at->value - kTruth), 3.0 * at->standard_error)
+      << at->value << " +- " << at->standard_error;
+
+  const FitResult fit = Fit(c);
+  const ParameterEstimate* stiffness = SharedEstimate(fit, "Cm_alpha");
+  ASSERT_NE(stiffness, nullptr);
+  EXPECT_LT(std::abs(stiffness->value - kTruth),
+            3.0 * stiffness->standard_error)
+      << stiffness->value << " +- " << stiffness->standard_error;
+  EXPECT_TRUE(testing::InPipeline(fit, "Cm_alpha's error bar from its profile"))
+      << ::testing::PrintToString(fit.pipeline);
+  const auto warned = std::find_if(
+      fit.warnings.begin(), fit.warnings.end(), [](const std::string& w) {
+        return w.find("Cm_alpha's is its profile's too") != std::string::npos;
+      });
+  EXPECT_NE(warned, fit.warnings.end())
+      << ::testing::PrintToString(fit.warnings);
+  // Cm_q, which the moment does not trade with, keeps its linear error bar.
+  EXPECT_EQ(SharedEstimate(fit, "Cm_q")->standard_error,
+            SharedEstimate(linear, "Cm_q")->standard_error);
 }
 
 }  // namespace

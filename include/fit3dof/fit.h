@@ -185,6 +185,16 @@ void CheckRidges(const Case& c,
                  const std::vector<TimeHistory>& data,
                  FitResult* fit);
 
+// Where CheckRidges finds the bearing moment on its ridge, the error bars
+// of the stiffness the moment trades with below its angle (Cm_alpha and,
+// asymmetric, Cn_beta; free, not profiled yet) widened to their profiles'
+// where those are flatter than their linear error bars, and the ridge's
+// warning saying so; returns the names widened. FitSamples calls it with
+// c.solver.profile_ridges; diagnose, whose decisions read the error bars
+// of the models it reports, on its final model once it has decided.
+std::vector<std::string> WidenTradedStiffness(
+    const Case& c, const std::vector<TimeHistory>& data, FitResult* fit);
+
 // The spin rate (Hz) of a segment's fitted motion, over the record.
 double SpinHz(const SegmentFit& s);
 
