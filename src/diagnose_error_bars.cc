@@ -348,8 +348,8 @@ std::map<std::string, double> RidgeMoves(const FitResult& fit,
 // deg. Toward zero that angle would leave the record's angles on the other
 // side: a bearing moment fitted at 9.0 +- 12.8 deg on a pair of runs
 // reaching 8.0 deg is within its bounds there. `names` may be aliases
-// (an effect's own list names Eq. 39's tunnel terms t1..t4, the fit
-// tunnel_Cm_theta..): each is matched by its name in `model`'s table.
+// (Eq. 39's tunnel terms t1..t4 for tunnel_Cm_theta..): each is matched
+// by its name in `model`'s table.
 // With `follow`, the other free parameters move with them by their
 // regression on them (RidgeMoves): where the fit would be with the terms
 // held there; without, they stay.

@@ -1083,9 +1083,16 @@ bool SetEarns(int lead,
                           &gain)) {
         continue;
       }
-      VLOG(1) << fit.name << ": joint set of " << sets[i].size() << " led by "
-              << contenders[lead].record.effect << " earns its place, BIC "
-              << Bic(f.fits[i]) << ", gain " << gain;
+      if (VLOG_IS_ON(1)) {
+        std::string members;
+        for (size_t m = 1; m < sets[i].size(); ++m) {
+          members += " " + contenders[sets[i][m]].record.effect;
+        }
+        VLOG(1) << fit.name << ": joint set of " << sets[i].size() << " led by "
+                << contenders[lead].record.effect << " (with" << members
+                << ") earns its place, BIC " << Bic(f.fits[i]) << ", gain "
+                << gain;
+      }
       if (TakeSet(i, lead, sets, f, contenders, gain, joint)) return true;
     }
   }

@@ -3594,17 +3594,28 @@ TEST(Diagnose, AnExplainedAnswerGivesWayToATiePastTheNoise) {
 // lowered BIC by 37, a tie left open and not adopted. Past the noise a
 // false bearing moment made the Magnus moment look better, and it was
 // named beside a five-way tie. A tie whose rival outdid the followed
-// effect so is searched without it: the asymmetry and the damping are
-// named, the stiffness tied with its Eq. 39 twins.
+// effect so is searched without it (OutdoneSwapBranch). That had named
+// the asymmetry and the damping, the stiffness tied with its Eq. 39 twins,
+// but only because a tunnel term in a joint set was looked up by its alias
+// and never showed (EffectCatalog.TermsGoByTheNamesFitsReport). Now the
+// asymmetry, the damping and a tunnel damping earn their place together
+// (BIC 50.0; the true stiffness in its place 39.7, t1 0.39 on Eq. 43's
+// ridge, out of its bounds); the tunnel damping, outdone in a swap by
+// 10.3, is searched without, and that answer, 0.9 lower, names a roll
+// torque and the damping, the asymmetry tied with a Magnus moment, short
+// of the noise. Not the truth, but not a confident answer either: the
+// asymmetry stays in the tie and the final error bars cover the body's
+// coefficients.
 TEST(Diagnose, AnEffectOutdoneInASwapIsSearchedWithout) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw62.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  ExpectAsymmetryAndDampingNamed(d, 895.7, text);
-  EXPECT_FALSE(EffectIds(d.ambiguous).count("bearing_moment")) << text;
-  EXPECT_NE(text.find("a Magnus moment, followed in a tie"), std::string::npos)
-      << text;
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("asymmetric_body")) << text;
+  EXPECT_NE(text.find("followed in a tie"), std::string::npos) << text;
+  ExpectCovers(d.final_parameters, kShortCoefficients, text);
 }
 
 // The same case on draw 64 (t1 -9.69e-4, t3 3.39e-4, Cm_q_delta2 -640.6,
@@ -4269,6 +4280,37 @@ TEST(Diagnose, TheFinalErrorBarsCoverTheStiffnessOnTheBearingRidge) {
   EXPECT_TRUE(testing::InPipeline(d.FinalFit(),
                                   "Cm_alpha's error bar from its profile"))
       << ::testing::PrintToString(d.FinalFit().pipeline);
+}
+
+// A joint set with a tunnel term among its members shows it by its name
+// (EffectCatalog's terms are the names fits report): on a 3-s run with a
+// tunnel damping, a Magnus moment and a flow angularity, sigma: auto
+// (tests/data/short_tunnel_damping_magnus_angularity_vary110.yaml), each
+// alone failed to predict the held-out part, and every set with the
+// damping in was refused as "a member its fit does not show" (t2 and t4
+// matched no estimate): `not_explained`, Cm_q -4.62 +- 0.04 against
+// -6.815. Now the damping and the Magnus moment are added, and the offset
+// ties with a roll reading error, which less than a revolution of roll
+// cannot tell apart.
+TEST(Diagnose, AJointSetShowsItsTunnelDamping) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a tie among joint sets; plain build";
+  }
+  const Diagnosis d =
+      DiagnoseConfig("short_tunnel_damping_magnus_angularity_vary110.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            std::set<std::string>({"tunnel_damping", "magnus"}))
+      << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("flow_angularity")) << text;
+  ExpectCovers(d.final_parameters,
+               {{"Cm_alpha", -0.1637},
+                {"Cm_q", -6.815},
+                {"tunnel_Cm_thetadot", 2.219},
+                {"tunnel_Cn_psidot", -3.013},
+                {"Cm_p_alpha", -5.324}},
+               text);
 }
 
 // A probe outside the catalog that outdid every catalog effect earning its

@@ -196,7 +196,8 @@ TEST(ImplausibleAmongAsJudged, ATunnelStiffnessByItsAliasesWithinItsErrors) {
   Case c;
   c.parameters.assign(NumParameters(ModelKind::kSymmetric), {});
   const Effect* stiffness = FindEffect("tunnel_stiffness");
-  ASSERT_EQ(TermsIn(c, *stiffness), (std::vector<std::string>{"t1", "t3"}));
+  ASSERT_EQ(TermsIn(c, *stiffness),
+            (std::vector<std::string>{"tunnel_Cm_theta", "tunnel_Cn_psi"}));
   DiagnoseOptions options;
   options.bounds_within_errors = true;
   const auto judged = [&](double error) {
