@@ -347,27 +347,20 @@ std::map<std::string, double> RidgeMoves(const FitResult& fit,
 // companion's start (Effect::companions), the bearing moment's angle of 1
 // deg. Toward zero that angle would leave the record's angles on the other
 // side: a bearing moment fitted at 9.0 +- 12.8 deg on a pair of runs
-// reaching 8.0 deg is within its bounds there. `names` may be aliases
-// (Eq. 39's tunnel terms t1..t4 for tunnel_Cm_theta..): each is matched
-// by its name in `model`'s table.
+// reaching 8.0 deg is within its bounds there. `names` are the names
+// fits report (the catalog's terms are, EffectCatalog's test says so).
 // With `follow`, the other free parameters move with them by their
 // regression on them (RidgeMoves): where the fit would be with the terms
 // held there; without, they stay.
 FitResult Shrunk(FitResult fit,
-                 ModelKind model,
                  const Effect& effect,
                  const std::vector<std::string>& names,
                  double k,
                  bool follow) {
-  std::vector<std::string> own;
-  for (const std::string& name : names) {
-    const int position = FindParameter(model, name);
-    if (position >= 0) own.push_back(ParameterTable(model)[position].name);
-  }
   std::map<std::string, double> moves;
   for (const ParameterEstimate& e : fit.parameters) {
     if (!e.segment.empty() || !(e.standard_error > 0.0) ||
-        std::find(own.begin(), own.end(), e.name) == own.end()) {
+        std::find(names.begin(), names.end(), e.name) == names.end()) {
       continue;
     }
     double least = 0.0;
@@ -505,7 +498,7 @@ std::string ImplausibleWithin(const Effect& effect,
   const std::string why = Implausible(effect, c, fit);
   if (why.empty()) return "";
   for (const bool follow : {false, true}) {
-    const FitResult shrunk = Shrunk(fit, c.model, effect, added, k, follow);
+    const FitResult shrunk = Shrunk(fit, effect, added, k, follow);
     if (Implausible(effect, c, shrunk).empty()) return "";
   }
   return why;

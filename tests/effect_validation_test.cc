@@ -186,13 +186,13 @@ TEST(ImplausibleAmongAsJudged, ANonlinearDampingAlongItsRidge) {
 }
 
 // A tunnel stiffness added before is judged within its errors by the
-// terms its own list names t1 and t3 (the fit names them tunnel_Cm_theta
-// and tunnel_Cn_psi). Draw 70's 3-s run with a tunnel stiffness, a
-// nonlinear damping and a body yaw asymmetry: with the damping in, t1 =
-// -0.139 +- 0.127 on Eq. 43's ridge (half of |Cm_alpha + t1| being 0.115),
+// terms its own list names (tunnel_Cm_theta and tunnel_Cn_psi, as the fit
+// does; the list had named them t1 and t3). Draw 70's 3-s run with a tunnel
+// stiffness, a nonlinear damping and a body yaw asymmetry: with the damping in,
+// t1 = -0.139 +- 0.127 on Eq. 43's ridge (half of |Cm_alpha + t1| being 0.115),
 // and the aliases had matched nothing, so the stiffness was judged at its
 // point fit and refused the damping beside it.
-TEST(ImplausibleAmongAsJudged, ATunnelStiffnessByItsAliasesWithinItsErrors) {
+TEST(ImplausibleAmongAsJudged, ATunnelStiffnessByItsOwnTermsWithinItsErrors) {
   Case c;
   c.parameters.assign(NumParameters(ModelKind::kSymmetric), {});
   const Effect* stiffness = FindEffect("tunnel_stiffness");
