@@ -255,7 +255,9 @@ def main():
     # catalog, where sets of a bearing moment crawl along its ridge) and a
     # bearing moment, calibration error and roll torque on Table 6; the
     # --vary-conditions draws' slowest, a bearing moment, calibration error
-    # and roll torque on a 3-s run of another body (draw 84).
+    # and roll torque on a 3-s run of another body (draw 84); draw 110's
+    # pair with a tunnel damping, a Magnus moment and a flow angularity
+    # (sigma: auto), where a reading lag is weighed beside the catalog.
     print("== fit3dof diagnose against a plain fit of the same record "
           "(median of 3)")
     rows = []
@@ -264,7 +266,8 @@ def main():
                  "table6_damping_magnus_angularity_draw41",
                  "pair_pitch_gain_draw65",
                  "table6_bearing_calibration_roll_torque_draw65",
-                 "short_bearing_calibration_roll_torque_varied84"):
+                 "short_bearing_calibration_roll_torque_varied84",
+                 "pair_damping_magnus_angularity_vary110"):
         config = os.path.join(root, "tests", "data", name + ".yaml")
         seconds, fit_seconds, d = time_diagnose(root, config)
         rows.append({"record": name, "diagnose_seconds": seconds,

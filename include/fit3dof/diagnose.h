@@ -432,8 +432,9 @@ struct DiagnoseOptions {
   std::vector<std::string> searched_without;
   // Set by diagnose for the search that weighs a probe outside the catalog
   // with the catalog's effects beside it (its model the probe's): that
-  // search's second thoughts do not search again without a step whose
-  // joint set's partner tied (the catalog's own search had them).
+  // search's second thoughts do not search again without a step (whose
+  // joint set's partner tied, that blocked a round's best, taken first, or
+  // outdone in a swap): the catalog's own search had them.
   bool beside_probe = false;
   // Set by diagnose for the diagnosis without an effect that, taken early,
   // alone refused a later round's best contender (BlockerBranch): that
