@@ -735,6 +735,21 @@ Diagnosis DiagnoseFrom(const Case& c,
                        const FitResult& nominal,
                        const DiagnoseOptions& options);
 
+// DiagnoseFrom in two halves, for a caller that reads the search's answer
+// before its second thoughts (WithNoiseHeld, diagnose.cc): the search
+// (with the catalog searched alone where a probe outdid it), *notes
+// getting what the second thoughts need; then those second thoughts on
+// its answer `first`. Rethought(FirstSearch(...)) is DiagnoseFrom.
+Diagnosis FirstSearch(const Case& c,
+                      const FitResult& nominal,
+                      const DiagnoseOptions& options,
+                      SearchNotes* notes);
+Diagnosis Rethought(const Case& c,
+                    const FitResult& nominal,
+                    const DiagnoseOptions& options,
+                    SearchNotes notes,
+                    Diagnosis first);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_SRC_DIAGNOSE_SEARCH_H_

@@ -1139,15 +1139,22 @@ Diagnosis SearchedWithout(const Case& c,
   return SearchWithout(c, nominal, options, id, explain_below, &unused);
 }
 
-// The search from `nominal`, the fit of `c`, and its second thoughts
-// (SecondThoughts), and when it followed an effect into a tie that a
-// swap outdid, the diagnosis without it (OutdoneSwapBranch).
-Diagnosis DiagnoseFrom(const Case& c,
-                       const FitResult& nominal,
-                       const DiagnoseOptions& options) {
+Diagnosis FirstSearch(const Case& c,
+                      const FitResult& nominal,
+                      const DiagnoseOptions& options,
+                      SearchNotes* notes) {
   CHECK(std::isinf(options.explain_below)) << "a bound of one search's";
-  SearchNotes notes;
-  Diagnosis first = Searched(c, nominal, options, &notes);
+  return Searched(c, nominal, options, notes);
+}
+
+// The second thoughts (SecondThoughts) on `first`, and when it followed
+// an effect into a tie that a swap outdid, the diagnosis without it
+// (OutdoneSwapBranch).
+Diagnosis Rethought(const Case& c,
+                    const FitResult& nominal,
+                    const DiagnoseOptions& options,
+                    SearchNotes notes,
+                    Diagnosis first) {
   // Once: the diagnosis without it has its own second thoughts. Not in
   // the search beside a probe (NearTieBranch says why).
   const std::string outdone =
@@ -1164,6 +1171,14 @@ Diagnosis DiagnoseFrom(const Case& c,
       SecondThoughts(c, nominal, options, std::move(notes), std::move(first));
   return OutdoneSwapBranch(
       c, nominal, options, followed, first_least, std::move(d));
+}
+
+Diagnosis DiagnoseFrom(const Case& c,
+                       const FitResult& nominal,
+                       const DiagnoseOptions& options) {
+  SearchNotes notes;
+  Diagnosis first = FirstSearch(c, nominal, options, &notes);
+  return Rethought(c, nominal, options, std::move(notes), std::move(first));
 }
 
 }  // namespace fit3dof

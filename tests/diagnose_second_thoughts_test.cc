@@ -1,10 +1,12 @@
 // fit3dof: aerodynamic coefficients from 3DOF gas-bearing motion.
 //
 // The second thoughts' searches (diagnose_second_thoughts.cc): what a
-// search whose answer the caller takes only below a BIC does not weigh.
+// search whose answer the caller takes only below a BIC does not weigh;
+// DiagnoseFrom in two halves.
 
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "diagnose_search.h"
 #include "fit3dof/config.h"
@@ -50,6 +52,40 @@ TEST(SearchedWithout, WeighsNoProbeBesideACatalogAnswerItCannotTake) {
   EXPECT_EQ(any.verdict, bounded.verdict);
   EXPECT_EQ(any.outside_catalog.effect, bounded.outside_catalog.effect);
   EXPECT_LT(middle.calls - start.calls, end.calls - middle.calls);
+}
+
+// DiagnoseFrom in its two halves (WithNoiseHeld reads the search's answer
+// before its second thoughts): the same answer from the same fits, the
+// second time all from the fit memo.
+TEST(FirstSearch, RethoughtIsDiagnoseFrom) {
+  Case c = LoadConfig(testing::SourcePath(
+      "tests/data/short_calibration_in_pitch_varied101.yaml"));
+  c.sigma = {0.01, 0.01, 0.01};
+  c.sigma_auto = {false, false, false};
+  DiagnoseOptions options;
+  options.noise_held = true;
+  const FitResult nominal = Fit(c);
+  const Diagnosis whole = DiagnoseFrom(c, nominal, options);
+  const FitMemoCounts start = GetFitMemoCounts();
+  SearchNotes notes;
+  Diagnosis first = FirstSearch(c, nominal, options, &notes);
+  const Diagnosis halves =
+      Rethought(c, nominal, options, std::move(notes), std::move(first));
+  const FitMemoCounts end = GetFitMemoCounts();
+  EXPECT_EQ(halves.verdict, whole.verdict);
+  EXPECT_EQ(halves.verdict_text, whole.verdict_text);
+  ASSERT_EQ(halves.steps.size(), whole.steps.size());
+  for (size_t i = 0; i < whole.steps.size(); ++i) {
+    EXPECT_EQ(halves.steps[i].effect, whole.steps[i].effect);
+  }
+  EXPECT_EQ(halves.FinalFit().free_parameters,
+            whole.FinalFit().free_parameters);
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_EQ(halves.FinalFit().rms_residual_deg[ch],
+              whole.FinalFit().rms_residual_deg[ch]);
+  }
+  EXPECT_GT(end.calls, start.calls);
+  EXPECT_EQ(end.hits - start.hits, end.calls - start.calls);
 }
 
 }  // namespace
