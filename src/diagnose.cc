@@ -994,12 +994,20 @@ bool HeldAgain(const Case& c,
   return again;
 }
 
+// Whether `again`, the search at levels held again, is taken over `last`,
+// the one before: unless it leaves the record short of the noise where
+// `last` reached its own (the fit that showed the lower level was not
+// found again).
+bool TakenAgain(const Diagnosis& again, const Diagnosis& last) {
+  return again.final.at_noise_level || !last.final.at_noise_level;
+}
+
 // The diagnosis at the levels *held, or, where its search's own answer
 // already holds them again (HeldAgain), at the levels held again (*held
 // those, *round 1): that search's second thoughts would be thrown away.
 // The first search's are thought only where the search at the levels
-// held again leaves the record short of the noise while the first
-// reached it (WithNoiseHeld's rule; *round then kHeldRounds). On draw
+// held again is not taken over the first (TakenAgain; *round then
+// kHeldRounds). On draw
 // 105's 3-s run with a bearing moment, a cubic calibration error and a
 // roll torque (sigma: auto) the pitch level is held again; the second
 // thoughts at the first level had taken 1.9 of the record's 6.3 s.
@@ -1015,7 +1023,7 @@ Diagnosis FirstHeld(const Case& c,
     return Rethought(*held, fit, past, std::move(notes), std::move(searched));
   }
   Diagnosis again = DiagnoseFrom(next, Fit(next), past);
-  if (!again.final.at_noise_level && searched.final.at_noise_level) {
+  if (!TakenAgain(again, searched)) {
     *round = kHeldRounds;
     return Rethought(*held, fit, past, std::move(notes), std::move(searched));
   }
@@ -1065,13 +1073,11 @@ Diagnosis WithNoiseHeld(const Case& c, const DiagnoseOptions& options) {
   int round = 0;
   Diagnosis d = FirstHeld(c, past, &held, &round);
   for (; round < kHeldRounds && HeldAgain(c, d, past, &held); ++round) {
-    // The search again at the levels held again; its answer is taken
-    // unless it leaves the record short of the noise where the last
-    // reached its own (the fit that showed the lower level was not found
-    // again). A second round holds what the first one's effects showed
-    // (the pitch level once the calibration above is fitted).
+    // The search again at the levels held again (TakenAgain). A second
+    // round holds what the first one's effects showed (the pitch level
+    // once the calibration above is fitted).
     Diagnosis again = DiagnoseFrom(held, Fit(held), past);
-    if (!again.final.at_noise_level && d.final.at_noise_level) break;
+    if (!TakenAgain(again, d)) break;
     d = std::move(again);
   }
   d.final_case.sigma_auto = c.sigma_auto;
