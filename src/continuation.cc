@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "assembly.h"
 #include "fit3dof/time_history.h"
@@ -29,6 +30,14 @@ std::vector<PreparedSegment> Window(const std::vector<PreparedSegment>& all,
     p.data = cut;
   }
   return out;
+}
+
+// The global free index of the shared parameter `name` in `problem`, or -1.
+int FreeIndex(const FitProblem& problem, const std::string& name) {
+  const auto it = std::find(problem.names.begin(), problem.names.end(), name);
+  return it == problem.names.end()
+             ? -1
+             : static_cast<int>(it - problem.names.begin());
 }
 
 // Whether a fit from a nearby model's solution starts far above the noise
@@ -103,13 +112,18 @@ PipelineOutcome RunPipeline(const Case& c,
   // the same for every window: found once.
   int limited = -1;
   double limit = 0.0;
+  int outgrowing = -1;
+  int outgrown = -1;
   if (c.solver.from_solution) {
-    const auto angle =
-        std::find(problem.names.begin(), problem.names.end(), "bearing_angle");
-    if (angle != problem.names.end()) {
-      limited = static_cast<int>(angle - problem.names.begin());
+    const int angle = FreeIndex(problem, "bearing_angle");
+    if (angle >= 0) {
+      limited = angle;
       limit = kBearingAngleStop * LargestAngle(problem);
     }
+    // ... and its Cm_bearing by Cm_alpha (StageSettings::outgrowing).
+    outgrowing = FreeIndex(problem, "Cm_bearing");
+    outgrown = FreeIndex(problem, "Cm_alpha");
+    if (outgrown < 0) outgrowing = -1;
   }
   for (size_t w = 0; w < windows.size(); ++w) {
     const bool last = w + 1 == windows.size();
@@ -128,6 +142,8 @@ PipelineOutcome RunPipeline(const Case& c,
       settings.coarser_jacobians = true;
       settings.limited = limited;
       settings.limit = limit;
+      settings.outgrowing = outgrowing;
+      settings.outgrown = outgrown;
     }
     auto solve = [&](std::vector<double>* trial) {
       return gauss_newton

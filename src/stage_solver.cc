@@ -24,6 +24,21 @@
 namespace fit3dof {
 namespace {
 
+// Whether `settings`' limited coordinate among `values` lies past its limit.
+bool PastLimit(const StageSettings& settings,
+               const std::vector<double>& values) {
+  return settings.limited >= 0 &&
+         std::abs(values[settings.limited]) > settings.limit;
+}
+
+// Whether `settings`' outgrowing coordinate among `values` is larger than
+// the outgrown one.
+bool Outgrown(const StageSettings& settings,
+              const std::vector<double>& values) {
+  return settings.outgrowing >= 0 && std::abs(values[settings.outgrowing]) >
+                                         std::abs(values[settings.outgrown]);
+}
+
 // Logs each iteration the way the report's listing prints it and applies its
 // convergence rule: stop when the probable error changes by less than BOUND
 // (or, where the settings ask, when the BIC hardly falls).
@@ -155,10 +170,10 @@ class ReportIterationCallback : public ceres::IterationCallback,
     bool beyond = false;
   };
 
-  // Whether the limited coordinate among `values` lies past its limit.
+  // Whether the limited coordinate among `values` lies past its limit, or
+  // the outgrowing one past the outgrown (StageSettings).
   bool Beyond(const std::vector<double>& values) const {
-    return settings_.limited >= 0 &&
-           std::abs(values[settings_.limited]) > settings_.limit;
+    return PastLimit(settings_, values) || Outgrown(settings_, values);
   }
 
   // The rule applied to a successful step of `iteration` to a residual sum
@@ -363,9 +378,13 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
         kOutOfReachTermination + FormatNumber("%g", settings.stop_below);
   } else if (summary.termination_type == ceres::USER_SUCCESS &&
              callback.stopped_beyond()) {
-    outcome.termination = kLimitTermination + std::string("|") +
-                          names[settings.limited] + "| > " +
-                          FormatNumber("%g", settings.limit);
+    outcome.termination =
+        kLimitTermination + std::string("|") +
+        (PastLimit(settings, FreeValues(assembly, free, scale))
+             ? names[settings.limited] + "| > " +
+                   FormatNumber("%g", settings.limit)
+             : names[settings.outgrowing] + "| > |" + names[settings.outgrown] +
+                   "|");
   } else if (summary.termination_type == ceres::USER_SUCCESS) {
     outcome.termination =
         "probable error changed by less than " +

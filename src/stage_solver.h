@@ -140,6 +140,19 @@ struct StageSettings {
   // model's solution limits its bearing angle (kBearingAngleStop).
   int limited = -1;
   double limit = 0.0;
+  // A free coordinate (-1: none) whose size, once past that of `outgrown`,
+  // stops the run: a refit from a nearby model's solution stops once
+  // |Cm_bearing| passes |Cm_alpha|. That is the other end of the bearing
+  // moment's ridge (kBearingAngleStop): a fit that wants a moment of
+  // constant size shrinks the angle toward zero while Cm_bearing grows as
+  // its inverse (Cm_bearing x bearing_angle, the saturated moment, held),
+  // about 4% a step, and its values are refused past that point
+  // (effect_validation.cc: |Cm_bearing| up to |Cm_alpha|) wherever it
+  // stops. On draw 107's short run with a pitch reading's gain error
+  // (outside the catalog), 35% of the 2237 iterations of the fits with a
+  // bearing moment came after it.
+  int outgrowing = -1;
+  int outgrown = -1;
 };
 
 // One Levenberg-Marquardt run from `values` (global free order, updated in

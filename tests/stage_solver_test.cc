@@ -380,5 +380,61 @@ TEST(StageSolver, ARunStopsOnceItsBearingAngleLeavesTheRecord) {
   EXPECT_EQ(within, whole);
 }
 
+// The short run with a pitch reading whose gain is off the yaw reading's
+// (theta_gain, outside diagnose's catalog), fitted with a bearing moment
+// freed from Cm_bearing = 0 at 1 deg, as diagnose adds it: the fit shrinks
+// the angle toward zero, Cm_bearing growing as its inverse, past
+// |Cm_alpha| (effect_validation.cc's bound). With Cm_bearing bounded by
+// Cm_alpha (StageSettings::outgrowing) the run stops at the first accepted
+// point past it, in fewer iterations, with Cm_bearing past |Cm_alpha|
+// there (as the whole run's end has it).
+TEST(StageSolver, ARunStopsOnceCmBearingOutgrowsCmAlpha) {
+  Case c = testing::ShortRun(
+      testing::ScratchDirectory("stage_outgrown"), "  theta_gain: -0.5\n", 1);
+  c.parameters[FindParameter(c.model, "theta_gain")].value = 0.0;
+  c.parameters[FindParameter(c.model, "Cm_alpha")] = {-0.2, true, false};
+  c.parameters[FindParameter(c.model, "Cm_q")] = {-2.0, true, false};
+  c.solver.continuation = false;
+  c.solver.multi_start = false;
+  std::vector<TimeHistory> data;
+  for (const SegmentFit& f : Fit(c).segments) data.push_back(f.data);
+  const FitResult nominal = FitSamples(c, data);
+  Case bearing = CaseAtSolution(c, nominal);
+  bearing.parameters[FindParameter(c.model, "Cm_bearing")] = {0.0, true, false};
+  bearing.parameters[FindParameter(c.model, "bearing_angle")] = {
+      1.0, true, false};
+  const FitProblem problem = PrepareProblem(bearing, data);
+  auto index = [&](const std::string& name) {
+    for (size_t g = 0; g < problem.names.size(); ++g) {
+      if (problem.names[g] == name) return static_cast<int>(g);
+    }
+    return -1;
+  };
+  const int moment = index("Cm_bearing");
+  const int stiffness = index("Cm_alpha");
+  ASSERT_GE(moment, 0);
+  ASSERT_GE(stiffness, 0);
+  StageSettings settings;
+  settings.tolerance = c.solver.tolerance;
+  std::vector<double> whole = problem.values;
+  const StageOutcome free_run = Solve(problem, settings, &whole);
+  std::cout << "without a bound: " << free_run.iterations
+            << " iterations, Cm_bearing " << whole[moment] << ", Cm_alpha "
+            << whole[stiffness] << " (" << free_run.termination << ")\n";
+  ASSERT_GT(std::abs(whole[moment]), std::abs(whole[stiffness]));
+
+  settings.outgrowing = moment;
+  settings.outgrown = stiffness;
+  std::vector<double> stopped = problem.values;
+  const StageOutcome bounded = Solve(problem, settings, &stopped);
+  std::cout << "bounded: " << bounded.iterations << " iterations, Cm_bearing "
+            << stopped[moment] << ", Cm_alpha " << stopped[stiffness] << " ("
+            << bounded.termination << ")\n";
+  EXPECT_EQ(bounded.termination,
+            kLimitTermination + std::string("|Cm_bearing| > |Cm_alpha|"));
+  EXPECT_GT(std::abs(stopped[moment]), std::abs(stopped[stiffness]));
+  EXPECT_LT(bounded.iterations, free_run.iterations);
+}
+
 }  // namespace
 }  // namespace fit3dof
