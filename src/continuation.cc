@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <string>
 
 #include "assembly.h"
 #include "fit3dof/time_history.h"
@@ -30,14 +29,6 @@ std::vector<PreparedSegment> Window(const std::vector<PreparedSegment>& all,
     p.data = cut;
   }
   return out;
-}
-
-// The global free index of the shared parameter `name` in `problem`, or -1.
-int FreeIndex(const FitProblem& problem, const std::string& name) {
-  const auto it = std::find(problem.names.begin(), problem.names.end(), name);
-  return it == problem.names.end()
-             ? -1
-             : static_cast<int>(it - problem.names.begin());
 }
 
 // Whether a fit from a nearby model's solution starts far above the noise
@@ -115,14 +106,14 @@ PipelineOutcome RunPipeline(const Case& c,
   int outgrowing = -1;
   int outgrown = -1;
   if (c.solver.from_solution) {
-    const int angle = FreeIndex(problem, "bearing_angle");
+    const int angle = FreeShared(c, problem.free, "bearing_angle");
     if (angle >= 0) {
       limited = angle;
       limit = kBearingAngleStop * LargestAngle(problem);
     }
     // ... and its Cm_bearing by Cm_alpha (StageSettings::outgrowing).
-    outgrowing = FreeIndex(problem, "Cm_bearing");
-    outgrown = FreeIndex(problem, "Cm_alpha");
+    outgrowing = FreeShared(c, problem.free, "Cm_bearing");
+    outgrown = FreeShared(c, problem.free, "Cm_alpha");
     if (outgrown < 0) outgrowing = -1;
   }
   for (size_t w = 0; w < windows.size(); ++w) {

@@ -142,6 +142,14 @@ std::vector<TimeHistory> ReadSegmentData(const Case& c,
   return data;
 }
 
+int FreeShared(const Case& c, const FreeLayout& free, const std::string& name) {
+  const auto& table = ParameterTable(c.model);
+  for (int g = 0; g < free.size(); ++g) {
+    if (free.segment[g] < 0 && table[free.position[g]].name == name) return g;
+  }
+  return -1;
+}
+
 int CountPoints(const std::vector<PreparedSegment>& segments) {
   int points = 0;
   for (const PreparedSegment& p : segments) points += p.data.size();

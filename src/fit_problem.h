@@ -65,6 +65,10 @@ struct FitProblem {
 // evaluation would need more integration steps than motion_model.h allows.
 FitProblem PrepareProblem(const Case& c, const std::vector<TimeHistory>& data);
 
+// The position in the global free order of `c`'s shared free parameter
+// `name`, or -1.
+int FreeShared(const Case& c, const FreeLayout& free, const std::string& name);
+
 // Samples in all segments.
 int CountPoints(const std::vector<PreparedSegment>& segments);
 

@@ -77,16 +77,6 @@ std::vector<std::vector<double>> SpreadStarts(const Case& c,
   return starts;
 }
 
-// The position in the global free order of the shared free parameter
-// `name`, or -1.
-int FreeShared(const Case& c, const FreeLayout& free, const std::string& name) {
-  const auto& table = ParameterTable(c.model);
-  for (int g = 0; g < free.size(); ++g) {
-    if (free.segment[g] < 0 && table[free.position[g]].name == name) return g;
-  }
-  return -1;
-}
-
 // Each of `starts` through the whole pipeline, in parallel, against
 // `first`: the best, when one beats it.
 MultiStartOutcome BestOf(const Case& c,

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <deque>
 #include <sstream>
+#include <string>
 
 #include "assembly.h"
 #include "ceres/ceres.h"
@@ -37,6 +38,19 @@ bool Outgrown(const StageSettings& settings,
               const std::vector<double>& values) {
   return settings.outgrowing >= 0 && std::abs(values[settings.outgrowing]) >
                                          std::abs(values[settings.outgrown]);
+}
+
+// The termination of a run that `settings`' limit or outgrown coordinate
+// stopped at `values`: "|name| > limit" or "|name| > |name|".
+std::string BeyondTermination(const StageSettings& settings,
+                              const std::vector<std::string>& names,
+                              const std::vector<double>& values) {
+  if (PastLimit(settings, values)) {
+    return kLimitTermination + ("|" + names[settings.limited] + "| > ") +
+           FormatNumber("%g", settings.limit);
+  }
+  return kLimitTermination + ("|" + names[settings.outgrowing] + "| > |") +
+         names[settings.outgrown] + "|";
 }
 
 // Logs each iteration the way the report's listing prints it and applies its
@@ -362,6 +376,7 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
     outcome.failed_evaluations += cost->failed_evaluations();
     outcome.jacobians += cost->jacobian_evaluations();
   }
+  *values = FreeValues(assembly, free, scale);
   outcome.converged = summary.termination_type == ceres::USER_SUCCESS ||
                       summary.termination_type == ceres::CONVERGENCE;
   if (summary.termination_type == ceres::USER_SUCCESS &&
@@ -378,13 +393,7 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
         kOutOfReachTermination + FormatNumber("%g", settings.stop_below);
   } else if (summary.termination_type == ceres::USER_SUCCESS &&
              callback.stopped_beyond()) {
-    outcome.termination =
-        kLimitTermination + std::string("|") +
-        (PastLimit(settings, FreeValues(assembly, free, scale))
-             ? names[settings.limited] + "| > " +
-                   FormatNumber("%g", settings.limit)
-             : names[settings.outgrowing] + "| > |" + names[settings.outgrown] +
-                   "|");
+    outcome.termination = BeyondTermination(settings, names, *values);
   } else if (summary.termination_type == ceres::USER_SUCCESS) {
     outcome.termination =
         "probable error changed by less than " +
@@ -395,7 +404,6 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
   } else {
     outcome.termination = summary.message;
   }
-  *values = FreeValues(assembly, free, scale);
   outcome.ressum = 2.0 * summary.final_cost;
   return outcome;
 }

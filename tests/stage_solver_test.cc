@@ -344,10 +344,7 @@ TEST(StageSolver, ARunStopsOnceItsBearingAngleLeavesTheRecord) {
   std::vector<TimeHistory> data;
   for (const SegmentFit& f : Fit(c).segments) data.push_back(f.data);
   const FitProblem problem = PrepareProblem(c, data);
-  int angle = -1;
-  for (size_t g = 0; g < problem.names.size(); ++g) {
-    if (problem.names[g] == "bearing_angle") angle = static_cast<int>(g);
-  }
+  const int angle = FreeShared(c, problem.free, "bearing_angle");
   ASSERT_GE(angle, 0);
   StageSettings settings;
   settings.tolerance = c.solver.tolerance;
@@ -404,14 +401,8 @@ TEST(StageSolver, ARunStopsOnceCmBearingOutgrowsCmAlpha) {
   bearing.parameters[FindParameter(c.model, "bearing_angle")] = {
       1.0, true, false};
   const FitProblem problem = PrepareProblem(bearing, data);
-  auto index = [&](const std::string& name) {
-    for (size_t g = 0; g < problem.names.size(); ++g) {
-      if (problem.names[g] == name) return static_cast<int>(g);
-    }
-    return -1;
-  };
-  const int moment = index("Cm_bearing");
-  const int stiffness = index("Cm_alpha");
+  const int moment = FreeShared(bearing, problem.free, "Cm_bearing");
+  const int stiffness = FreeShared(bearing, problem.free, "Cm_alpha");
   ASSERT_GE(moment, 0);
   ASSERT_GE(stiffness, 0);
   StageSettings settings;
