@@ -523,9 +523,11 @@ bool OnBearingRidge(const FitResult& fit, bool* undetermined) {
 // E^2 (1.5 errors), the angle going to 2.35 deg; frozen 6.4 linear errors
 // out, by 3.3 E^2. Its profile error bar is 0.0016. Returns, for the
 // ridge's warning, what it widened ("; Cm_alpha's is its profile's too
-// (...)").
+// (...)"). Its refits start from the solution and from the nearest of
+// `branches` (ProfileAcross).
 std::string ProfileTradedStiffness(const Case& c,
                                    const std::vector<TimeHistory>& data,
+                                   const std::vector<FitResult>& branches,
                                    FitResult* result,
                                    std::vector<std::string>* names) {
   std::string widened;
@@ -533,7 +535,7 @@ std::string ProfileTradedStiffness(const Case& c,
     const ParameterEstimate* e = SharedEstimate(*result, name);
     ProfileErrorBar profile;
     if (e == nullptr || !e->free || Profiled(*result, name) ||
-        !ProfileOf(c, data, *result, name, &profile) ||
+        !ProfileAcross(c, data, *result, name, branches, &profile) ||
         !(profile.rms_error > profile.linear)) {
       continue;
     }
@@ -547,6 +549,53 @@ std::string ProfileTradedStiffness(const Case& c,
                FormatNumber("%.2g", linear) + ")";
   }
   return widened;
+}
+
+// The sweep along the angle of `result` (SweepBearingAngle), up to the
+// record's largest angle; false when there is none.
+bool SweepTheAngle(const Case& c,
+                   const std::vector<TimeHistory>& data,
+                   const FitResult& result,
+                   AngleSweep* sweep) {
+  double largest = 0.0;
+  for (const TimeHistory& d : data) {
+    largest = std::max(largest, LargestTotalAngle(d));
+  }
+  return SweepBearingAngle(c, data, result, largest, sweep) &&
+         sweep->highest > 0.0;
+}
+
+// The error bars of every free shared parameter widened to cover the
+// values the ridge passes through within three errors (`sweep`); their
+// names are added to *names (once). Returns, for the ridge's warning,
+// what it widened.
+std::string WidenAlongTheAngle(const AngleSweep& sweep,
+                               FitResult* result,
+                               std::vector<std::string>* names) {
+  std::string widened;
+  for (size_t i = 0; i < result->parameters.size(); ++i) {
+    ParameterEstimate& e = result->parameters[i];
+    if (!(sweep.widths[i] > e.rms_error)) continue;
+    const double scale = sweep.widths[i] / e.rms_error;
+    e.rms_error *= scale;
+    e.standard_error *= scale;
+    result->pipeline.push_back(e.name +
+                               "'s error bar along the bearing "
+                               "angle: " +
+                               std::to_string(sweep.refits) + " refits, x" +
+                               FormatNumber("%.3g", scale));
+    if (std::find(names->begin(), names->end(), e.name) == names->end()) {
+      names->push_back(e.name);
+    }
+    widened += (widened.empty() ? "" : ", ") + e.name + " +- " +
+               FormatNumber("%.2g", e.standard_error);
+  }
+  if (widened.empty()) return "";
+  return "; with the angle frozen from " + FormatNumber("%.3g", sweep.lowest) +
+         " to " + FormatNumber("%.3g", sweep.highest) +
+         " deg the sum of squares stays within 9 E^2, and the error bars "
+         "cover the values the ridge passes through there: " +
+         widened;
 }
 
 }  // namespace
@@ -589,8 +638,15 @@ std::vector<std::string> WidenTradedStiffness(
     const Case& c, const std::vector<TimeHistory>& data, FitResult* fit) {
   bool undetermined = false;
   if (!OnBearingRidge(*fit, &undetermined)) return {};
+  // Where the record does not determine the angle, the ridge has branches
+  // a refit from the solution does not reach: swept first, so that the
+  // profiles start from its probes too.
+  AngleSweep sweep;
+  const bool swept = undetermined && SweepTheAngle(c, data, *fit, &sweep);
   std::vector<std::string> widened;
-  const std::string text = ProfileTradedStiffness(c, data, fit, &widened);
+  std::string text =
+      ProfileTradedStiffness(c, data, sweep.probes, fit, &widened);
+  if (swept) text += WidenAlongTheAngle(sweep, fit, &widened);
   if (text.empty()) return widened;
   for (std::string& w : fit->warnings) {
     if (w.rfind(kBearingRidge, 0) != 0) continue;

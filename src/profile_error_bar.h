@@ -67,6 +67,62 @@ bool ProfileOf(const Case& c,
                const std::string& name,
                ProfileErrorBar* out);
 
+// ProfileOf where the ridge has branches the refits from the solution do
+// not reach: each frozen refit starts from `fit` and from the solution
+// among `branches` nearest the frozen value (AngleSweep::probes), and the
+// lower sum of squares counts. On a pair of runs with the bearing moment
+// saturating at 2 deg, fitted at 0.28 deg, Cm_alpha's refits from the
+// solution stayed at small angles, and its profile error bar was 1.04
+// times the linear one, the truth 4.7 of them off.
+bool ProfileAcross(const Case& c,
+                   const std::vector<TimeHistory>& data,
+                   const FitResult& fit,
+                   const std::string& name,
+                   const std::vector<FitResult>& branches,
+                   ProfileErrorBar* out);
+
+// Error bars along a bearing moment's ridge where the record does not
+// determine the angle (fit.h, CheckRidges): the fit repeated with
+// bearing_angle frozen at its fitted value times 2^k (Cm_bearing scaled to
+// keep the saturated moment Cm_bearing x bearing_angle, the rest refitted
+// from the probe before), down to a quarter of it and up while the sum of
+// squares stays within 9 E^2 (three errors) and the angle within the
+// record's largest, with one probe at the geometric mean of the last one
+// within and the first beyond. Eq. 27's error bars see the ridge only
+// where the fit stopped on it; the profiles of Cm_bearing and Cm_alpha
+// (ProfileOf) see it only within their probes of the solution, on the
+// branch the solution is on. A probe that moves a free shared parameter by
+// d while the sum of squares rises by r E^2 (r <= 9) puts it within
+// sqrt(r) errors at that distance: its error bar is at least
+// d / sqrt(max(r, 1)) (no extrapolation below one error). On a pair of
+// runs with the moment saturating at 2 deg (draw 113), the angle fitted
+// 0.28 +- 0.22 deg and Cm_alpha -0.157981 +- 0.000039 against -0.1578:
+// frozen at 2.24 deg the sum of squares rose by 8.3 E^2 with Cm_alpha at
+// -0.157758.
+struct AngleSweep {
+  // Per entry of the fit's parameters, the widest d / sqrt(max(r, 1)) over
+  // the probes within 9 E^2; 0 where none moved it or it is not a free
+  // shared parameter with an RMS error.
+  std::vector<double> widths;
+  // The range of angles within 9 E^2 the sweep reached, the fitted one
+  // included (deg; both 0 when no probe was within).
+  double lowest = 0.0;
+  double highest = 0.0;
+  int refits = 0;
+  // The refits within 9 E^2, for ProfileAcross.
+  std::vector<FitResult> probes;
+};
+
+// The sweep of `fit`'s bearing_angle, the fit of case `c` to `data`, up to
+// the record's largest total angle `largest_deg`. False when the angle or
+// Cm_bearing is not free, or for fits whose weights are estimated (as
+// ProfileOf).
+bool SweepBearingAngle(const Case& c,
+                       const std::vector<TimeHistory>& data,
+                       const FitResult& fit,
+                       double largest_deg,
+                       AngleSweep* out);
+
 }  // namespace fit3dof
 
 #endif  // FIT3DOF_SRC_PROFILE_ERROR_BAR_H_

@@ -230,5 +230,67 @@ TEST(ProfileErrorBar, CoversTheStiffnessTheBearingMomentTradesWith) {
             SharedEstimate(linear, "Cm_q")->standard_error);
 }
 
+// Where the record does not determine the angle, the ridge has a branch
+// the solution's own refits do not reach (fit.cc, CheckRidges): on a pair
+// of 3-s runs with the moment fading at 2 deg (tools/diagnose_suite --vary
+// --vary-conditions, draw 113; the start where diagnose left it), the fit
+// lands at 0.23 +- 0.18 deg with Cm_alpha -0.157982 +- 0.000037 against a
+// truth of -0.1578, the angle 10 of its errors off and Cm_alpha 4.7; the
+// profile of Cm_alpha refitted from the solution alone stayed at small
+// angles (1.04 times the linear error bar). Frozen at 2 deg, the fit's
+// sum of squares rises by 7.4 E^2 only. Swept along the angle
+// (SweepBearingAngle) and profiled from the sweep's refits too, the error
+// bars cover the truth, and the ridge's warning says how far it reaches.
+TEST(ProfileErrorBar, SweepsTheAngleTheRecordDoesNotDetermine) {
+  const Case c = LoadConfig(
+      testing::SourcePath("tests/data/pair_bearing_two_degrees_vary113.yaml"));
+  const std::vector<std::pair<const char*, double>> truth = {
+      {"Cm_alpha", -0.1578}, {"bearing_angle", 2.0}};
+  Case linear_only = c;
+  linear_only.solver.profile_ridges = false;
+  const FitResult linear = Fit(linear_only);
+  const FitResult fit = Fit(c);
+  for (const auto& [name, value] : truth) {
+    const ParameterEstimate* at = SharedEstimate(linear, name);
+    ASSERT_NE(at, nullptr) << name;
+    EXPECT_GT(std::abs(at->value - value), 3.0 * at->standard_error)
+        << name << ": " << at->value << " +- " << at->standard_error;
+    const ParameterEstimate* e = SharedEstimate(fit, name);
+    EXPECT_LT(std::abs(e->value - value), 3.0 * e->standard_error)
+        << name << ": " << e->value << " +- " << e->standard_error;
+  }
+  EXPECT_TRUE(testing::InPipeline(
+      fit, "bearing_angle's error bar along the bearing angle"))
+      << ::testing::PrintToString(fit.pipeline);
+  const auto warned = std::find_if(
+      fit.warnings.begin(), fit.warnings.end(), [](const std::string& w) {
+        return w.find("the values the ridge passes through") !=
+               std::string::npos;
+      });
+  EXPECT_NE(warned, fit.warnings.end())
+      << ::testing::PrintToString(fit.warnings);
+
+  // The sweep itself: up to the far branch, its refits kept for the
+  // profiles, and the solution's own angle within its range.
+  AngleSweep sweep;
+  ASSERT_TRUE(SweepBearingAngle(c, Data(linear), linear, 10.0, &sweep));
+  EXPECT_GT(sweep.highest, 1.5);
+  EXPECT_LE(sweep.lowest,
+            std::abs(SharedEstimate(linear, "bearing_angle")->value));
+  EXPECT_FALSE(sweep.probes.empty());
+  EXPECT_GE(sweep.refits, static_cast<int>(sweep.probes.size()));
+}
+
+// No sweep where the angle is frozen, or the moment is.
+TEST(ProfileErrorBar, NoSweepWithoutAFreeAngle) {
+  const std::string dir = testing::ScratchDirectory("sweep_frozen");
+  Case c = ShortRunFit(dir, 4);
+  c.parameters[FindParameter(c.model, "bearing_angle")].free = false;
+  const FitResult fit = Fit(c);
+  AngleSweep sweep;
+  EXPECT_FALSE(SweepBearingAngle(c, Data(fit), fit, 10.0, &sweep));
+  EXPECT_EQ(sweep.refits, 0);
+}
+
 }  // namespace
 }  // namespace fit3dof

@@ -189,9 +189,13 @@ void CheckRidges(const Case& c,
 // of the stiffness the moment trades with below its angle (Cm_alpha and,
 // asymmetric, Cn_beta; free, not profiled yet) widened to their profiles'
 // where those are flatter than their linear error bars, and the ridge's
-// warning saying so; returns the names widened. FitSamples calls it with
-// c.solver.profile_ridges; diagnose, whose decisions read the error bars
-// of the models it reports, on its final model once it has decided.
+// warning saying so; returns the names widened. Where the record does not
+// determine the angle, the angle is swept first (src/profile_error_bar.h,
+// SweepBearingAngle): those profiles refit from its probes too, and every
+// free shared parameter's error bars widen to cover the values the ridge
+// passes through within three errors (the angle's own included). FitSamples
+// calls it with c.solver.profile_ridges; diagnose, whose decisions read the
+// error bars of the models it reports, on its final model once it has decided.
 std::vector<std::string> WidenTradedStiffness(
     const Case& c, const std::vector<TimeHistory>& data, FitResult* fit);
 
