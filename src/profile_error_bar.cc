@@ -353,6 +353,21 @@ void SweepSide(const Case& c,
   }
 }
 
+// One side's tally `side` added into *sweep (widths the wider, the range
+// of angles the union).
+void Merge(const AngleSweep& side, AngleSweep* sweep) {
+  sweep->refits += side.refits;
+  sweep->probes.insert(
+      sweep->probes.end(), side.probes.begin(), side.probes.end());
+  for (size_t i = 0; i < side.widths.size(); ++i) {
+    sweep->widths[i] = std::max(sweep->widths[i], side.widths[i]);
+  }
+  if (side.probes.empty()) return;
+  sweep->lowest =
+      sweep->lowest > 0.0 ? std::min(sweep->lowest, side.lowest) : side.lowest;
+  sweep->highest = std::max(sweep->highest, side.highest);
+}
+
 }  // namespace
 
 bool SweepBearingAngle(const Case& c,
@@ -369,39 +384,17 @@ bool SweepBearingAngle(const Case& c,
     return false;
   }
   // Down and up are independent: in parallel, each with its own tally.
+  const double ratios[2] = {1.0 / kSweepRatio, kSweepRatio};
+  const int steps[2] = {kSweepDown, kSweepUp};
   AngleSweep sides[2];
-  for (AngleSweep& side : sides) side.widths.assign(fit.parameters.size(), 0);
   ParallelFor(2, [&](int i) {
-    if (i == 0) {
-      SweepSide(c,
-                data,
-                fit,
-                *e,
-                1.0 / kSweepRatio,
-                kSweepDown,
-                largest_deg,
-                &sides[0]);
-    } else {
-      SweepSide(
-          c, data, fit, *e, kSweepRatio, kSweepUp, largest_deg, &sides[1]);
-    }
+    sides[i].widths.assign(fit.parameters.size(), 0.0);
+    SweepSide(c, data, fit, *e, ratios[i], steps[i], largest_deg, &sides[i]);
   });
   AngleSweep sweep;
   sweep.widths.assign(fit.parameters.size(), 0.0);
-  for (const AngleSweep& side : sides) {
-    sweep.refits += side.refits;
-    sweep.probes.insert(
-        sweep.probes.end(), side.probes.begin(), side.probes.end());
-    for (size_t i = 0; i < side.widths.size(); ++i) {
-      sweep.widths[i] = std::max(sweep.widths[i], side.widths[i]);
-    }
-    if (side.lowest > 0.0) {
-      sweep.lowest = sweep.lowest > 0.0 ? std::min(sweep.lowest, side.lowest)
-                                        : side.lowest;
-    }
-    sweep.highest = std::max(sweep.highest, side.highest);
-  }
-  if (sweep.highest > 0.0) {
+  for (const AngleSweep& side : sides) Merge(side, &sweep);
+  if (!sweep.probes.empty()) {
     sweep.lowest = std::min(sweep.lowest, std::abs(e->value));
     sweep.highest = std::max(sweep.highest, std::abs(e->value));
   }
