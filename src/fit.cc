@@ -410,6 +410,9 @@ constexpr char kBearingRidge[] = "bearing_angle = ";
 // The pipeline's entry once a parameter's error bar is the profile's,
 // after its name.
 constexpr char kProfileEntry[] = "'s error bar from its profile";
+// The pipeline's entry once the sweep along the bearing angle has widened
+// a parameter's error bar (WidenAlongTheAngle), after its name.
+constexpr char kSweepEntry[] = "'s error bar along the bearing angle";
 // The stiffness a bearing moment trades with (bearing_moment.h: below its
 // angle it is one, M_y = Cm_bearing alpha, M_z = -Cm_bearing beta), whose
 // error bars its ridge widens too (CheckRidges).
@@ -446,18 +449,31 @@ std::string BearingRidgeWarning(const ParameterEstimate& moment,
          "or quote the saturated moment";
 }
 
+// Both error bars of `e` times `scale`, and the pipeline's entry saying
+// so: its name, `entry` (after the name), the `refits` it took and the
+// factor.
+void ScaleErrorBars(double scale,
+                    const char* entry,
+                    int refits,
+                    ParameterEstimate* e,
+                    FitResult* result) {
+  e->rms_error *= scale;
+  e->standard_error *= scale;
+  result->pipeline.push_back(e->name + entry + ": " + std::to_string(refits) +
+                             " refits, x" + FormatNumber("%.3g", scale));
+}
+
 // A parameter's error bars widened to its profile's (`profile`); the
 // description for the warning.
 std::string WidenToProfile(const ProfileErrorBar& profile,
                            ParameterEstimate* e,
                            FitResult* result) {
   const double linear = e->standard_error;
-  const double scale = profile.rms_error / profile.linear;
-  e->rms_error *= scale;
-  e->standard_error *= scale;
-  result->pipeline.push_back(e->name + kProfileEntry + ": " +
-                             std::to_string(profile.refits) + " refits, x" +
-                             FormatNumber("%.3g", scale));
+  ScaleErrorBars(profile.rms_error / profile.linear,
+                 kProfileEntry,
+                 profile.refits,
+                 e,
+                 result);
   return "its error bar is the profile's (" +
          FormatNumber("%.2g", e->standard_error) + ", refitted with " +
          e->name + " frozen out to +-" +
@@ -576,14 +592,8 @@ std::string WidenAlongTheAngle(const AngleSweep& sweep,
   for (size_t i = 0; i < result->parameters.size(); ++i) {
     ParameterEstimate& e = result->parameters[i];
     if (!(sweep.widths[i] > e.rms_error)) continue;
-    const double scale = sweep.widths[i] / e.rms_error;
-    e.rms_error *= scale;
-    e.standard_error *= scale;
-    result->pipeline.push_back(e.name +
-                               "'s error bar along the bearing "
-                               "angle: " +
-                               std::to_string(sweep.refits) + " refits, x" +
-                               FormatNumber("%.3g", scale));
+    ScaleErrorBars(
+        sweep.widths[i] / e.rms_error, kSweepEntry, sweep.refits, &e, result);
     if (std::find(names->begin(), names->end(), e.name) == names->end()) {
       names->push_back(e.name);
     }

@@ -107,6 +107,42 @@ const FitResult* NearestBranch(const Refits& r,
   return nearest;
 }
 
+// The refit of r.c from `from` with the parameter at `position` (`name`)
+// frozen at `value`, into *frozen; false when it failed. Memoized:
+// diagnose reports one solution from several places (a step, a tie's
+// model, the final model), and each profiles it; the refits from the same
+// solution are the same fits (the suite's short bearing + calibration +
+// roll torque record: 45 refits, 15 of them distinct).
+bool RefitFrozen(const Refits& r,
+                 const FitResult& from,
+                 int position,
+                 const std::string& name,
+                 double value,
+                 FitResult* frozen) {
+  try {
+    *frozen =
+        MemoizedFitSamples(FrozenCase(r.c, from, position, value), r.data);
+  } catch (const InputError& error) {
+    VLOG(1) << name << " frozen at " << value << ": " << error.what();
+    return false;
+  }
+  return true;
+}
+
+// The rise, in E^2 of the solution r.fit, of a refit's sum of residuals
+// `sum` over the solution's.
+double RiseOf(const Refits& r,
+              double sum,
+              const std::string& name,
+              double value) {
+  const double e2 = r.fit.probable_error * r.fit.probable_error;
+  const double s2 = r.fit.sum_of_residuals * r.fit.sum_of_residuals;
+  const double rise = (sum * sum - s2) / e2;
+  VLOG(1) << name << " frozen at " << value << ": sum of squares up " << rise
+          << " E^2";
+  return rise;
+}
+
 // The rise of the sum of squares, in E^2, with the parameter of `e` frozen
 // at `offset` from the solution on side `sign`, refitted from the solution
 // and from the nearest branch (the lower sum counts); false when every
@@ -122,27 +158,15 @@ bool Rise(const Refits& r,
   double least = std::numeric_limits<double>::infinity();
   for (const FitResult* from : starts) {
     if (from == nullptr) continue;
-    try {
-      ++out->refits;
-      // Memoized: diagnose reports one solution from several places (a
-      // step, a tie's model, the final model), and each profiles it; the
-      // refits from the same solution are the same fits (the suite's short
-      // bearing + calibration + roll torque record: 45 refits, 15 of them
-      // distinct).
-      const FitResult frozen =
-          MemoizedFitSamples(FrozenCase(r.c, *from, e.position, value), r.data);
+    ++out->refits;
+    FitResult frozen;
+    if (RefitFrozen(r, *from, e.position, e.name, value, &frozen)) {
       least = std::min(least, frozen.sum_of_residuals);
-    } catch (const InputError& error) {
-      VLOG(1) << e.name << " frozen at " << value << ": " << error.what();
     }
   }
   if (!std::isfinite(least)) return false;
   out->farthest = std::max(out->farthest, offset);
-  const double e2 = r.fit.probable_error * r.fit.probable_error;
-  const double s2 = r.fit.sum_of_residuals * r.fit.sum_of_residuals;
-  *rise = (least * least - s2) / e2;
-  VLOG(1) << e.name << " frozen at " << value << ": sum of squares up " << *rise
-          << " E^2";
+  *rise = RiseOf(r, least, e.name, value);
   return true;
 }
 
@@ -212,30 +236,19 @@ constexpr double kWithinThree = 9.0;
 // At most this many probes above the fitted angle: 2^8 times it.
 constexpr int kSweepUp = 8;
 
-// The rise, in E^2 of the solution `fit`, of the refit of `c` with the
-// angle (at `position`) frozen at `angle` from `from`; false when that
+// The refit of r.c with the angle `e` frozen at `angle` from `from`, into
+// *probe, and its rise in E^2 of the solution r.fit; false when that
 // refit failed.
-bool AngleProbe(const Case& c,
-                const std::vector<TimeHistory>& data,
-                const FitResult& fit,
+bool AngleProbe(const Refits& r,
+                const ParameterEstimate& e,
                 const FitResult& from,
-                int position,
                 double angle,
                 AngleSweep* out,
                 FitResult* probe,
                 double* rise) {
-  try {
-    ++out->refits;
-    *probe = MemoizedFitSamples(FrozenCase(c, from, position, angle), data);
-  } catch (const InputError& error) {
-    VLOG(1) << "bearing_angle frozen at " << angle << ": " << error.what();
-    return false;
-  }
-  const double e2 = fit.probable_error * fit.probable_error;
-  const double s2 = fit.sum_of_residuals * fit.sum_of_residuals;
-  *rise = (probe->sum_of_residuals * probe->sum_of_residuals - s2) / e2;
-  VLOG(1) << "bearing_angle frozen at " << angle << ": sum of squares up "
-          << *rise << " E^2";
+  ++out->refits;
+  if (!RefitFrozen(r, from, e.position, e.name, angle, probe)) return false;
+  *rise = RiseOf(r, probe->sum_of_residuals, e.name, angle);
   return std::isfinite(*rise);
 }
 
@@ -309,14 +322,13 @@ void Counted(const FitResult& fit,
 // of the last angle within and the first beyond, the 9 E^2 crossing
 // between the probes either side of it (AtThreeErrors), and the side
 // ends.
-void SweepSide(const Case& c,
-               const std::vector<TimeHistory>& data,
-               const FitResult& fit,
+void SweepSide(const Refits& r,
                const ParameterEstimate& e,
                double ratio,
                int steps,
                double largest_deg,
                AngleSweep* out) {
+  const FitResult& fit = r.fit;
   FitResult from = fit;
   const FitResult* within = &fit;
   double r_within = 0.0;
@@ -326,7 +338,7 @@ void SweepSide(const Case& c,
     if (!(next != angle)) return;
     FitResult probe;
     double rise = 0.0;
-    if (!AngleProbe(c, data, fit, from, e.position, next, out, &probe, &rise)) {
+    if (!AngleProbe(r, e, from, next, out, &probe, &rise)) {
       return;
     }
     if (rise <= kWithinThree) {
@@ -340,8 +352,7 @@ void SweepSide(const Case& c,
     const double between = std::sqrt(angle * next);
     FitResult middle;
     double r_middle = 0.0;
-    if (!AngleProbe(
-            c, data, fit, from, e.position, between, out, &middle, &r_middle)) {
+    if (!AngleProbe(r, e, from, between, out, &middle, &r_middle)) {
       AtThreeErrors(fit, *within, r_within, probe, rise, out);
     } else if (r_middle <= kWithinThree) {
       Counted(fit, middle, between, r_middle, out);
@@ -383,13 +394,15 @@ bool SweepBearingAngle(const Case& c,
       (c.AnySigmaAuto() && fit.segments.size() != 1)) {
     return false;
   }
+  const std::vector<FitResult> none;
+  const Refits refits{c, data, fit, none};
   // Down and up are independent: in parallel, each with its own tally.
   const double ratios[2] = {1.0 / kSweepRatio, kSweepRatio};
   const int steps[2] = {kSweepDown, kSweepUp};
   AngleSweep sides[2];
   ParallelFor(2, [&](int i) {
     sides[i].widths.assign(fit.parameters.size(), 0.0);
-    SweepSide(c, data, fit, *e, ratios[i], steps[i], largest_deg, &sides[i]);
+    SweepSide(refits, *e, ratios[i], steps[i], largest_deg, &sides[i]);
   });
   AngleSweep sweep;
   sweep.widths.assign(fit.parameters.size(), 0.0);
