@@ -4194,6 +4194,41 @@ TEST(Diagnose, SigmaAutoHoldsTheNoiseAgainAboveALevelHeldLow) {
       text);
 }
 
+// A step not adopted for leaving the record past the noise level's limit
+// says whether it leaves structure or white residuals, the noise's size:
+// on a 3-s run with a body yaw asymmetry whose noise drew 1.2 times sigma
+// (tests/data/short_body_asymmetry_varied115.yaml) the asymmetry left
+// white residuals at 1.21 against a limit of 1.20, and the words had
+// called them structured. With sigma: auto, as they advise, the record
+// is `ambiguous` between the asymmetry and a Magnus moment.
+TEST(Diagnose, SaysWhenAStepNotAdoptedLeavesWhiteResiduals) {
+  const Diagnosis d = DiagnoseConfig("short_body_asymmetry_varied115.yaml");
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << d.verdict_text;
+  ASSERT_EQ(EffectIds(d.partial), std::set<std::string>({"asymmetric_body"}))
+      << d.verdict_text;
+  EXPECT_TRUE(d.partial.back().after.white) << d.verdict_text;
+  EXPECT_FALSE(d.partial.back().after.at_noise_level) << d.verdict_text;
+  EXPECT_NE(d.verdict_text.find("leaves white residuals, past the noise "
+                                "level's limit"),
+            std::string::npos)
+      << d.verdict_text;
+  EXPECT_NE(d.verdict_text.find("sigma: auto"), std::string::npos)
+      << d.verdict_text;
+  EXPECT_EQ(d.verdict_text.find("leaves the residuals structured"),
+            std::string::npos)
+      << d.verdict_text;
+
+  if (testing::kSanitized) return;  // a second diagnosis; plain build
+  Case c = LoadConfig(
+      testing::SourcePath("tests/data/short_body_asymmetry_varied115.yaml"));
+  c.sigma_auto = {true, true, true};
+  const Diagnosis a = Diagnose(c, DiagnoseOptions());
+  EXPECT_EQ(a.verdict, Verdict::kAmbiguous) << a.verdict_text;
+  EXPECT_EQ(EffectIds(a.ambiguous),
+            std::set<std::string>({"asymmetric_body", "magnus"}))
+      << a.verdict_text;
+}
+
 // sigma: auto holds a channel again lower where the effects a search
 // left unexplained, fitted together, show it held too high (HeldAgain,
 // FittedTogether): on a 3-s run with a bearing moment, a cubic calibration
