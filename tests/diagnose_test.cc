@@ -729,6 +729,26 @@ TEST(Diagnose, AnExactTwinNotOnTheTunnelRidgeIsTriedBesideTheFinalModel) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.2118}, {"Cm_q", -4.045}}, text);
 }
 
+// A candidate scored within a few percent of the last one a round
+// refits is refitted too: the ranking there is within the linearization's
+// error. On draw 113's 3-s coning run with a tunnel damping, a Magnus
+// moment and a flow angularity (tests/data/coning_damping_magnus_
+// angularity_vary113.yaml) the damping scored 33.86 at the first round,
+// sixth, 0.8% under the roll torque's 34.12; refitted it lowers BIC by
+// 33.3 (the roll torque 38.5: on the cone its evidence is the roll part
+// of Eq. 39, a steady roll torque). Never refitted, it was left out of
+// the tie the answer names (a roll torque, a roll damping or a trim
+// moment), and the true model came 28.6 lower in BIC than that answer.
+TEST(Diagnose, ACandidateScoredAtTheCutIsRefittedToo) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_damping_magnus_angularity_vary113.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_damping")) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("roll_torque")) << text;
+}
+
 // An engineer who knows the tunnel has no Magnus moment in it says so
 // (`--absent magnus`): the effect is never tried, so the near twin no
 // longer widens Cm_q's error bar (the other effects not excluded hardly
@@ -2856,7 +2876,13 @@ TEST(Diagnose, TheCatalogIsSearchedWithoutWhatTheProbesAnswerDoesWithout) {
 // it, the damping and the Magnus moment explain the record, their final
 // fit 15 lower in BIC, the complete models of the two 2.4 apart. A near
 // tie's first step that the search without it matches within
-// ambiguity_bic stands in a tie with what that search found.
+// ambiguity_bic stands in a tie with what that search found. Since the
+// first round also refits the candidates scored at its cut
+// (ACandidateScoredAtTheCutIsRefittedToo) the damping and the Magnus
+// moment beat the asymmetry in its place together, and the search
+// without it (ReplacedStep) names them, 6.8 lower in BIC, with the
+// angularity tied with a roll reading error: the asymmetry is named as
+// what stood in for them, rejected.
 TEST(Diagnose, ANearTiesFirstStepMatchedWithoutItTiesWithWhatWasFound) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
@@ -2864,13 +2890,16 @@ TEST(Diagnose, ANearTiesFirstStepMatchedWithoutItTiesWithWhatWasFound) {
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   EXPECT_FALSE(EffectIds(d.steps).count("asymmetric_body")) << text;
-  ASSERT_EQ(d.stood_in.size(), 1u) << text;
-  EXPECT_EQ(d.stood_in[0].effect, "asymmetric_body") << text;
-  EXPECT_EQ(
-      std::set<std::string>(d.stood_in_for[0].begin(), d.stood_in_for[0].end()),
-      (std::set<std::string>{"magnus", "tunnel_damping"}))
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"magnus", "tunnel_damping"}))
       << text;
+  EXPECT_TRUE(ListedWith(d.rejected, "asymmetric_body", "stood in")) << text;
   ExpectFinalCovers(d, kShortCoefficients, text);
+  ExpectFinalCovers(d,
+                    {{"Cm_p_alpha", 3.37},
+                     {"tunnel_Cm_thetadot", 1.65},
+                     {"tunnel_Cn_psidot", -2.24}},
+                    text);
 }
 
 // tools/diagnose_suite's `short` tunnel damping + Magnus moment + flow

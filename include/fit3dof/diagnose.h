@@ -58,7 +58,8 @@
 // the residual variance. The score is a local (linear) prediction and
 // underrates large effects (a product of inertia that moves roll by degrees
 // ranked fourth in a test), so the best `refit` (5) candidates are refitted
-// in full;
+// in full (and any scored within 5% of the fifth: the ranking there is
+// within the linearization's error);
 // the one with the lowest Bayesian information criterion,
 //   BIC = n ln(RSS / n) + k ln(n)   (n residuals, k free parameters),
 // is a contender if it lowers BIC by more than `min_bic_drop` (10: very
