@@ -1005,7 +1005,8 @@ bool HeldAgain(const Case& c,
 // moment at 2 deg, pitch was held at 0.0058 deg (true 0.01), a pressure
 // drift came 12.1 in BIC below the bearing moment, and the answer was
 // `not_explained` with nothing named; the drift's model left pitch
-// 0.0078, white (the true model's own fit 0.0082). Held there, the two tie.
+// 0.0081 over its degrees of freedom (0.0078 RMS), white; the true model's
+// own fit 0.0082. Held there, the two tie.
 bool HeldAgainByTheProbe(const Case& c,
                          const Diagnosis& d,
                          const SearchNotes& notes,
