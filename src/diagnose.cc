@@ -941,6 +941,27 @@ bool WhiteChannel(const FitResult& fit,
   return check.lag1[ch] < check.whiteness_limit;
 }
 
+// Whether `fit`, leaving channel `ch` at `residual` (its RMS over the
+// fit's degrees of freedom), shows the level held there, `level`, too
+// low: kHeldTooLow or more below a white residual (HeldAgain,
+// HeldAgainByTheProbe).
+bool ShowsHeldTooLow(const FitResult& fit,
+                     int ch,
+                     double residual,
+                     double level,
+                     const DiagnoseOptions& options) {
+  return residual >= kHeldTooLow * level && WhiteChannel(fit, ch, options);
+}
+
+// Holds channel `ch` of *held again at `level` (deg), which `source`
+// showed.
+void HoldAgainAt(
+    const Case& c, int ch, double level, const char* source, Case* held) {
+  VLOG(1) << c.name << ": " << ChannelName(ch) << " noise held again at "
+          << source << level << " deg (" << held->sigma[ch] << " before)";
+  held->sigma[ch] = level;
+}
+
 // Whether some fit of the search `d` (held at held->sigma) left an auto
 // channel's residual (LeastResidual; where `d` leaves the record
 // unexplained, the effects it found fitted together too, FittedTogether)
@@ -983,12 +1004,9 @@ bool HeldAgain(const Case& c,
     }
     const bool too_high = least * kHeldTooHigh <= level;
     const bool too_low = d.verdict == Verdict::kNoiseLevel &&
-                         least >= kHeldTooLow * level &&
-                         WhiteChannel(*at, ch, options);
+                         ShowsHeldTooLow(*at, ch, least, level, options);
     if (!too_high && !too_low) continue;
-    VLOG(1) << c.name << ": " << ChannelName(ch) << " noise held again at "
-            << least << " deg (" << level << " before)";
-    held->sigma[ch] = least;
+    HoldAgainAt(c, ch, least, "", held);
     again = true;
   }
   return again;
@@ -1018,14 +1036,10 @@ bool HeldAgainByTheProbe(const Case& c,
   bool again = false;
   for (int ch = 0; ch < 3; ++ch) {
     if (!c.sigma_auto[ch]) continue;
-    const double level = held->sigma[ch];
     const double residual = CorrectedResidual(notes.probe_fit, ch);
-    if (residual >= kHeldTooLow * level &&
-        WhiteChannel(notes.probe_fit, ch, options)) {
-      VLOG(1) << c.name << ": " << ChannelName(ch)
-              << " noise held again at the probe's " << residual << " deg ("
-              << level << " before)";
-      held->sigma[ch] = residual;
+    if (ShowsHeldTooLow(
+            notes.probe_fit, ch, residual, held->sigma[ch], options)) {
+      HoldAgainAt(c, ch, residual, "the probe's ", held);
       again = true;
     }
   }

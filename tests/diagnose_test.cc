@@ -4268,8 +4268,7 @@ TEST(Diagnose, SaysWhenAStepNotAdoptedLeavesWhiteResiduals) {
 // bearing moment and the drift explain the record alike: `ambiguous`.
 TEST(Diagnose, SigmaAutoHoldsAgainALevelAProbesModelShowsTooLow) {
   if (testing::kSanitized) GTEST_SKIP() << "sigma: auto rounds; plain build";
-  const Diagnosis d =
-      DiagnoseConfig("coning_bearing_two_degrees_vary116.yaml");
+  const Diagnosis d = DiagnoseConfig("coning_bearing_two_degrees_vary116.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
   EXPECT_GT(DiagnosedNoise(d, {}).theta, 0.0075) << text;
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
