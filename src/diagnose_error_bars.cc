@@ -1305,6 +1305,9 @@ bool StandInForSearch(const Diagnosis& other,
                  &d->fits[d->final_fit],
                  &d->model_standard_errors);
   TieInPlace(static_cast<int>(step - d->steps.begin()), tie, ids, d);
+  // What would separate the tie (Concluded's words for the search's own).
+  d->separated_by = SeparatedBy(
+      d->ambiguous, d->final_case, d->FinalFit(), FittedData(d->FinalFit()));
   FinalValues(d);
   Conclude(d);
   return true;
