@@ -756,12 +756,12 @@ void NominalTwins(const CompleteModel& nominal,
 
 // The effects neither in `contended` nor tied nor twins (IsTwin; Eq. 43's
 // tunnel terms near twins, IsNearTwin) whose score at the complete model's
-// solution (`scored`, at `fit`) may earn a place (ScoreMayEarn): no round refitted them, the search having
-// stopped at the noise level. Tried beside the complete model, they are
-// searched past the noise (PastNoise) when they lower BIC there. On a 3-s
-// run with a tunnel damping, a Magnus moment and a flow angularity, a
-// joint set with a false body asymmetry (Cm_alpha 8 of its errors off)
-// reached the noise; the Magnus moment, sixth by score at the first round
+// solution (`scored`, at `fit`) may earn a place (ScoreMayEarn): no round
+// refitted them, the search having stopped at the noise level. Tried beside the
+// complete model, they are searched past the noise (PastNoise) when they lower
+// BIC there. On a 3-s run with a tunnel damping, a Magnus moment and a flow
+// angularity, a joint set with a false body asymmetry (Cm_alpha 8 of its errors
+// off) reached the noise; the Magnus moment, sixth by score at the first round
 // and refitted at none, scored 31.9 on its one parameter beside it, and
 // the true model's BIC was 45 lower. A tunnel term, an exact twin in one
 // direction (novelty under the score's rank drop), is scored on the
@@ -771,10 +771,10 @@ void NominalTwins(const CompleteModel& nominal,
 // draw 0's 3-s tunnel damping + Magnus + angularity
 // (TriesAJointSetBehindABetterContenderRefusedOtherwise) one lowered BIC
 // by 36.7 beside the search's model, and a body asymmetry ended named in
-// the Magnus moment's place. On draw 117's 3.5-s coning run with a tunnel stiffness, a nonlinear
-// damping and a body yaw asymmetry, the stiffness scored 31.9 beside the
-// other two (novelty 7e-9), was never tried, and the true model was 32
-// lower in BIC than the answer.
+// the Magnus moment's place. On draw 117's 3.5-s coning run with a tunnel
+// stiffness, a nonlinear damping and a body yaw asymmetry, the stiffness
+// scored 31.9 beside the other two (novelty 7e-9), was never tried, and the
+// true model was 32 lower in BIC than the answer.
 std::vector<const Effect*> Unrefitted(
     const std::vector<Candidate>& scored,
     const std::vector<const Effect*>& contended,
@@ -783,10 +783,9 @@ std::vector<const Effect*> Unrefitted(
     const DiagnoseOptions& options) {
   std::vector<const Effect*> strong;
   for (const Candidate& k : scored) {
-    const bool twin = OnTunnelRidge(*k.effect) ? IsNearTwin(k.score)
-                                               : IsTwin(k.score);
-    if (!twin && !InTie(d, k.effect->id) &&
-        ScoreMayEarn({k}, fit, options) &&
+    const bool twin =
+        OnTunnelRidge(*k.effect) ? IsNearTwin(k.score) : IsTwin(k.score);
+    if (!twin && !InTie(d, k.effect->id) && ScoreMayEarn({k}, fit, options) &&
         std::find(contended.begin(), contended.end(), k.effect) ==
             contended.end()) {
       strong.push_back(k.effect);

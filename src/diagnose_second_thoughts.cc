@@ -821,15 +821,14 @@ bool ExplainsBetter(const Diagnosis& a, const Diagnosis& b) {
 // beside the other two, reached 0.254 +- 0.013 deg at 8.19 deg (bound
 // 0.246, truth 0.218), and both searches ended `not_explained` with the
 // nominal Cm_alpha 6.9 of its errors off. Where both explain the record,
-// the better (ExplainsBetter) is the answer: on draw
-// 117's pair of 3-s runs with a calibration error alone, at 0.9 of its
-// bound, the cube was fitted at 0.214 deg (bound 0.21; theta_cal3 0.075
-// +- 0.040). The second search took it with a nonlinear damping in a
-// joint set, tied with a bearing moment and a tunnel stiffness; the third
-// names the calibration alone, 4.1 lower in BIC. With the cube in pitch
-// alone (0.226 deg, bound 0.223) the two final models were the same, the
-// calibration alone: the second search's tied effects each raised BIC
-// beside it.
+// the better (ExplainsBetter) is the answer: on draw 117's pair of 3-s
+// runs with a calibration error alone, at 0.9 of its bound, the cube was
+// fitted at 0.214 deg (bound 0.21; theta_cal3 0.075 +- 0.040). The second
+// search took it with a nonlinear damping in a joint set, tied with a bearing
+// moment and a tunnel stiffness; the third names the calibration alone, 4.1
+// lower in BIC. With the cube in pitch alone (0.226 deg, bound 0.223) the two
+// final models were the same, the calibration alone: the second search's tied
+// effects each raised BIC beside it.
 Diagnosis FromBounds(const Case& c,
                      const FitResult& nominal,
                      const DiagnoseOptions& options,
