@@ -257,7 +257,10 @@ def main():
     # --vary-conditions draws' slowest, a bearing moment, calibration error
     # and roll torque on a 3-s run of another body (draw 84); draw 110's
     # pair with a tunnel damping, a Magnus moment and a flow angularity
-    # (sigma: auto), where a reading lag is weighed beside the catalog.
+    # (sigma: auto), where a reading lag is weighed beside the catalog;
+    # draw 120's pair with a tunnel stiffness, a roll reading error and a
+    # flow angularity (the fixed conditions' slowest at the 61st session),
+    # where a tie outdone on its other side is searched without.
     print("== fit3dof diagnose against a plain fit of the same record "
           "(median of 3)")
     rows = []
@@ -267,7 +270,8 @@ def main():
                  "pair_pitch_gain_draw65",
                  "table6_bearing_calibration_roll_torque_draw65",
                  "short_bearing_calibration_roll_torque_varied84",
-                 "pair_damping_magnus_angularity_vary110"):
+                 "pair_damping_magnus_angularity_vary110",
+                 "pair_stiffness_roll_angularity_draw120"):
         config = os.path.join(root, "tests", "data", name + ".yaml")
         seconds, fit_seconds, d = time_diagnose(root, config)
         rows.append({"record": name, "diagnose_seconds": seconds,
