@@ -1035,30 +1035,28 @@ double LeastProbableError(const FitResult& union_fit, const FitResult& fit) {
                    (residuals - fit.free_parameters));
 }
 
-// Whether the lead with its whole `pool` fitted as one model,
-// the largest of its sets (JointSets), reaches the noise level as far as
-// its sum of squares tells: no set of its members fits lower than they all
-// do, so none of its sets can earn its place (EarnedTogether: residuals
-// at the noise level first) when they all stay above it, with the
-// degrees of freedom of the fewest terms (`fit`'s). One fit for the six:
-// on a 3-s Table 6 record with a tunnel stiffness, a nonlinear damping and
-// a body yaw asymmetry, the stiffness dragged Cm_alpha at three rounds,
-// its six sets fitted each time (12 with the damping's at the first),
-// while the asymmetry was missing from its pool (its unions at 1.9 times
-// the noise twice, the damping's at 3.0, against a limit of 1.1): 4.5 ->
-// 3.8 s alone. True too when the union cannot be fitted, and with fewer
-// than three sets. A lead refused for leaving its bounds must be within
-// them there too, as its round judges them (ImplausibleAsJudged): its
-// partners are to pull it back (joint_sets_from_bounds), and where all of
-// them at once leave it out, its sets are not fitted. On draw 103's
-// 20-deg cone with a Magnus moment, a nonlinear damping and a calibration
-// error (sigma: auto) the calibration's union left it at 0.77-0.94 deg
-// against its bound of 0.61 at every round, and fitting its sets took
-// most of the bound searches' time (FromBounds): 8.4 -> 5.5 s alone, the
-// same answer.
-bool UnionMayReachTheNoise(int lead,
-                           const std::vector<int>& pool,
-                           const JointRound& r) {
+// Whether a set of the lead with its `pool` may earn its place, as far as
+// the lead with the whole pool fitted as one model (the largest of its
+// sets, JointSets) tells. Its sum of squares must reach the noise level:
+// no set of its members fits lower than they all do, so none of its sets
+// can earn its place (EarnedTogether: residuals at the noise level first)
+// when they all stay above it, with the degrees of freedom of the fewest
+// terms (`fit`'s). One fit for the six: on a 3-s Table 6 record with a
+// tunnel stiffness, a nonlinear damping and a body yaw asymmetry, the
+// stiffness dragged Cm_alpha at three rounds, its six sets fitted each
+// time (12 with the damping's at the first), while the asymmetry was
+// missing from its pool (its unions at 1.9 times the noise twice, the
+// damping's at 3.0, against a limit of 1.1): 4.5 -> 3.8 s alone. And a
+// lead refused for leaving its bounds must be within them there, as its
+// round judges them (ImplausibleAsJudged): its partners are to pull it
+// back (joint_sets_from_bounds), and where all of them at once leave it
+// out, its sets are not fitted. On draw 103's 20-deg cone with a Magnus
+// moment, a nonlinear damping and a calibration error (sigma: auto) the
+// calibration's union left it at 0.77-0.94 deg against its bound of 0.61
+// at every round, and fitting its sets took most of the bound searches'
+// time (FromBounds): 8.4 -> 5.5 s alone, the same answer. True too when
+// the union cannot be fitted, and with fewer than three sets.
+bool UnionMayEarn(int lead, const std::vector<int>& pool, const JointRound& r) {
   if (pool.size() < 2) return true;
   Candidate model;
   FitResult union_fit;
@@ -1164,7 +1162,7 @@ bool PoolEarns(int lead,
                bool minor_in_triples,
                const JointRound& r,
                JointSet* joint) {
-  return !pool.empty() && UnionMayReachTheNoise(lead, pool, r) &&
+  return !pool.empty() && UnionMayEarn(lead, pool, r) &&
          SetEarns(lead,
                   JointSets(lead, pool, minor_in_triples, r.contenders),
                   r,
@@ -1181,7 +1179,7 @@ bool WiderPoolEarns(int lead,
                     const std::vector<int>& pool,
                     const JointRound& r,
                     JointSet* joint) {
-  if (pool.empty() || !UnionMayReachTheNoise(lead, pool, r)) {
+  if (pool.empty() || !UnionMayEarn(lead, pool, r)) {
     return false;
   }
   const int newcomer = pool.back();
@@ -1353,7 +1351,7 @@ std::vector<int> UnionPool(int lead,
   for (int m : pool) in_union.push_back((*contenders)[m].candidate->effect);
   // The score (the Gauss-Newton step's drop in the sum of squares, in
   // units of the union's residual variance) that would bring the union's
-  // least probable error (UnionMayReachTheNoise) down to the noise limit.
+  // least probable error (UnionMayEarn's) down to the noise limit.
   const double spare = 3.0 * union_fit.points - union_fit.free_parameters;
   const double reach = CheckResiduals(union_fit, r.options).noise_limit /
                        LeastProbableError(union_fit, r.fit);
