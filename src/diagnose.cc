@@ -641,6 +641,10 @@ void TakeBest(const std::vector<Contender>& contenders,
   s->fit = best.fit;
   s->models.push_back(s->current);
   s->check = TakeStep(best, contenders, candidates, options, &s->d);
+  if (probe != nullptr && !(probe->bic < best.bic)) {
+    s->d.steps.back().outside_alike = probe->record;
+    s->d.steps.back().outside_alike_bic = probe->bic - best.bic;
+  }
 }
 
 // A round of the search on `candidates`: the best few refitted

@@ -340,7 +340,9 @@ bool RollSeparates(const std::vector<TimeHistory>& data);
 // best catalog contender that earned its place (earned[0], if any): better
 // by a margin (ProbeMargin), and the probe's fit goes into
 // d->outside_catalog, every contender rejected for it (nothing is adopted);
-// within the margin the caller ties them. A catalog effect refused here
+// within the margin the caller ties them; behind it by less than
+// probe_behind_bic, the caller names it beside the step (TakeBest). A
+// catalog effect refused here
 // for dragging the coefficients that explains more than the probe keeps
 // the search in the catalog; one refused for leaving its bounds does not:
 // on a 3-s run with a dry friction on both axes (outside the catalog,
@@ -366,7 +368,8 @@ bool WeighProbes(const Case& current,
 // Whatever explains a round's residual as well as contenders[best]
 // (diagnose.h): the other contenders within ambiguity_bic of its BIC
 // (TieGap), the
-// probe (when fitted) within it, and for a roll-locked effect on less than
+// probe (when fitted) ahead of it (one behind is named beside the step:
+// DiagnosisStep::outside_alike), and for a roll-locked effect on less than
 // a revolution of roll a drift in time. Contenders refused at this round
 // count too: with the effects still missing in, a roll reading error
 // refused beside an unexplained nonlinear damping may explain the record

@@ -1070,7 +1070,9 @@ std::vector<CandidateFit> Rivals(const std::vector<Contender>& contenders,
       rivals.push_back(contenders[i].record);
     }
   }
-  if (probe != nullptr && probe->bic < lead.bic + options.ambiguity_bic) {
+  // A probe behind the lead is named beside its step, not tied
+  // (WeighProbes, TakeBest).
+  if (probe != nullptr && probe->bic < lead.bic) {
     rivals.push_back(probe->record);
   }
   if (lead.candidate->effect->roll_locked && !roll_separates) {

@@ -61,6 +61,23 @@ json Contender(const CandidateFit& c) {
   return out;
 }
 
+// diagnosis.json's outside_catalog_alike: the probe explaining the
+// record alike beside the catalog's effects (AlikeBeside), else the first
+// probe a step's effect names alike (DiagnosisStep::outside_alike) with
+// the other steps' effects, which its model holds beside it.
+std::vector<std::string> OutsideCatalogAlike(const Diagnosis& d) {
+  if (!d.outside_catalog_alike.empty()) return d.outside_catalog_alike;
+  for (const DiagnosisStep& s : d.steps) {
+    if (s.outside_alike.effect.empty()) continue;
+    std::vector<std::string> ids = {s.outside_alike.effect};
+    for (const DiagnosisStep& other : d.steps) {
+      if (&other != &s) ids.push_back(other.effect);
+    }
+    return ids;
+  }
+  return {};
+}
+
 json Contenders(const std::vector<CandidateFit>& contenders) {
   json out = json::array();
   for (const CandidateFit& c : contenders) out.push_back(Contender(c));
@@ -86,6 +103,10 @@ json Step(const DiagnosisStep& s) {
                {"rms_residual_deg", JsonChannels(s.after.rms_deg)},
                {"probable_error", s.after.probable_error}};
   if (!s.note.empty()) step["note"] = s.note;
+  if (!s.outside_alike.effect.empty()) {
+    step["outside_alike"] = Contender(s.outside_alike);
+    step["outside_alike"]["bic_above_step"] = s.outside_alike_bic;
+  }
   // The stepN/ directories of the fits before and after it.
   step["fits"] = {s.fit_before, s.fit_after};
   return step;
@@ -338,7 +359,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
                                : Contender(d.outside_catalog);
   out["outside_catalog_at_noise_level"] = d.outside_at_noise_level;
   out["outside_catalog_beside"] = d.outside_catalog_beside;
-  out["outside_catalog_alike"] = d.outside_catalog_alike;
+  out["outside_catalog_alike"] = OutsideCatalogAlike(d);
   out["catalog_alike"] = d.catalog_alike;
   out["catalog_alike_bic"] =
       d.catalog_alike.empty() ? json(nullptr) : json(d.catalog_alike_bic);

@@ -290,6 +290,25 @@ std::string Describe(const std::string& id) {
   return e->description;
 }
 
+// "; alike: P in place of E (BIC +x against it: no evidence either way);
+// what would separate them", for each step's probe that explains the
+// record alike (DiagnosisStep::outside_alike).
+std::string OutsideAlike(const std::vector<DiagnosisStep>& steps) {
+  std::string text;
+  for (const DiagnosisStep& s : steps) {
+    if (s.outside_alike.effect.empty()) continue;
+    const Effect* probe = FindProbe(s.outside_alike.effect);
+    CHECK(probe != nullptr) << s.outside_alike.effect;
+    text += "; alike: " + probe->description + " in place of " + s.description +
+            " (BIC " + FormatNumber("%+.1f", s.outside_alike_bic) +
+            " against it: no evidence either way)";
+    if (!probe->separated_by.empty()) {
+      text += "; " + probe->separated_by + " would separate them";
+    }
+  }
+  return text;
+}
+
 void Conclude(Diagnosis* d) {
   if (!d->ambiguous.empty()) {
     d->verdict = Verdict::kAmbiguous;
@@ -303,6 +322,9 @@ void Conclude(Diagnosis* d) {
   } else {
     d->verdict = Verdict::kNotExplained;
     d->verdict_text = NotExplainedText(*d);
+  }
+  if (d->verdict != Verdict::kNotExplained) {
+    d->verdict_text += OutsideAlike(d->steps);
   }
   d->verdict_text += HeldNoise(*d);
   if (d->verdict != Verdict::kNoiseLevel && d->verdict != Verdict::kExplained) {

@@ -1128,6 +1128,45 @@ TEST(Diagnose, AFrictionAboutThePitchAxisAloneIsNamed) {
       << FormatDiagnosis(without, {0.01, 0.01, 0.01});
 }
 
+// The same friction on draw 122's cone (tests/data/coning_pitch_friction_
+// draw122.yaml, sigma: auto): the pitch friction probe came 0.5 of BIC
+// behind a tunnel damping, which was named `explained` with no word of
+// the friction (draw 120's probe, 5.4 ahead, had tied with it). A probe
+// behind a step's effect by less than probe_behind_bic (no evidence
+// either way) is named beside it: the damping stands, as the catalog
+// comes first, and the verdict and diagnosis.json say what else explains
+// the record alike and what would separate them.
+TEST(Diagnose, AProbeJustBehindAStepIsNamedBesideIt) {
+  const Case config = LoadConfig(
+      testing::SourcePath("tests/data/coning_pitch_friction_draw122.yaml"));
+  const Diagnosis d = Diagnose(config, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
+  ASSERT_EQ(d.steps.size(), 1u) << text;
+  const DiagnosisStep& step = d.steps[0];
+  EXPECT_EQ(step.effect, "tunnel_damping") << text;
+  EXPECT_EQ(step.outside_alike.effect, "pitch_friction") << text;
+  EXPECT_GE(step.outside_alike_bic, 0.0) << text;
+  EXPECT_LT(step.outside_alike_bic, DiagnoseOptions().probe_behind_bic) << text;
+  EXPECT_NE(d.verdict_text.find("alike: dry (Coulomb) friction about the "
+                                "pitch axis alone"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(d.verdict_text.find("a run at another amplitude"),
+            std::string::npos)
+      << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(d, config));
+  EXPECT_EQ(j["outside_catalog_alike"], nlohmann::json({"pitch_friction"}));
+  EXPECT_EQ(j["steps"][0]["outside_alike"]["effect"], "pitch_friction");
+  // Declared absent, the probe is never fitted and nothing is said of it.
+  DiagnoseOptions options;
+  options.absent = {"pitch_friction"};
+  const Diagnosis without = Diagnose(config, options);
+  ASSERT_FALSE(without.steps.empty()) << text;
+  EXPECT_TRUE(without.steps[0].outside_alike.effect.empty())
+      << FormatDiagnosis(without, {0.01, 0.01, 0.01});
+}
+
 // tools/diagnose_suite's `short` reading error at the second harmonic of
 // roll (draw 22: theta_m += -0.0281 cos(2 phi + 0.7), psi_m += -0.0225
 // sin(2 phi + 0.2)), kept as tests/data/short_second_roll_harmonic_

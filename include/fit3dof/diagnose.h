@@ -382,6 +382,14 @@ struct DiagnoseOptions {
   // be not explained: a difference under 2 is no evidence either way (Kass
   // and Raftery's scale), and the two tie.
   double drift_bic = 2.0;
+  // How far behind the effect a step takes a probe may come and still be
+  // named beside it (DiagnosisStep::outside_alike): by less than 2 the
+  // record holds no evidence for the catalog's effect over the
+  // explanation outside it (a tunnel damping named `explained`, a
+  // pitch-axis friction probe 0.5 behind it, on a record that friction
+  // made, had said nothing of it). A probe ahead ties within
+  // ambiguity_bic.
+  double probe_behind_bic = 2.0;
   double max_drag = 5.0;
   int held_out_blocks = 8;
   double gain_per_parameter = 2.0;
@@ -544,6 +552,13 @@ struct DiagnosisStep {
   // step: with and without it; `fit3dof diagnose` writes them to stepN/).
   int fit_before = -1;
   int fit_after = -1;
+  // A probe outside the catalog that explained the record alike at this
+  // step: behind the step's effect by less than
+  // DiagnoseOptions::probe_behind_bic (no evidence either way; `effect`
+  // empty when none). The effect is named, as the catalog comes first; the
+  // verdict names the probe beside it, with what would separate them.
+  CandidateFit outside_alike;
+  double outside_alike_bic = 0.0;  // its BIC above the step's effect's
 };
 
 // A complete model of an ambiguous diagnosis: the effects adopted and one
