@@ -220,31 +220,31 @@
 // within `ambiguity_bic` of the best, it ties with it (`ambiguous`): on one 3-s
 // run a bearing moment (a stiffness that grows as the amplitude decays) and a
 // drifting dynamic pressure do; a drifting pressure had been named a bearing
-// moment. A probe is weighed against one catalog effect at a time: when it wins
-// (at the noise level too, where its chi-square leaves room for a catalog
-// model to beat it by the margin), the diagnosis without probes is run too;
-// when that explains the record (or ties with every branch explained) with
-// a BIC lower than the probe's model's by more than `ambiguity_bic`, it is
-// the answer (a reading lag had beaten a Magnus moment at the first step
-// of a record a Magnus moment, a nonlinear damping and a calibration error
-// explain). Unless the probe, given the same search (the catalog's effects
-// beside it), explains the record with a BIC lower than that answer's by
-// more than `ambiguity_bic`, a lag or a friction of its physical sign
-// (positive): then the verdict stays `not_explained`, naming the effects
-// that would complete the probe (outside_catalog_beside). A dry
-// friction on the pitch axis alone had got a nonlinear damping and a body
-// yaw asymmetry (Cm_q 15 of its errors off the nominal fit's); the ball's
-// friction with a tunnel damping beside it explains that 3-s run better.
-// Within `ambiguity_bic` of that answer the answer stands, and its verdict
-// names the probe's model as one that explains the record alike, with what
-// would separate them (outside_catalog_alike).
-// Every effect that was a contender at some round of the search (it
-// lowered BIC by more than `min_bic_drop` there, however far behind the
-// round's best) and is neither in the model nor in a tie is also tried
-// beside the complete model (added, not swapped). One the
-// record cannot exclude there (BIC less than `ambiguity_bic` higher, the
-// model's effects within their bounds, its own within two of its standard
-// errors of them: on a ridge the point fit lands anywhere the record
+// moment. Behind the best by less than `probe_behind_bic` (2), the best is
+// taken and the probe named beside its step (DiagnosisStep::outside_alike). A
+// probe is weighed against one catalog effect at a time: when it wins (at the
+// noise level too, where its chi-square leaves room for a catalog model to beat
+// it by the margin), the diagnosis without probes is run too; when that
+// explains the record (or ties with every branch explained) with a BIC lower
+// than the probe's model's by more than `ambiguity_bic`, it is the answer (a
+// reading lag had beaten a Magnus moment at the first step of a record a Magnus
+// moment, a nonlinear damping and a calibration error explain). Unless the
+// probe, given the same search (the catalog's effects beside it), explains the
+// record with a BIC lower than that answer's by more than `ambiguity_bic`, a
+// lag or a friction of its physical sign (positive): then the verdict stays
+// `not_explained`, naming the effects that would complete the probe
+// (outside_catalog_beside). A dry friction on the pitch axis alone had got a
+// nonlinear damping and a body yaw asymmetry (Cm_q 15 of its errors off the
+// nominal fit's); the ball's friction with a tunnel damping beside it explains
+// that 3-s run better. Within `ambiguity_bic` of that answer the answer stands,
+// and its verdict names the probe's model as one that explains the record
+// alike, with what would separate them (outside_catalog_alike). Every effect
+// that was a contender at some round of the search (it lowered BIC by more than
+// `min_bic_drop` there, however far behind the round's best) and is neither in
+// the model nor in a tie is also tried beside the complete model (added, not
+// swapped). One the record cannot exclude there (BIC less than `ambiguity_bic`
+// higher, the model's effects within their bounds, its own within two of its
+// standard errors of them: on a ridge the point fit lands anywhere the record
 // allows) is not added, but the final error bars cover its model's
 // values, weighted by its Akaike weight against the model without it
 // (Diagnosis::not_excluded). A Magnus moment
