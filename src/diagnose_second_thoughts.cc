@@ -1002,7 +1002,9 @@ Diagnosis WithoutTiedPartner(const Case& c,
   VLOG(1) << "without " << step->effect << ", whose joint set's partner "
           << "tied: " << VerdictToString(other.verdict) << ", BIC "
           << FormatNumber("%+.1f", -margin) << " against the first answer";
-  if (!ExplainsRecord(other) || !(margin > 0.0)) return d;
+  if (!ExplainsRecord(other) || !(margin > options.partner_search_bic)) {
+    return d;
+  }
   NoteDropped(AsContender(*step),
               "adopted together with " + Joined(step->adopted_with, " and ") +
                   ", which then tied with other effects; without it the "
