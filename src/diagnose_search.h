@@ -709,6 +709,23 @@ struct SearchNotes {
   bool catalog_alone = false;
 };
 
+// The step of `d`, an ambiguous answer, adopted in a joint set with an
+// effect that then went into a tie (Diagnosis::ambiguous or later_ties)
+// with other than its twins, or null: the step the search without it
+// questions (WithoutTiedPartner, diagnose_second_thoughts.cc). A twin is
+// a rival that, swapped in for the partner with every other effect in
+// (Diagnosis::tie_models), moves the complete model's BIC by less than
+// options.partner_search_bic: the step's model is then as good with it,
+// with no evidence either way, and the step stands on what let it in
+// whichever of them is named. At constant spin a roll damping and a roll
+// torque are such twins (Cl_p p against Cl_0, BIC +0.00 swapped): on
+// draw 124's Table 6 record with a bearing moment, a calibration
+// nonlinearity and a roll torque, the bearing moment adopted with the
+// calibration and a roll damping was searched without (1.5 of the
+// diagnosis' 5.5 s alone), to end unexplained, 3281 higher in BIC.
+const DiagnosisStep* PartnerTied(const Diagnosis& d,
+                                 const DiagnoseOptions& options);
+
 // The forward search (diagnose.h) from `nominal`, the fit of `c`, with
 // `options`' catalog; *notes gets what else it found (diagnose.cc).
 Diagnosis Search(const Case& c,

@@ -946,18 +946,62 @@ Diagnosis PastNoise(const Case& c,
   return other;
 }
 
-// The step of `d`, an ambiguous answer, adopted in a joint set with an
-// effect that then went into a tie (Diagnosis::ambiguous or later_ties),
-// or null.
-const DiagnosisStep* PartnerTied(const Diagnosis& d) {
+// The tie of `d` (Diagnosis::ambiguous or one of later_ties) that holds
+// `id`, or null.
+const std::vector<CandidateFit>* TieOf(const Diagnosis& d,
+                                       const std::string& id) {
+  const auto holds = [&](const std::vector<CandidateFit>& tie) {
+    return std::any_of(tie.begin(), tie.end(), [&](const CandidateFit& k) {
+      return k.effect == id;
+    });
+  };
+  if (holds(d.ambiguous)) return &d.ambiguous;
+  for (const std::vector<CandidateFit>& tie : d.later_ties) {
+    if (holds(tie)) return &tie;
+  }
+  return nullptr;
+}
+
+// Whether `partner`'s tie in `d` is with twins of it alone: each other
+// effect of the tie, swapped in for it with every other effect in
+// (Diagnosis::tie_models), moves the complete model's BIC by less than
+// `within`. The step adopted with it then stands with each of them.
+bool TiedWithTwins(const Diagnosis& d,
+                   const std::string& partner,
+                   double within) {
+  const std::vector<CandidateFit>* tie = TieOf(d, partner);
+  if (tie == nullptr) return false;
+  for (const CandidateFit& rival : *tie) {
+    if (rival.effect == partner) continue;
+    const bool twin = std::any_of(d.tie_models.begin(),
+                                  d.tie_models.end(),
+                                  [&](const Diagnosis::TieModel& m) {
+                                    return m.in_place_of == partner &&
+                                           m.effect == rival.effect &&
+                                           std::abs(m.rise) < within;
+                                  });
+    if (!twin) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+const DiagnosisStep* PartnerTied(const Diagnosis& d,
+                                 const DiagnoseOptions& options) {
   if (d.verdict != Verdict::kAmbiguous) return nullptr;
   for (const DiagnosisStep& s : d.steps) {
     for (const std::string& partner : s.adopted_with) {
-      if (InTie(d, partner)) return &s;
+      if (InTie(d, partner) &&
+          !TiedWithTwins(d, partner, options.partner_search_bic)) {
+        return &s;
+      }
     }
   }
   return nullptr;
 }
+
+namespace {
 
 // Whether a branch that searches the record again without a step
 // (WithoutTiedPartner, BlockerBranch) may run on the answer of a search
@@ -978,8 +1022,9 @@ bool SearchesAgain(const DiagnoseOptions& options, const SearchNotes& notes) {
 
 // A step adopted in a joint set (its lead refused alone for dragging the
 // coefficients or leaving its bounds) stands on its partners: when a
-// partner then ties with other effects and is not adopted, the step is
-// in the final model without what let it in. The search without it
+// partner then ties with other effects (not its twins alone: PartnerTied,
+// diagnose_search.h) and is not adopted, the step is in the final model
+// without what let it in. The search without it
 // (`notes` then its notes) is the answer when it explains the record with
 // a lower complete BIC (CompleteBic). On draw 70's 3-s run with a tunnel
 // stiffness, a nonlinear damping and a body yaw asymmetry, a tunnel
@@ -993,7 +1038,7 @@ Diagnosis WithoutTiedPartner(const Case& c,
                              const DiagnoseOptions& options,
                              SearchNotes* notes,
                              Diagnosis d) {
-  const DiagnosisStep* step = PartnerTied(d);
+  const DiagnosisStep* step = PartnerTied(d, options);
   if (step == nullptr || !SearchesAgain(options, *notes)) return d;
   SearchNotes again;
   Diagnosis other =

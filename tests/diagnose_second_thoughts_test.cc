@@ -88,5 +88,52 @@ TEST(FirstSearch, RethoughtIsDiagnoseFrom) {
   EXPECT_EQ(end.hits - start.hits, end.calls - start.calls);
 }
 
+// The step a search without it questions (PartnerTied): one adopted with
+// a partner that then tied. Draw 124's Table 6 bearing moment +
+// calibration nonlinearity + roll torque, in outline: the bearing moment
+// adopted with the calibration and a roll damping, which tied with a roll
+// torque. Swapped in for the damping with the other effects in, the torque
+// moves BIC by +0.00: a twin, and the bearing moment stands with either.
+// A rival 6.8 higher (draw 70's roll torque in place of a tunnel
+// stiffness), or one of the tie's rivals with no such model, leaves the
+// step questioned.
+TEST(PartnerTied, NotWhereThePartnerTiedWithItsTwinsAlone) {
+  Diagnosis d;
+  d.verdict = Verdict::kAmbiguous;
+  DiagnosisStep step;
+  step.effect = "bearing_moment";
+  step.adopted_with = {"calibration_nonlinearity", "roll_damping"};
+  d.steps = {step};
+  CandidateFit damping, torque;
+  damping.effect = "roll_damping";
+  torque.effect = "roll_torque";
+  d.ambiguous = {damping, torque};
+  Diagnosis::TieModel twin;
+  twin.in_place_of = "roll_damping";
+  twin.effect = "roll_torque";
+  twin.rise = 0.004;
+  d.tie_models = {twin};
+  const DiagnoseOptions options;
+  EXPECT_EQ(PartnerTied(d, options), nullptr);
+
+  Diagnosis apart = d;
+  apart.tie_models[0].rise = 6.8;
+  ASSERT_NE(PartnerTied(apart, options), nullptr);
+  EXPECT_EQ(PartnerTied(apart, options)->effect, "bearing_moment");
+
+  Diagnosis third = d;
+  CandidateFit stiffness;
+  stiffness.effect = "tunnel_stiffness";
+  third.ambiguous.push_back(stiffness);
+  EXPECT_NE(PartnerTied(third, options), nullptr);
+
+  Diagnosis later = d;
+  later.ambiguous.clear();
+  later.later_ties = {{damping, torque}};
+  EXPECT_EQ(PartnerTied(later, options), nullptr);
+  later.tie_models.clear();
+  EXPECT_NE(PartnerTied(later, options), nullptr);
+}
+
 }  // namespace
 }  // namespace fit3dof

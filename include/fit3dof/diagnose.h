@@ -397,7 +397,9 @@ struct DiagnoseOptions {
   // flow angularity (sigma: auto) the first answer named the damping and
   // the Magnus moment, the angularity tied; the search without the damping
   // named a body asymmetry and a false nonlinear damping, 1.6 lower, and
-  // had been taken.
+  // had been taken. A partner tied only with rivals that move the
+  // complete model's BIC by less than this in its place (its twins) does
+  // not call for that search: the step stands with either.
   double partner_search_bic = 2.0;
   double max_drag = 5.0;
   int held_out_blocks = 8;
