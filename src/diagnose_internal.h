@@ -205,7 +205,10 @@ std::string Joined(const std::vector<std::string>& items, const char* last);
 std::vector<std::vector<CandidateFit>> Ties(const Diagnosis& d);
 std::vector<CandidateFit> Tied(const Diagnosis& d);
 
-// Whether effect `id` is in a tie the diagnosis leaves open.
+// The tie the diagnosis leaves open (d.ambiguous or one of d.later_ties)
+// that holds effect `id`, or null; and whether there is one.
+const std::vector<CandidateFit>* TieOf(const Diagnosis& d,
+                                       const std::string& id);
 bool InTie(const Diagnosis& d, const std::string& id);
 
 // Sets d->verdict and d->verdict_text from what the search left in *d

@@ -946,32 +946,15 @@ Diagnosis PastNoise(const Case& c,
   return other;
 }
 
-// The tie of `d` (Diagnosis::ambiguous or one of later_ties) that holds
-// `id`, or null.
-const std::vector<CandidateFit>* TieOf(const Diagnosis& d,
-                                       const std::string& id) {
-  const auto holds = [&](const std::vector<CandidateFit>& tie) {
-    return std::any_of(tie.begin(), tie.end(), [&](const CandidateFit& k) {
-      return k.effect == id;
-    });
-  };
-  if (holds(d.ambiguous)) return &d.ambiguous;
-  for (const std::vector<CandidateFit>& tie : d.later_ties) {
-    if (holds(tie)) return &tie;
-  }
-  return nullptr;
-}
-
-// Whether `partner`'s tie in `d` is with twins of it alone: each other
+// Whether `partner`'s `tie` in `d` is with twins of it alone: each other
 // effect of the tie, swapped in for it with every other effect in
 // (Diagnosis::tie_models), moves the complete model's BIC by less than
 // `within`. The step adopted with it then stands with each of them.
 bool TiedWithTwins(const Diagnosis& d,
+                   const std::vector<CandidateFit>& tie,
                    const std::string& partner,
                    double within) {
-  const std::vector<CandidateFit>* tie = TieOf(d, partner);
-  if (tie == nullptr) return false;
-  for (const CandidateFit& rival : *tie) {
+  for (const CandidateFit& rival : tie) {
     if (rival.effect == partner) continue;
     const bool twin = std::any_of(d.tie_models.begin(),
                                   d.tie_models.end(),
@@ -992,8 +975,9 @@ const DiagnosisStep* PartnerTied(const Diagnosis& d,
   if (d.verdict != Verdict::kAmbiguous) return nullptr;
   for (const DiagnosisStep& s : d.steps) {
     for (const std::string& partner : s.adopted_with) {
-      if (InTie(d, partner) &&
-          !TiedWithTwins(d, partner, options.partner_search_bic)) {
+      const std::vector<CandidateFit>* tie = TieOf(d, partner);
+      if (tie != nullptr &&
+          !TiedWithTwins(d, *tie, partner, options.partner_search_bic)) {
         return &s;
       }
     }

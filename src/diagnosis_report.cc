@@ -196,14 +196,22 @@ std::vector<CandidateFit> Tied(const Diagnosis& d) {
 
 // Without Tied's copy: called per contender where the final error bars
 // are weighed.
-bool InTie(const Diagnosis& d, const std::string& id) {
-  const auto in = [&](const std::vector<CandidateFit>& tie) {
+const std::vector<CandidateFit>* TieOf(const Diagnosis& d,
+                                       const std::string& id) {
+  const auto holds = [&](const std::vector<CandidateFit>& tie) {
     return std::any_of(tie.begin(), tie.end(), [&](const CandidateFit& k) {
       return k.effect == id;
     });
   };
-  return in(d.ambiguous) ||
-         std::any_of(d.later_ties.begin(), d.later_ties.end(), in);
+  if (holds(d.ambiguous)) return &d.ambiguous;
+  for (const std::vector<CandidateFit>& tie : d.later_ties) {
+    if (holds(tie)) return &tie;
+  }
+  return nullptr;
+}
+
+bool InTie(const Diagnosis& d, const std::string& id) {
+  return TieOf(d, id) != nullptr;
 }
 
 namespace {
