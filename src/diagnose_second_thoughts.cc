@@ -499,6 +499,37 @@ Diagnosis OtherBranch(const Case& c,
                       std::move(d));
 }
 
+// Whether a branch that searches the record again without a step
+// (WithoutTiedPartner, BlockerBranch, DeadEndBranch after a later tie) may run
+// on the answer of a search with `options` and `notes`. Once: not in a search
+// without an effect (the first answer had them), nor in the search past the
+// noise (PastNoise's; the first answer had them: on a 3-s run of another body
+// with a bearing moment, a calibration error and a roll torque,
+// --vary-conditions draw 84, that search's catalog-alone answer ran
+// WithoutTiedPartner a second time, 11 s in all, 6.2 without), nor on the
+// catalog's answer to a probe (its search had them), nor in the search that
+// weighs a probe with the catalog's effects beside it (SearchedBeside; the
+// catalog's search had them: on that record it ran again from the probe's
+// model, 11.1 s in all, 3.0 s without, the same answer).
+bool SearchesAgain(const DiagnoseOptions& options, const SearchNotes& notes) {
+  return options.searched_without.empty() && options.past_noise.empty() &&
+         !notes.catalog_alone && !options.beside_probe;
+}
+
+// The whole diagnosis of `c` (second thoughts and all) with `id` known
+// absent besides `options.absent`; its `absent` the engineer's list of
+// `d` (not the branch's).
+Diagnosis DiagnosedAbsent(const Case& c,
+                          const FitResult& nominal,
+                          DiagnoseOptions options,
+                          const std::string& id,
+                          const Diagnosis& d) {
+  options.absent.push_back(id);
+  Diagnosis other = DiagnoseFrom(c, nominal, options);
+  other.absent = d.absent;
+  return other;
+}
+
 // A search that took steps and adopted none (each left the residuals
 // structured, Diagnosis::partial) may have turned wrong at its first:
 // the search without that effect is the answer when it explains the
@@ -507,10 +538,24 @@ Diagnosis OtherBranch(const Case& c,
 // of BIC and, once in, left every other effect failing to predict the
 // held-out part alone: nothing was adopted, Cm_q 55 of its errors off.
 // Not when a probe outside the catalog outdid it (the record is then
-// another's), nor after a tie (OtherBranch follows its other side), nor
-// in the search without probes that checks a probe's win (CatalogAlone):
-// there it tripled the time of a Table 6 record with a pitch-axis
-// friction (1.9 to 5.4 s) and changed no answer.
+// another's), nor when the first step opened a tie (OtherBranch searched
+// without it), nor in the search without probes that checks a probe's
+// win (CatalogAlone): there it tripled the time of a Table 6 record with
+// a pitch-axis friction (1.9 to 5.4 s) and changed no answer.
+// A tie at a later step leaves the first step in doubt too, and the
+// record holds look-alikes that one search follows down one side: there
+// the whole diagnosis without the first step's effect (DiagnosedAbsent,
+// once: SearchesAgain, DiagnoseOptions::without_dead_end) is the answer
+// when it explains the record. On draw 125's 3-s run with the same three
+// effects, the asymmetry led by 20, the angularity and a roll reading
+// error tied at the next round, and the search without the angularity
+// (OtherBranch) took the asymmetry again: `not_explained`, Cm_q 56 of its
+// errors off. The plain search without the asymmetry took a calibration
+// error that then refused the Magnus moment, and named a trim moment or
+// the reading error, the angularity only not excluded; the diagnosis
+// without it drops the calibration error (BlockerBranch) and names the
+// damping and the Magnus moment, the angularity tied with the reading
+// error.
 Diagnosis DeadEndBranch(const Case& c,
                         const FitResult& nominal,
                         const DiagnoseOptions& options,
@@ -518,19 +563,28 @@ Diagnosis DeadEndBranch(const Case& c,
                         Diagnosis d) {
   if (!options.probes || d.verdict != Verdict::kNotExplained ||
       !d.steps.empty() || d.partial.empty() ||
-      !d.outside_catalog.effect.empty() || !notes.tied_first.empty()) {
+      !d.outside_catalog.effect.empty() ||
+      notes.tied_first == d.partial[0].effect) {
     return d;
   }
   const std::string first = d.partial[0].effect;
-  return TakenWithout(c,
-                      nominal,
-                      options,
-                      first,
-                      "taken first, but whatever followed it the residuals "
-                      "stayed structured and nothing was adopted",
-                      ", taken first, leaves the residuals structured "
-                      "whatever follows it",
-                      std::move(d));
+  const std::string why =
+      "taken first, but whatever followed it the residuals stayed "
+      "structured and nothing was adopted";
+  const std::string what =
+      ", taken first, leaves the residuals structured whatever follows it";
+  if (notes.tied_first.empty()) {
+    return TakenWithout(c, nominal, options, first, why, what, std::move(d));
+  }
+  if (options.without_dead_end || !SearchesAgain(options, notes)) return d;
+  DiagnoseOptions once = options;
+  once.without_dead_end = true;
+  Diagnosis other = DiagnosedAbsent(c, nominal, once, first, d);
+  VLOG(1) << "without " << first << ", taken first before a later tie: "
+          << VerdictToString(other.verdict);
+  if (!ExplainsRecord(other)) return d;
+  NoteDropped(FollowedFirst(d, first), why, what, &other);
+  return other;
 }
 
 // The search without the effect of `step`, a step of *d (whose probe
@@ -987,23 +1041,6 @@ const DiagnosisStep* PartnerTied(const Diagnosis& d,
 
 namespace {
 
-// Whether a branch that searches the record again without a step
-// (WithoutTiedPartner, BlockerBranch) may run on the answer of a search
-// with `options` and `notes`. Once: not in a search without an effect (the
-// first answer had them), nor in the search past the noise (PastNoise's;
-// the first answer had them: on a 3-s run of another body with a bearing
-// moment, a calibration error and a roll torque, --vary-conditions draw
-// 84, that search's catalog-alone answer ran WithoutTiedPartner a second
-// time, 11 s in all, 6.2 without), nor on the catalog's answer to a probe
-// (its search had them), nor in the search that weighs a probe with the
-// catalog's effects beside it (SearchedBeside; the catalog's search had
-// them: on that record it ran again from the probe's model, 11.1 s in all,
-// 3.0 s without, the same answer).
-bool SearchesAgain(const DiagnoseOptions& options, const SearchNotes& notes) {
-  return options.searched_without.empty() && options.past_noise.empty() &&
-         !notes.catalog_alone && !options.beside_probe;
-}
-
 // A step adopted in a joint set (its lead refused alone for dragging the
 // coefficients or leaving its bounds) stands on its partners: when a
 // partner then ties with other effects (not its twins alone: PartnerTied,
@@ -1069,11 +1106,9 @@ Diagnosis BlockerBranch(const Case& c,
   }
   // The whole diagnosis with the blocker known absent, second thoughts
   // and all: the search without it alone named a body asymmetry there.
-  DiagnoseOptions absent = options;
-  absent.absent.push_back(notes.blocker);
-  absent.without_blocker = true;
-  Diagnosis other = DiagnoseFrom(c, nominal, absent);
-  other.absent = d.absent;  // the engineer's, not the branch's
+  DiagnoseOptions once = options;
+  once.without_blocker = true;
+  Diagnosis other = DiagnosedAbsent(c, nominal, once, notes.blocker, d);
   const double margin = CompleteBic(d) - CompleteBic(other);
   VLOG(1) << "without " << notes.blocker << ", which blocked a round's best: "
           << VerdictToString(other.verdict) << ", BIC "

@@ -460,6 +460,10 @@ struct DiagnoseOptions {
   // alone refused a later round's best contender (BlockerBranch): that
   // diagnosis does not search without another such.
   bool without_blocker = false;
+  // Set by diagnose for the diagnosis without the first step of a search
+  // that adopted nothing and tied at a later step (DeadEndBranch): that
+  // diagnosis does not search without its own first step so.
+  bool without_dead_end = false;
   // Set by diagnose for a second thought's search whose answer is taken
   // only when it explains the record with a complete model below this BIC:
   // where a probe outside the catalog outdid that search, the catalog's
