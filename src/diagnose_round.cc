@@ -1370,15 +1370,14 @@ namespace {
 
 // The joint set *joint, led by `first`, which earned its place, against
 // the sets its other members lead (those of the first `judged` that
-// `leads` too), the
-// lowest in BIC that earns its place kept. Under joint_sets_from_bounds
-// several effects each leave their bounds taking up another's part, and
-// the set's lead, the first in BIC alone, draws its own pool: on draw
-// 126's pair of 3-s runs with a bearing moment, a calibration error and a
-// roll torque, a tunnel stiffness (t1 0.6, out of its bound) led, its set
-// with the calibration and the bearing moment earned its place, and the
-// roll torque was left out, the true model 63.8 lower in BIC; led by the
-// calibration, the set is the true one.
+// `leads` too), the lowest in BIC that earns its place kept. Under
+// joint_sets_from_bounds several effects each leave their bounds taking
+// up another's part, and the set's lead, the first in BIC alone, draws
+// its own pool: on draw 126's pair of 3-s runs with a bearing moment, a
+// calibration error and a roll torque, a tunnel stiffness (t1 0.6, out of
+// its bound) led, its set with the calibration and the bearing moment
+// earned its place, and the roll torque was left out, the true model 63.8
+// lower in BIC; led by the calibration, the set holds the roll torque.
 template <typename Leads>
 void OtherMembersLead(const Leads& leads,
                       int first,

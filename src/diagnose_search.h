@@ -299,8 +299,8 @@ struct JointSet {
 // which contenders were judged better than every one that earned its
 // place. The lowest-BIC set of the first lead whose set earns its place
 // (under joint_sets_from_bounds, weighed against the sets its other
-// members lead: OtherMembersLead, diagnose_round.cc)
-// goes into *joint; false when none. When no lead's pools earn, each
+// members lead: OtherMembersLead, diagnose_round.cc) goes into *joint;
+// false when none. When no lead's pools earn, each
 // lead draws a last pool from the scores at its own fit (LeadPool), the
 // effects of `candidates` (the round's, scored at `fit`) it names that no
 // round refitted appended to *contenders, refitted alone. When none of
