@@ -473,9 +473,21 @@ bool ReplacedStep(const Case& c,
   return true;
 }
 
-// The search without `first`, the effect the search that answered `d`
-// took first, when it explains the record (`first` named among its
+// `other`, an answer without `first`, the effect the search that answered
+// `d` took first, when it explains the record (`first` named among its
 // rejected, `why`, and in its verdict, `what`: NoteDropped); else `d`.
+Diagnosis TakenIfExplained(Diagnosis other,
+                           const std::string& first,
+                           const std::string& why,
+                           const std::string& what,
+                           Diagnosis d) {
+  if (!ExplainsRecord(other)) return d;
+  NoteDropped(FollowedFirst(d, first), why, what, &other);
+  return other;
+}
+
+// The search without `first` (SearchedWithout), taken as TakenIfExplained
+// says.
 Diagnosis TakenWithout(const Case& c,
                        const FitResult& nominal,
                        const DiagnoseOptions& options,
@@ -483,11 +495,13 @@ Diagnosis TakenWithout(const Case& c,
                        const std::string& why,
                        const std::string& what,
                        Diagnosis d) {
-  Diagnosis other = SearchedWithout(
-      c, nominal, options, first, std::numeric_limits<double>::infinity());
-  if (!ExplainsRecord(other)) return d;
-  NoteDropped(FollowedFirst(d, first), why, what, &other);
-  return other;
+  return TakenIfExplained(
+      SearchedWithout(
+          c, nominal, options, first, std::numeric_limits<double>::infinity()),
+      first,
+      why,
+      what,
+      std::move(d));
 }
 
 // A tie followed down the better branch that leaves the record unexplained
@@ -603,9 +617,7 @@ Diagnosis DeadEndBranch(const Case& c,
   Diagnosis other = DiagnosedAbsent(c, nominal, once, first, d);
   VLOG(1) << "without " << first << ", taken first before a later tie: "
           << VerdictToString(other.verdict);
-  if (!ExplainsRecord(other)) return d;
-  NoteDropped(FollowedFirst(d, first), why, what, &other);
-  return other;
+  return TakenIfExplained(std::move(other), first, why, what, std::move(d));
 }
 
 // The search without the effect of `step`, a step of *d (whose probe
