@@ -603,6 +603,9 @@ void RejectRound(const std::vector<Contender>& contenders,
                  SearchState* s) {
   Diagnosis* d = &s->d;
   for (const Contender& k : contenders) d->rejected.push_back(k.record);
+  if (probe.candidate != nullptr && probe.unpredicted) {
+    d->rejected.push_back(probe.record);
+  }
   if (!d->outside_catalog.effect.empty()) {
     KeepOutdoneByProbe(probe, contenders, earned, d);
   }
@@ -676,6 +679,7 @@ bool SearchRound(const std::vector<Candidate>& candidates,
                                   s->data,
                                   options,
                                   earned,
+                                  &out_of_sample,
                                   &probes,
                                   &probe,
                                   &contenders,

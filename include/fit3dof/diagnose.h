@@ -208,7 +208,11 @@
 // damping) is compared, when no catalog effect, refused or not, explains
 // more; it is never adopted. When it lowers BIC by more than
 // `ambiguity_bic` below the best catalog effect that earned its place (or by
-// `min_bic_drop` when none did), nothing is added and the verdict is
+// `min_bic_drop` when none did, and it predicts the held-out part of the
+// record as a newcomer must: else it is listed among the rejected and the
+// round ends as if no probe had been fitted; a pressure drift past the noise
+// level a roll reading error held had ended a 3-s run `not_explained`),
+// nothing is added and the verdict is
 // `not_explained`, naming it and its values (Diagnosis::outside_catalog): on
 // two runs a roll-synchronous reading error and a zero offset had been adopted
 // for a drifting pitch reading. When the best is roll-locked and the records
