@@ -666,7 +666,11 @@ std::string FindSetReplacements(const std::vector<Case>& models,
 // (BIC -3.1), was 5 lower in its place. Better by ambiguity_bic or more, the
 // step's effect is returned with *d left as it is, and *outdone_tie gets *d
 // with the step in a tie with that effect (DiagnoseFrom keeps it where the
-// search without the step does not explain the record better).
+// search without the step does not explain the record better). A roll
+// torque or roll damping step is tried with each tunnel term of Eq. 39 that
+// no round refitted in its place too (their roll part is its signature;
+// UntriedRidge): on draw 127's record of draw 23's case the stiffness was
+// never a contender.
 std::string FindSingleReplacement(const std::vector<Case>& models,
                                   const Case& current,
                                   const std::vector<TimeHistory>& data,
