@@ -1402,7 +1402,7 @@ namespace {
 // nonlinear damping and a body yaw asymmetry (sigma: auto) the stiffness was
 // not among any round's five by score; a roll torque came in a joint set with
 // the other two and was named `explained`, Cm_alpha 29 of its errors off, the
-// stiffness in its place 1.6 higher in BIC. Refitting Eq. 39's terms with the
+// stiffness in its place 5.6 higher in BIC. Refitting Eq. 39's terms with the
 // roll moments at every round (a family, as the offset family is: Refitted)
 // found the tie too, but cost draw 127 1.45 times the time and widened 35
 // answers' error bars with roll moments not excluded.
