@@ -1411,9 +1411,7 @@ std::vector<const Effect*> UntriedRidge(const Diagnosis& d,
   std::vector<const Effect*> untried;
   for (const Effect& e : EffectCatalog()) {
     if (!OnTunnelRidge(e) || !Wanted(options, e) || InTie(d, e.id) ||
-        std::any_of(d.steps.begin(),
-                    d.steps.end(),
-                    [&](const DiagnosisStep& s) { return s.effect == e.id; })) {
+        HoldsEffect(d.steps, e.id)) {
       continue;
     }
     const bool tried =

@@ -161,29 +161,50 @@ void OutdoneByProbe(const Contender& probe,
   }
 }
 
+// Whether the model `with` (set to be refitted from its solution:
+// FromSolution), `terms` parameters more than the round's current model,
+// predicts the held-out part of the record better by GainNeeded: its gain
+// into *gain, and where it does not, *why says so. What a newcomer (Judge)
+// and a probe (ProbePredicts) must show.
+bool PredictsHeldOut(const Case& with,
+                     int terms,
+                     const DiagnoseOptions& options,
+                     OutOfSample* out_of_sample,
+                     double* gain,
+                     std::string* why) {
+  *gain = out_of_sample->Gain(with);
+  const double needed = GainNeeded(terms, options);
+  if (*gain > needed) return true;
+  *why =
+      "it does not predict the held-out part of the record better "
+      "(log-likelihood gain " +
+      FormatNumber("%.3g", *gain) + ", needs " + FormatNumber("%.3g", needed) +
+      ")";
+  return false;
+}
+
 // Whether `probe`, with no catalog effect earning its place beside it,
 // predicts the held-out part of the record as a catalog newcomer must
-// (Judge: gain per parameter); else its record says why not and it is
-// marked unpredicted, to be listed among the rejected (RejectRound). A
-// probe is structure the catalog lacks only where it predicts: on draw
-// 127's 3-s run with a roll reading error (sigma: auto), the error took
-// the residuals to the held noise level, then a pressure-drift probe
-// lowered BIC by 12.3 past it (gain -15.9, needs 2) and the record, the
-// catalog's error explaining it, ended `not_explained`.
+// (PredictsHeldOut); else its record says why not and it is marked
+// unpredicted, to be listed among the rejected (RejectRound). A probe is
+// structure the catalog lacks only where it predicts: on draw 127's 3-s
+// run with a roll reading error (sigma: auto), the error took the
+// residuals to the held noise level, then a pressure-drift probe lowered
+// BIC by 12.3 past it (gain -15.9, needs 2) and the record, the catalog's
+// error explaining it, ended `not_explained`.
 bool ProbePredicts(const DiagnoseOptions& options,
                    OutOfSample* out_of_sample,
                    Contender* probe) {
   const Candidate& k = *probe->candidate;
-  const double gain = out_of_sample->Gain(FromSolution(k.c, probe->fit));
-  probe->record.prediction_gain = gain;
-  const double needed = GainNeeded(static_cast<int>(k.added.size()), options);
-  probe->unpredicted = !(gain > needed);
+  std::string why;
+  probe->unpredicted = !PredictsHeldOut(FromSolution(k.c, probe->fit),
+                                        static_cast<int>(k.added.size()),
+                                        options,
+                                        out_of_sample,
+                                        &probe->record.prediction_gain,
+                                        &why);
   if (probe->unpredicted) {
-    probe->record.rejected =
-        "outside the catalog, it does not predict the held-out part of the "
-        "record better (log-likelihood gain " +
-        FormatNumber("%.3g", gain) + ", needs " + FormatNumber("%.3g", needed) +
-        ")";
+    probe->record.rejected = "outside the catalog, " + why;
   }
   return !probe->unpredicted;
 }
@@ -242,18 +263,13 @@ void Judge(const FitResult& current,
         current, c->fit, c->record.bic_drop, options.min_bic_drop);
   }
   if (why.empty()) {
-    const double gain =
-        out_of_sample->Gain(RidgeHeld(*k.effect, FromSolution(k.c, c->fit)));
-    c->record.prediction_gain = gain;
-    const double needed = GainNeeded(static_cast<int>(k.added.size()), options);
-    c->unpredicted = !(gain > needed);
-    if (c->unpredicted) {
-      why =
-          "it does not predict the held-out part of the record better "
-          "(log-likelihood gain " +
-          FormatNumber("%.3g", gain) + ", needs " +
-          FormatNumber("%.3g", needed) + ")";
-    }
+    c->unpredicted =
+        !PredictsHeldOut(RidgeHeld(*k.effect, FromSolution(k.c, c->fit)),
+                         static_cast<int>(k.added.size()),
+                         options,
+                         out_of_sample,
+                         &c->record.prediction_gain,
+                         &why);
   }
   c->record.rejected = why;
 }

@@ -403,6 +403,10 @@ Case WithoutStep(const Case& at, const DiagnosisStep& step);
 // The step's effect as the contender it was.
 CandidateFit AsContender(const DiagnosisStep& step);
 
+// Whether `steps` hold the effect `effect`.
+bool HoldsEffect(const std::vector<DiagnosisStep>& steps,
+                 const std::string& effect);
+
 // Each step's parameters as the final model has them (a partial step's as
 // the last partial model has them). A later step may have switched the
 // model to the asymmetric program, where the effect's terms have other

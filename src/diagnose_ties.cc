@@ -388,14 +388,6 @@ bool SeparatedOutOfSample(const CandidateFit& rival,
          rival.prediction_gain < step.prediction_gain;
 }
 
-// Whether `steps` hold the effect `effect`.
-bool HoldsEffect(const std::vector<DiagnosisStep>& steps,
-                 const std::string& effect) {
-  return std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
-    return s.effect == effect;
-  });
-}
-
 // The rivals of `step` (recorded when the search added it) that still
 // explain the record as well in the explained model `fit` (of case `at`,
 // whose effects are `steps`): swapped in for it, BIC within ambiguity_bic
@@ -1128,6 +1120,13 @@ Case WithoutStep(const Case& at, const DiagnosisStep& step) {
   }
   without.SettleTies();
   return without;
+}
+
+bool HoldsEffect(const std::vector<DiagnosisStep>& steps,
+                 const std::string& effect) {
+  return std::any_of(steps.begin(), steps.end(), [&](const DiagnosisStep& s) {
+    return s.effect == effect;
+  });
 }
 
 CandidateFit AsContender(const DiagnosisStep& step) {
