@@ -1996,6 +1996,27 @@ TEST(Diagnose, ABearingAngleOnTheRidgeIsJudgedWithinItsErrors) {
                      text);
 }
 
+// Draw 128's record of the same case, kept as
+// tests/data/pair_bearing_half_degree_vary128.yaml: here the angle is
+// fitted at 0.98 +- 2.4 deg, not determined, and a pitch reading gain
+// (a probe outside the catalog, one parameter) came 15.1 below the
+// bearing moment's two, 9.5 below the true model's own fit with the angle
+// held. Charged only for the saturated moment the record determines
+// (DeterminedBic), the bearing moment ties with the probe: `ambiguous`,
+// not `not_explained` with the nominal Cm_alpha 9.7 of its errors off.
+TEST(Diagnose, AProbeIsWeighedAgainstWhatTheRecordDeterminesOfAnEffect) {
+  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  const Diagnosis d = DiagnoseConfig("pair_bearing_half_degree_vary128.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.ambiguous),
+            (std::set<std::string>{"bearing_moment", "reading_gain"}))
+      << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_TRUE(d.outside_catalog.effect.empty()) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}}, text);
+}
+
 // Whether `fit` holds Cm_bearing's error bar from its profile.
 bool Profiled(const FitResult& fit) {
   return testing::InPipeline(fit, "Cm_bearing's error bar from its profile");

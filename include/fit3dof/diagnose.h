@@ -207,7 +207,9 @@
 // those kinds: a negative axis friction had tied with a 3-s run's tunnel
 // damping) is compared, when no catalog effect, refused or not, explains
 // more; it is never adopted. When it lowers BIC by more than
-// `ambiguity_bic` below the best catalog effect that earned its place (or by
+// `ambiguity_bic` below the best catalog effect that earned its place
+// (that effect charged only for the parameters the record determines: a
+// bearing moment's angle whose standard error exceeds it is not) (or by
 // `min_bic_drop` when none did, and it predicts the held-out part of the
 // record as a newcomer must: else it is listed among the rejected and the
 // round ends as if no probe had been fitted; a pressure drift past the noise
