@@ -436,8 +436,9 @@ double BestBicWithinBounds(const std::vector<Contender>& contenders) {
 // the effect as the record shows it. On draw 128's pair of 3-s runs with
 // a bearing moment that fades beyond half a degree, the motion never
 // nears zero angle and only the saturated moment shows (bearing_angle
-// 0.98 +- 2.4 deg): a pitch reading gain came 15.1 below it, 9.5 below
-// the true model's own fit with the angle held, and the record was left
+// 0.98 +- 2.4 deg): a pitch reading gain came 15.1 below it (9.5 with
+// the angle held there, 8.9 below the true model's own fit with the angle
+// held at the truth), and the record was left
 // `not_explained`, Cm_alpha 9.7 of its errors off.
 double DeterminedBic(const Contender& k) {
   int undetermined = 0;

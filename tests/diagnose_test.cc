@@ -2000,10 +2000,11 @@ TEST(Diagnose, ABearingAngleOnTheRidgeIsJudgedWithinItsErrors) {
 // tests/data/pair_bearing_half_degree_vary128.yaml: here the angle is
 // fitted at 0.98 +- 2.4 deg, not determined, and a pitch reading gain
 // (a probe outside the catalog, one parameter) came 15.1 below the
-// bearing moment's two, 9.5 below the true model's own fit with the angle
-// held. Charged only for the saturated moment the record determines
-// (DeterminedBic), the bearing moment ties with the probe: `ambiguous`,
-// not `not_explained` with the nominal Cm_alpha 9.7 of its errors off.
+// bearing moment's two, 8.9 below the true model's own fit with the angle
+// held at the truth. Charged only for the saturated moment the record
+// determines (DeterminedBic), the bearing moment ties with the probe:
+// `ambiguous`, not `not_explained` with the nominal Cm_alpha 9.7 of its errors
+// off.
 TEST(Diagnose, AProbeIsWeighedAgainstWhatTheRecordDeterminesOfAnEffect) {
   if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d = DiagnoseConfig("pair_bearing_half_degree_vary128.yaml");
