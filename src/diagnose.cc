@@ -607,7 +607,7 @@ void RejectRound(const std::vector<Contender>& contenders,
     d->rejected.push_back(probe.record);
   }
   if (!d->outside_catalog.effect.empty()) {
-    KeepOutdoneByProbe(probe, contenders, earned, d);
+    KeepOutdoneByProbe(probe, contenders, earned, s->fit, d);
   }
   if (!s->check.at_noise_level) KeepRefusedForDrag(contenders, s->fit, d);
 }

@@ -930,7 +930,10 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
 void KeepOutdoneByProbe(const Contender& probe,
                         const std::vector<Contender>& contenders,
                         const std::vector<int>& earned,
+                        const FitResult& fit,
                         Diagnosis* d) {
+  d->not_excluded_models.push_back(probe.fit.parameters);
+  d->not_excluded_weights.push_back(AkaikeWeight(Aic(probe.fit) - Aic(fit)));
   for (int i : earned) {
     const Contender& k = contenders[i];
     d->outdone_by_probe.push_back(k.record.effect);
@@ -959,6 +962,10 @@ void WidenForNotExcluded(Diagnosis* d) {
     for (const CandidateFit& k : *fits) {
       which += (which.empty() ? "" : ", ") + k.effect;
     }
+  }
+  if (!d->outside_catalog.effect.empty()) {
+    which += (which.empty() ? "" : ", ") + d->outside_catalog.effect +
+             " (outside the catalog)";
   }
   for (const auto& [ids, why] :
        {std::pair(&d->outdone_by_probe, " (outdone by a probe)"),

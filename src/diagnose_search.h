@@ -590,19 +590,25 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
 // Cm_q 138-fold in the worst case, 13-fold at its BIC weight.
 void WidenForNotExcluded(Diagnosis* d);
 
-// The catalog contenders at `earned` (indices into `contenders`) that the
-// probe outdid, their fits' parameters among d->not_excluded_models with
-// their Akaike weights against the probe's model (Diagnosis::
-// outdone_by_probe): a probe is never adopted, and the final model is the
-// one before it, whose error bars had not covered what the record allows
-// with the catalog's explanation. On two 3-s runs (pair) a tunnel damping
-// stronger in yaw lost to the yaw axis's friction by 10.3 of BIC; the two
-// predict each run from the other alike, and the final Cm_q, the nominal
-// fit's -3.39 +- 0.015, was 137 of its errors from the truth (-5.5) that
-// the damping's model held (-5.14 +- 0.64).
+// The probe's model, with its Akaike weight against `fit` (the model the
+// search stopped at, the final one), and the catalog contenders at
+// `earned` (indices into `contenders`) that the probe outdid, with
+// theirs against the probe's model (Diagnosis::outdone_by_probe): their
+// fits' parameters among d->not_excluded_models. A probe is never
+// adopted, and the final model is the one before it, whose error bars had
+// covered neither what the record allows with the catalog's explanation
+// nor the probe's own. On two 3-s runs (pair) a tunnel damping stronger in
+// yaw lost to the yaw axis's friction by 10.3 of BIC; the two predict each
+// run from the other alike, and the final Cm_q, the nominal fit's -3.39 +-
+// 0.015, was 137 of its errors from the truth (-5.5) that the damping's
+// model held (-5.14 +- 0.64). On draw 128's 3-s cone with a bearing
+// moment a pressure drift outdid it by 17.6; the nominal Cm_alpha,
+// -0.23252 +- 2.2e-5, was quoted +- 7.9e-5, while the drift's model, 96
+// lower in BIC, holds -0.23196.
 void KeepOutdoneByProbe(const Contender& probe,
                         const std::vector<Contender>& contenders,
                         const std::vector<int>& earned,
+                        const FitResult& fit,
                         Diagnosis* d);
 
 // The contenders refused for their drag (Contender::dragged) at the

@@ -771,7 +771,8 @@ struct Diagnosis {
   std::vector<std::string> lesser_refits;
   // The catalog effects that earned their place at the round a probe
   // outdid them (`not_explained`): the final error bars cover their
-  // models too, each with its Akaike weight against the probe's model
+  // models too, each with its Akaike weight against the probe's model,
+  // and the probe's own model, with its weight against the final one
   // (among not_excluded_models).
   std::vector<std::string> outdone_by_probe;
   // The catalog effects refused for their drag at the round the search
