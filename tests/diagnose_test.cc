@@ -4969,6 +4969,29 @@ TEST(Diagnose, ARollMomentStepIsTriedWithAnUntriedTunnelTermInItsPlace) {
   EXPECT_GT(stiffness->bic_drop, 0.0) << text;
 }
 
+// An effect named past the noise level is refitted there even where its
+// score, at the model's solution, gives it no degree of freedom
+// (WithScores): on draw 130's 3-s run with a tunnel stiffness, a
+// nonlinear damping and a body yaw asymmetry (tests/data/short_stiffness_
+// damping_asymmetry_vary130.yaml) a roll torque and the asymmetry reached
+// the noise at a steady cone, Cm_q -0.57 (truth -4.42), where the
+// damping's delta^2 is a constant and the damping an exact twin of Cm_q;
+// beside that model its fit lowered BIC by 52.6. The answer had been
+// `explained` with the torque and the asymmetry; the damping is now named,
+// and the torque ties with the stiffness.
+TEST(Diagnose, AnEffectNamedPastTheNoiseIsRefittedWhateverItsScore) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_stiffness_damping_asymmetry_vary130.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"asymmetric_body", "nonlinear_damping"}))
+      << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
+  ExpectFinalCovers(d, {{"Cm_q", -4.418}}, text);
+}
+
 // A calibration error alone at 0.9 of its bound, on a pair of 3-s runs
 // whose yaw reading stays near zero, fitted at 0.214 deg against a bound
 // of 0.21 (theta_cal3 0.075 +- 0.040): refused at its point fit, it led a
