@@ -4732,7 +4732,8 @@ TEST(Diagnose, TheFinalErrorBarsCoverTheModelOfAProbeThatOutdidTheCatalog) {
   ASSERT_EQ(d.outside_catalog.effect, "pressure_drift") << text;
   Case drift = c;
   drift.parameters[FindParameter(drift.model, "q_drift")].free = true;
-  const ParameterEstimate* probe = SharedEstimate(Fit(drift), "Cm_alpha");
+  const FitResult drift_fit = Fit(drift);
+  const ParameterEstimate* probe = SharedEstimate(drift_fit, "Cm_alpha");
   const ParameterEstimate* final = SharedEstimate(d.FinalFit(), "Cm_alpha");
   ASSERT_NE(probe, nullptr);
   ASSERT_NE(final, nullptr);
