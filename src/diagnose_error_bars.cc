@@ -398,11 +398,7 @@ void TakeNotExcluded(const Beside& t,
     d->least_beside_bic = std::min(d->least_beside_bic, Bic(t.fit));
   }
   d->not_excluded_weights.push_back(AkaikeWeight(t.akaike_rise));
-  if (std::any_of(listed->begin(), listed->end(), [&](const CandidateFit& k) {
-        return k.effect == t.effect->id;
-      })) {
-    return;
-  }
+  if (FindFit(*listed, t.effect->id) != nullptr) return;
   CandidateFit k;
   k.effect = t.effect->id;
   k.parameters = Own(t.fit, t.added);
@@ -1247,11 +1243,7 @@ void TieWithSet(const std::vector<TimeHistory>& data,
                 Diagnosis* d) {
   std::vector<CandidateFit> tie = {AsContender(d->steps[best])};
   for (const Effect* e : set) {
-    const auto k =
-        std::find_if(d->not_excluded.begin(),
-                     d->not_excluded.end(),
-                     [&](const CandidateFit& n) { return n.effect == e->id; });
-    if (k != d->not_excluded.end()) {
+    if (const CandidateFit* k = FindFit(d->not_excluded, e->id)) {
       tie.push_back(*k);
       continue;
     }
@@ -1417,15 +1409,11 @@ std::vector<const Effect*> UntriedRidge(const Diagnosis& d,
                                         const DiagnoseOptions& options) {
   std::vector<const Effect*> untried;
   for (const Effect& e : EffectCatalog()) {
-    if (!OnTunnelRidge(e) || !Wanted(options, e) || InTie(d, e.id) ||
-        HoldsEffect(d.steps, e.id)) {
-      continue;
+    if (OnTunnelRidge(e) && Wanted(options, e) && !InTie(d, e.id) &&
+        !HoldsEffect(d.steps, e.id) &&
+        FindFit(d.not_excluded, e.id) == nullptr) {
+      untried.push_back(&e);
     }
-    const bool tried =
-        std::any_of(d.not_excluded.begin(),
-                    d.not_excluded.end(),
-                    [&](const CandidateFit& k) { return k.effect == e.id; });
-    if (!tried) untried.push_back(&e);
   }
   return untried;
 }

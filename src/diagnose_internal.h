@@ -205,6 +205,10 @@ std::string Joined(const std::vector<std::string>& items, const char* last);
 std::vector<std::vector<CandidateFit>> Ties(const Diagnosis& d);
 std::vector<CandidateFit> Tied(const Diagnosis& d);
 
+// The entry of `fits` for effect `id`, or null.
+const CandidateFit* FindFit(const std::vector<CandidateFit>& fits,
+                            const std::string& id);
+
 // The tie the diagnosis leaves open (d.ambiguous or one of d.later_ties)
 // that holds effect `id`, or null; and whether there is one.
 const std::vector<CandidateFit>* TieOf(const Diagnosis& d,

@@ -660,11 +660,7 @@ std::optional<Diagnosis> WithoutLedStep(const Case& c,
                   " by a small lead, led to a probe outside the catalog that "
                   "the effects found without it outdo",
               &other);
-  const bool known = std::any_of(
-      other.rejected.begin(), other.rejected.end(), [&](const CandidateFit& k) {
-        return k.effect == d->outside_catalog.effect;
-      });
-  if (!known) {
+  if (FindFit(other.rejected, d->outside_catalog.effect) == nullptr) {
     CandidateFit outside = d->outside_catalog;
     outside.rejected = "outdid the catalog's effects after " + effect +
                        ", but without it the catalog's effects explain the "

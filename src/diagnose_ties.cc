@@ -487,11 +487,7 @@ std::vector<CandidateFit> Unresolved(
               << (w.fitted ? " (BIC " + FormatNumber("%+.2f", rise(w)) + ")"
                            : std::string());
       if (!as_good) continue;
-      const bool listed =
-          std::any_of(open.begin(), open.end(), [&](const CandidateFit& k) {
-            return k.effect == w.rival->effect;
-          });
-      if (!listed) open.push_back(*w.rival);
+      if (FindFit(open, w.rival->effect) == nullptr) open.push_back(*w.rival);
       if (close) {
         tie_models->push_back(AsTieModel(step, steps, fit, w, options));
       }

@@ -194,14 +194,21 @@ std::vector<CandidateFit> Tied(const Diagnosis& d) {
   return tied;
 }
 
+const CandidateFit* FindFit(const std::vector<CandidateFit>& fits,
+                            const std::string& id) {
+  const auto k =
+      std::find_if(fits.begin(), fits.end(), [&](const CandidateFit& f) {
+        return f.effect == id;
+      });
+  return k == fits.end() ? nullptr : &*k;
+}
+
 // Without Tied's copy: called per contender where the final error bars
 // are weighed.
 const std::vector<CandidateFit>* TieOf(const Diagnosis& d,
                                        const std::string& id) {
   const auto holds = [&](const std::vector<CandidateFit>& tie) {
-    return std::any_of(tie.begin(), tie.end(), [&](const CandidateFit& k) {
-      return k.effect == id;
-    });
+    return FindFit(tie, id) != nullptr;
   };
   if (holds(d.ambiguous)) return &d.ambiguous;
   for (const std::vector<CandidateFit>& tie : d.later_ties) {
