@@ -612,6 +612,24 @@ void RejectRound(const std::vector<Contender>& contenders,
   if (!s->check.at_noise_level) KeepRefusedForDrag(contenders, s->fit, d);
 }
 
+// The fitted motions of `a` and `b`, two fits of one record, apart: the
+// sum over samples of their squared difference in units of the residual
+// weights (a's).
+double MotionApart(const FitResult& a, const FitResult& b) {
+  CHECK_EQ(a.segments.size(), b.segments.size());
+  double sum = 0.0;
+  for (size_t k = 0; k < a.segments.size(); ++k) {
+    const SegmentFit& x = a.segments[k];
+    const SegmentFit& y = b.segments[k];
+    CHECK_EQ(x.computed.size(), y.computed.size());
+    for (size_t i = 0; i < x.computed.size(); ++i) {
+      const double apart = (x.computed[i] - y.computed[i]) / x.sigma_deg[i % 3];
+      sum += apart * apart;
+    }
+  }
+  return sum;
+}
+
 // The round's best that earned its place (contenders[earned[0]]) taken as
 // the next step, with its rivals (Rivals; `probe`, when fitted, among
 // them): a tie opens there when it has one, and *notes records a near tie
@@ -630,7 +648,12 @@ void TakeBest(const std::vector<Contender>& contenders,
     // Go on with the best: whether the rest of the record is explained
     // decides between `ambiguous` and `not_explained`.
     s->tie = static_cast<int>(s->d.steps.size());
-    if (earned.size() > 1) notes->tied_first = best.record.effect;
+    if (earned.size() > 1) {
+      notes->tied_first = best.record.effect;
+      notes->tied_first_twin =
+          MotionApart(best.fit, contenders[earned[1]].fit) <
+          kSearchBicTolerance;
+    }
   }
   if (NearTie(contenders, earned, options)) {
     notes->led_steps.push_back(best.record.effect);

@@ -701,7 +701,14 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
 // joint_sets_from_bounds), and the model of the probe that outdid the
 // catalog (Diagnosis::outside_catalog), as fitted.
 struct SearchNotes {
+  // The first step's effect when it opened a tie with another that earned
+  // its place, and whether that other (the search without it takes it
+  // first) is its twin there: their fitted motions less than
+  // kSearchBicTolerance apart in sum of weighted squares (MotionApart,
+  // diagnose.cc), as a roll torque and a roll damping are at constant spin
+  // (1.7e-7; the nearest pair of others on draw 131 was 0.8 apart).
   std::string tied_first;
+  bool tied_first_twin = false;
   // The first step's effect when it was taken alone, untied, near tie or
   // not (NearTieBranch; a near tie when it is in led_steps too).
   std::string first_alone;
