@@ -146,9 +146,7 @@ void AddTwins(const Contender& member,
   if (!member.candidate->effect->roll_locked) return;
   for (const Effect& e : EffectCatalog()) {
     if (!Wanted(options, e) || !e.roll_locked || e.id == member.record.effect ||
-        std::any_of(rivals->begin(), rivals->end(), [&](const CandidateFit& r) {
-          return r.effect == e.id;
-        })) {
+        FindFit(*rivals, e.id) != nullptr) {
       continue;
     }
     CandidateFit twin;

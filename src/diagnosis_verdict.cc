@@ -86,11 +86,8 @@ std::string StoodIn(const Diagnosis& d) {
 std::string OffsetTwinWords(const Diagnosis& d) {
   const std::vector<CandidateFit>& tie = d.ambiguous;
   if (d.fits.empty() || RollSeparates(FittedData(d.FinalFit()))) return "";
-  const auto angularity =
-      std::find_if(tie.begin(), tie.end(), [](const CandidateFit& k) {
-        return k.effect == "flow_angularity";
-      });
-  if (angularity == tie.end()) return "";
+  const CandidateFit* angularity = FindFit(tie, "flow_angularity");
+  if (angularity == nullptr) return "";
   for (const CandidateFit& k : tie) {
     const Effect* e = FindEffect(k.effect);
     if (e != nullptr && e->roll_locked &&
