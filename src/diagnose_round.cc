@@ -575,21 +575,6 @@ RecentMemo<ScoreKey, std::vector<Candidate>>& TheScoreMemo() {
   return *memo;
 }
 
-// The calibration's range held at the readings' largest angle (pitch or
-// yaw, over every segment): the other form's straight line is the one a
-// linear calibration over the range the model flew took of the square.
-void HoldCalibrationRange(const std::vector<TimeHistory>& data, Case* c) {
-  double largest = 0.0;
-  for (const TimeHistory& h : data) {
-    for (int i = 0; i < h.size(); ++i) {
-      largest = std::max({largest, std::abs(h.theta[i]), std::abs(h.psi[i])});
-    }
-  }
-  ParameterSetting& range = c->parameters[Layout(c->model).cal_range];
-  range.value = largest;
-  range.free = false;
-}
-
 // How much lower in BIC the record must put an effect's other form than
 // the effect's own for a round to try the other (the search's
 // min_bic_drop): the catalog's form is the report's.
@@ -842,6 +827,25 @@ bool FitFrom(const Case& c,
     LOG(WARNING) << from.name << ": refit " << what << " failed: " << e.what();
     return false;
   }
+}
+
+void HoldCalibrationRange(const std::vector<TimeHistory>& data, Case* c) {
+  double largest = 0.0;
+  for (const TimeHistory& h : data) {
+    for (int i = 0; i < h.size(); ++i) {
+      largest = std::max({largest, std::abs(h.theta[i]), std::abs(h.psi[i])});
+    }
+  }
+  ParameterSetting& range = c->parameters[Layout(c->model).cal_range];
+  range.value = largest;
+  range.free = false;
+}
+
+double LeastProbableError(const FitResult& union_fit, const FitResult& fit) {
+  const double residuals = 3.0 * union_fit.points;
+  return union_fit.probable_error *
+         std::sqrt((residuals - union_fit.free_parameters) /
+                   (residuals - fit.free_parameters));
 }
 
 double ScoreBicDrop(const Candidate& k, const FitResult& fit) {
@@ -1112,16 +1116,6 @@ bool FitUnion(int lead,
   model->c.solver.stop_below = CheckResiduals(r.fit, r.options).noise_limit;
   return FitFrom(
       model->c, r.fit, r.data, "with a joint set's union", union_fit);
-}
-
-// The probable error of `union_fit` counted with the degrees of freedom of
-// `fit`, the model it extends (the fewest terms): a lower bound on any
-// fit of fewer of its effects.
-double LeastProbableError(const FitResult& union_fit, const FitResult& fit) {
-  const double residuals = 3.0 * union_fit.points;
-  return union_fit.probable_error *
-         std::sqrt((residuals - union_fit.free_parameters) /
-                   (residuals - fit.free_parameters));
 }
 
 // Whether a set of the lead with its `pool` may earn its place, as far as

@@ -26,6 +26,7 @@
 #include "diagnose_search.h"
 #include "fit3dof/diagnose.h"
 #include "format.h"
+#include "stage_solver.h"
 
 namespace fit3dof {
 
@@ -1062,7 +1063,73 @@ bool TiedWithTwins(const Diagnosis& d,
   return true;
 }
 
+// Whether a fit ended settled (tolerance, BIC rule, or out of reach of
+// stop_below): not stopped at a coordinate's limit or its iteration
+// limit, where a lower minimum may lie beyond.
+bool Settled(const FitResult& fit) {
+  const auto starts = [&](const char* prefix) {
+    return fit.termination.rfind(prefix, 0) == 0;
+  };
+  return starts(kBicRuleTermination) || starts(kOutOfReachTermination) ||
+         starts("probable error changed by less than");
+}
+
+// `d`'s final model at its solution without the catalog effect `id`:
+// its step taken out (WithoutStep). False when the model holds the
+// effect otherwise (a tie's effect stands in the final model in place
+// of a step).
+bool FinalModelWithout(const Diagnosis& d, const std::string& id, Case* at) {
+  *at = CaseAtSolution(d.final_case, d.FinalFit());
+  for (const DiagnosisStep& s : d.steps) {
+    if (s.effect == id) {
+      *at = WithoutStep(*at, s);
+      return true;
+    }
+  }
+  const Effect* effect = FindEffect(id);
+  if (effect == nullptr) return false;
+  for (const std::string& name : TermsIn(*at, *effect)) {
+    const int position = FindParameter(at->model, name);
+    if (position >= 0 && at->parameters[position].free) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+bool CatalogMayExplainWithout(const FitResult& nominal,
+                              const DiagnoseOptions& options,
+                              const std::string& id,
+                              const Diagnosis& d) {
+  Case all;
+  if (!FinalModelWithout(d, id, &all)) return true;
+  const std::vector<TimeHistory> data = FittedData(nominal);
+  for (const Effect& e : EffectCatalog()) {
+    if (!Wanted(options, e) || e.id == id) continue;
+    for (const Effect* form : {&e, OtherForm(e)}) {
+      Case next;
+      std::vector<std::string> added;
+      if (form == nullptr || !CandidateCase(all, *form, &next, &added)) {
+        continue;
+      }
+      all = std::move(next);
+      if (form != &e) HoldCalibrationRange(data, &all);
+    }
+  }
+  all.solver.profile_ridges = false;
+  all.solver.stop_below = CheckResiduals(nominal, options).noise_limit;
+  FitResult union_fit;
+  if (!FitFrom(
+          all, d.FinalFit(), data, "with every effect but " + id, &union_fit)) {
+    return true;
+  }
+  const double least = LeastProbableError(union_fit, nominal);
+  const double limit = CheckResiduals(union_fit, options).noise_limit;
+  VLOG(1) << "every effect but " << id << " (" << union_fit.free_parameters
+          << " terms, " << union_fit.termination << "): probable error at "
+          << "least " << least << " (limit " << limit << ")";
+  return least < limit || !Settled(union_fit);
+}
 
 const DiagnosisStep* PartnerTied(const Diagnosis& d,
                                  const DiagnoseOptions& options) {
@@ -1101,6 +1168,7 @@ Diagnosis WithoutTiedPartner(const Case& c,
                              Diagnosis d) {
   const DiagnosisStep* step = PartnerTied(d, options);
   if (step == nullptr || !SearchesAgain(options, *notes)) return d;
+  if (!CatalogMayExplainWithout(nominal, options, step->effect, d)) return d;
   SearchNotes again;
   Diagnosis other =
       SearchWithout(c, nominal, options, step->effect, CompleteBic(d), &again);
@@ -1141,7 +1209,8 @@ Diagnosis BlockerBranch(const Case& c,
                         const SearchNotes& notes,
                         Diagnosis d) {
   if (notes.blocker.empty() || !SearchesAgain(options, notes) ||
-      options.without_blocker) {
+      options.without_blocker ||
+      !CatalogMayExplainWithout(nominal, options, notes.blocker, d)) {
     return d;
   }
   // The whole diagnosis with the blocker known absent, second thoughts
