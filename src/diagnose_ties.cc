@@ -9,6 +9,7 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -496,6 +497,100 @@ std::vector<CandidateFit> Unresolved(
   return open;
 }
 
+// The rivals whose swap alone kept `step`'s tie open, none held on the
+// ridge: the effects of `singles` (tie models) in its place.
+std::vector<std::string> SwappedRivals(
+    const DiagnosisStep& step,
+    const std::vector<Diagnosis::TieModel>& singles) {
+  std::vector<std::string> ids;
+  for (const Diagnosis::TieModel& m : singles) {
+    if (m.in_place_of == step.effect && m.held.empty() &&
+        std::find(ids.begin(), ids.end(), m.effect) == ids.end()) {
+      ids.push_back(m.effect);
+    }
+  }
+  return ids;
+}
+
+// The tied steps' rivals two at a time (Diagnosis::cross_tie_models): the
+// model `at`, fitted as `fit`, with a rival of each of two steps of
+// `tied` in their places, each rival one whose swap alone kept its tie
+// open (SwappedRivals of `singles`), into *cross when within
+// ambiguity_bic of `fit` and each rival within kBoundErrors of its
+// bounds (as a swap alone, SwapWithin).
+void CrossTieModels(const std::vector<const DiagnosisStep*>& tied,
+                    const std::vector<DiagnosisStep>& steps,
+                    const Case& at,
+                    const FitResult& fit,
+                    const std::vector<TimeHistory>& data,
+                    const DiagnoseOptions& options,
+                    const std::vector<Diagnosis::TieModel>& singles,
+                    std::vector<Diagnosis::TieModel>* cross) {
+  struct Pair {
+    const DiagnosisStep* first;
+    const DiagnosisStep* second;
+    std::array<std::string, 2> ids;
+    std::array<std::vector<std::string>, 2> terms;
+    Case c;
+    bool fitted = false;
+    FitResult fit;
+  };
+  std::vector<Pair> pairs;
+  for (size_t i = 0; i < tied.size(); ++i) {
+    for (size_t j = i + 1; j < tied.size(); ++j) {
+      for (const std::string& a : SwappedRivals(*tied[i], singles)) {
+        for (const std::string& b : SwappedRivals(*tied[j], singles)) {
+          Pair x{tied[i], tied[j], {a, b}};
+          Case one;
+          if (RivalCase(WithoutStep(at, *tied[i]), a, &one, &x.terms[0]) &&
+              RivalCase(WithoutStep(one, *tied[j]), b, &x.c, &x.terms[1])) {
+            pairs.push_back(std::move(x));
+          }
+        }
+      }
+    }
+  }
+  ParallelFor(static_cast<int>(pairs.size()), [&](int k) {
+    Pair& x = pairs[k];
+    x.fitted = FitFrom(x.c,
+                       fit,
+                       data,
+                       "with " + x.ids[0] + " and " + x.ids[1] + " for " +
+                           x.first->effect + " and " + x.second->effect,
+                       &x.fit);
+  });
+  for (const Pair& x : pairs) {
+    if (!x.fitted) continue;
+    bool within = true;
+    for (int r = 0; r < 2; ++r) {
+      const Effect* e = FindEffect(x.ids[r]);
+      within &=
+          e == nullptr ||
+          ImplausibleWithin(*e, x.c, x.fit, x.terms[r], kBoundErrors).empty();
+    }
+    Diagnosis::TieModel m;
+    m.bic = Bic(x.fit);
+    m.rise = m.bic - Bic(fit);
+    VLOG(1) << x.ids[0] << " and " << x.ids[1] << " for " << x.first->effect
+            << " and " << x.second->effect << ": BIC "
+            << FormatNumber("%+.2f", m.rise)
+            << (within ? "" : ", out of bounds");
+    if (!within || !(m.rise < options.ambiguity_bic)) continue;
+    m.parameters = x.fit.parameters;
+    m.in_place_of = x.second->effect;
+    m.effect = x.ids[1];
+    m.also_in_place_of = x.first->effect;
+    m.also_effect = x.ids[0];
+    for (const DiagnosisStep& s : steps) {
+      m.effects.push_back(s.effect == x.first->effect    ? x.ids[0]
+                          : s.effect == x.second->effect ? x.ids[1]
+                                                         : s.effect);
+    }
+    m.check = CheckResiduals(x.fit, options);
+    cross->push_back(std::move(m));
+  }
+}
+
 // Ties (the first at step *tie; `rivals` holds each step's) on the way to
 // a record explained: the pruning (Prune) of every step, then the rivals
 // of each step still in the model swapped in for it (Unresolved). A roll torque
@@ -526,6 +621,7 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
   const FitResult& fit = pruned.FinalFit();
   const Case at = CaseAtSolution(model, fit);
   std::vector<std::vector<CandidateFit>> open_ties;
+  std::vector<const DiagnosisStep*> tied_steps;
   int first = -1;
   for (size_t i = 0; i < d->steps.size(); ++i) {
     if (rivals[i].empty()) continue;
@@ -544,6 +640,7 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
     (*tied)[i] = !open.empty();
     if (open.empty()) continue;
     if (first < 0) first = static_cast<int>(i);
+    tied_steps.push_back(&*kept);
     open_ties.push_back({AsContender(d->steps[i])});
     open_ties.back().insert(open_ties.back().end(), open.begin(), open.end());
   }
@@ -562,6 +659,15 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
       (*redundant)[i] = true;
     }
     *tie = first;
+    d->cross_tie_models.clear();
+    CrossTieModels(tied_steps,
+                   pruned.steps,
+                   at,
+                   fit,
+                   data,
+                   options,
+                   d->tie_models,
+                   &d->cross_tie_models);
     d->ambiguous = open_ties[0];
     d->later_ties.assign(open_ties.begin() + 1, open_ties.end());
     return false;
