@@ -761,8 +761,8 @@ struct Diagnosis {
   // Those of not_excluded that no round contended: effects the complete
   // model's effects made near twins of its free parameters, tried beside
   // it for that alone (diagnose_error_bars.cc NearTwins). Their error bars
-  // count; they do not stand in for a step in a set (FindSetReplacements),
-  // but one alone may (FindSingleReplacement).
+  // count; they may stand in for a step, alone (FindSingleReplacement) or
+  // in a set where a set without them does not (FindSetReplacements).
   std::vector<std::string> near_twins;
   // Catalog effects the record cannot tell from the final model's free
   // parameters on its own (near twins of them at the complete model's
