@@ -2806,6 +2806,30 @@ TEST(Diagnose, ASearchWithoutAPartnerNeedsEvidenceToReplaceTheAnswer) {
   ExpectTruthAddedOrTied(d, {"tunnel_damping", "magnus", "flow_angularity"});
 }
 
+// The effects of the suite's 3-s stiffness + nonlinear damping + body
+// asymmetry records.
+const std::set<std::string> kStiffnessDampingAsymmetry = {
+    "asymmetric_body", "nonlinear_damping", "tunnel_stiffness"};
+
+// Whether the tie model `m` holds exactly `effects`.
+bool Holds(const Diagnosis::TieModel& m, const std::set<std::string>& effects) {
+  return std::set<std::string>(m.effects.begin(), m.effects.end()) == effects;
+}
+
+// The entries of diagnosis.json's tie_models (of `d`, diagnosed from `c`)
+// that hold exactly `effects`.
+std::vector<nlohmann::json> ReportedTieModels(
+    const Diagnosis& d, const Case& c, const std::set<std::string>& effects) {
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(d, c));
+  std::vector<nlohmann::json> reported;
+  for (const nlohmann::json& m : j["tie_models"]) {
+    if (m["effects"].get<std::set<std::string>>() == effects) {
+      reported.push_back(m);
+    }
+  }
+  return reported;
+}
+
 // The same case on draw 72 (t1 -9.6e-4, t3 3.4e-4, Cm_q_delta2 -582, body
 // yaw +0.27%), kept as tests/data/short_stiffness_damping_asymmetry_draw72
 // .csv. Two ties stay open: the asymmetry with a Magnus moment, and after
@@ -2822,15 +2846,10 @@ TEST(Diagnose, ATieModelHoldsTheTrueEffectOfASecondTie) {
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   ASSERT_FALSE(d.later_ties.empty()) << text;
-  const std::set<std::string> truth = {
-      "asymmetric_body", "nonlinear_damping", "tunnel_stiffness"};
   const auto true_model =
-      std::find_if(d.tie_models.begin(),
-                   d.tie_models.end(),
-                   [&](const Diagnosis::TieModel& m) {
-                     return std::set<std::string>(m.effects.begin(),
-                                                  m.effects.end()) == truth;
-                   });
+      std::find_if(d.tie_models.begin(), d.tie_models.end(), [](const auto& m) {
+        return Holds(m, kStiffnessDampingAsymmetry);
+      });
   ASSERT_NE(true_model, d.tie_models.end()) << text;
   EXPECT_EQ(true_model->in_place_of, "roll_torque") << text;
   EXPECT_TRUE(true_model->check.at_noise_level) << text;
@@ -2842,17 +2861,14 @@ TEST(Diagnose, ATieModelHoldsTheTrueEffectOfASecondTie) {
                 {"Cm_q_alpha2", -582.15}},
                text);
   // diagnosis.json reports it with its effects.
-  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(
-      d, ShortConfig({testing::SourcePath("tests/data/" + file)})));
-  int reported = 0;
-  for (const nlohmann::json& m : j["tie_models"]) {
-    if (m["effects"].get<std::set<std::string>>() != truth) continue;
-    ++reported;
-    EXPECT_EQ(m["in_place_of"], "roll_torque");
-    EXPECT_TRUE(m["check"]["at_noise_level"].get<bool>());
-    EXPECT_TRUE(m["parameters"].contains("tunnel_Cn_psi"));
-  }
-  EXPECT_EQ(reported, 1) << j["tie_models"].dump(1);
+  const std::vector<nlohmann::json> reported = ReportedTieModels(
+      d,
+      ShortConfig({testing::SourcePath("tests/data/" + file)}),
+      kStiffnessDampingAsymmetry);
+  ASSERT_EQ(reported.size(), 1u) << text;
+  EXPECT_EQ(reported[0]["in_place_of"], "roll_torque");
+  EXPECT_TRUE(reported[0]["check"]["at_noise_level"].get<bool>());
+  EXPECT_TRUE(reported[0]["parameters"].contains("tunnel_Cn_psi"));
 }
 
 // The same case on draw 128 (t1 7.28e-4, t3 -2.55e-4, Cm_q_delta2 -504.6,
@@ -2872,10 +2888,8 @@ TEST(Diagnose, ACrossModelHoldsTheTrueEffectsOfTwoTies) {
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   ASSERT_FALSE(d.later_ties.empty()) << text;
-  const std::set<std::string> truth = {
-      "asymmetric_body", "nonlinear_damping", "tunnel_stiffness"};
-  const auto holds_truth = [&](const Diagnosis::TieModel& m) {
-    return std::set<std::string>(m.effects.begin(), m.effects.end()) == truth;
+  const auto holds_truth = [](const Diagnosis::TieModel& m) {
+    return Holds(m, kStiffnessDampingAsymmetry);
   };
   EXPECT_TRUE(
       std::none_of(d.tie_models.begin(), d.tie_models.end(), holds_truth))
@@ -2897,16 +2911,13 @@ TEST(Diagnose, ACrossModelHoldsTheTrueEffectsOfTwoTies) {
                 {"Cm_q_alpha2", -504.56}},
                text);
   // diagnosis.json reports it among the tie models, with both swaps.
-  const nlohmann::json j = nlohmann::json::parse(
-      DiagnosisJson(d, LoadConfig(testing::SourcePath("tests/data/" + file))));
-  int reported = 0;
-  for (const nlohmann::json& m : j["tie_models"]) {
-    if (m["effects"].get<std::set<std::string>>() != truth) continue;
-    ++reported;
-    EXPECT_EQ(m["also_in_place_of"], "magnus");
-    EXPECT_EQ(m["in_place_of"], "roll_torque");
-  }
-  EXPECT_EQ(reported, 1) << j["tie_models"].dump(1);
+  const std::vector<nlohmann::json> reported =
+      ReportedTieModels(d,
+                        LoadConfig(testing::SourcePath("tests/data/" + file)),
+                        kStiffnessDampingAsymmetry);
+  ASSERT_EQ(reported.size(), 1u) << text;
+  EXPECT_EQ(reported[0]["also_in_place_of"], "magnus");
+  EXPECT_EQ(reported[0]["in_place_of"], "roll_torque");
 }
 
 // The same case on draw 27 (t1 8.1e-4, t3 -2.8e-4, Cm_q_delta2 670, body
