@@ -1080,7 +1080,7 @@ bool Settled(const FitResult& fit) {
     return fit.termination.rfind(prefix, 0) == 0;
   };
   return starts(kBicRuleTermination) || starts(kOutOfReachTermination) ||
-         starts("probable error changed by less than");
+         starts(kToleranceTermination);
 }
 
 // `d`'s final model at its solution without the catalog effect `id`:

@@ -243,31 +243,52 @@ struct Swap {
 
 // The swap `w` of `step` (one of `steps`, fitted as `fit`) as a model
 // that keeps a tie open (Diagnosis::TieModel).
+// A model fitted as `swapped` that keeps a tie open (Diagnosis::TieModel),
+// its BIC against `fit` (the model with the tied steps): what it holds in
+// whose place is the caller's to fill in.
+Diagnosis::TieModel FittedTieModel(const FitResult& swapped,
+                                   const FitResult& fit,
+                                   const DiagnoseOptions& options) {
+  Diagnosis::TieModel m;
+  m.bic = Bic(swapped);
+  m.parameters = swapped.parameters;
+  m.rise = m.bic - Bic(fit);
+  m.check = CheckResiduals(swapped, options);
+  return m;
+}
+
+// The swap `w` of `step` (one of `steps`, fitted as `fit`) as a model
+// that keeps a tie open (Diagnosis::TieModel).
 Diagnosis::TieModel AsTieModel(const DiagnosisStep& step,
                                const std::vector<DiagnosisStep>& steps,
                                const FitResult& fit,
                                const Swap& w,
                                const DiagnoseOptions& options) {
-  Diagnosis::TieModel m;
-  m.bic = Bic(w.fit);
-  m.parameters = w.fit.parameters;
+  Diagnosis::TieModel m = FittedTieModel(w.fit, fit, options);
   m.in_place_of = step.effect;
-  m.rise = m.bic - Bic(fit);
   m.effect = w.rival->effect;
   m.held = w.held;
   for (const DiagnosisStep& s : steps) {
     m.effects.push_back(s.effect == step.effect ? m.effect : s.effect);
   }
-  m.check = CheckResiduals(w.fit, options);
   return m;
 }
 
-// Whether the swap `w`, fitted, keeps its effect within its bounds, judged
-// within two of its errors.
+// Whether the rival `effect` (null: a probe or a drift, no catalog bounds)
+// swapped in as the model `c`, fitted as `fit` with its `terms` free, keeps
+// within its bounds, judged within two of its errors.
+bool RivalWithin(const Effect* effect,
+                 const Case& c,
+                 const FitResult& fit,
+                 const std::vector<std::string>& terms) {
+  return effect == nullptr ||
+         ImplausibleWithin(*effect, c, fit, terms, kBoundErrors).empty();
+}
+
+// Whether the swap `w`, fitted, keeps its effect within its bounds
+// (RivalWithin).
 bool SwapWithin(const Swap& w) {
-  return w.effect == nullptr ||
-         ImplausibleWithin(*w.effect, w.c, w.fit, w.terms, kBoundErrors)
-             .empty();
+  return RivalWithin(w.effect, w.c, w.fit, w.terms);
 }
 
 // Whether the twin swap `w`, fitted (its BIC `rise` above the step's model,
@@ -517,7 +538,7 @@ std::vector<std::string> SwappedRivals(
 // `tied` in their places, each rival one whose swap alone kept its tie
 // open (SwappedRivals of `singles`), into *cross when within
 // ambiguity_bic of `fit` and each rival within kBoundErrors of its
-// bounds (as a swap alone, SwapWithin).
+// bounds (as a swap alone, RivalWithin).
 void CrossTieModels(const std::vector<const DiagnosisStep*>& tied,
                     const std::vector<DiagnosisStep>& steps,
                     const Case& at,
@@ -561,22 +582,15 @@ void CrossTieModels(const std::vector<const DiagnosisStep*>& tied,
   });
   for (const Pair& x : pairs) {
     if (!x.fitted) continue;
-    bool within = true;
-    for (int r = 0; r < 2; ++r) {
-      const Effect* e = FindEffect(x.ids[r]);
-      within &=
-          e == nullptr ||
-          ImplausibleWithin(*e, x.c, x.fit, x.terms[r], kBoundErrors).empty();
-    }
-    Diagnosis::TieModel m;
-    m.bic = Bic(x.fit);
-    m.rise = m.bic - Bic(fit);
+    const bool within =
+        RivalWithin(FindEffect(x.ids[0]), x.c, x.fit, x.terms[0]) &&
+        RivalWithin(FindEffect(x.ids[1]), x.c, x.fit, x.terms[1]);
+    Diagnosis::TieModel m = FittedTieModel(x.fit, fit, options);
     VLOG(1) << x.ids[0] << " and " << x.ids[1] << " for " << x.first->effect
             << " and " << x.second->effect << ": BIC "
             << FormatNumber("%+.2f", m.rise)
             << (within ? "" : ", out of bounds");
     if (!within || !(m.rise < options.ambiguity_bic)) continue;
-    m.parameters = x.fit.parameters;
     m.in_place_of = x.second->effect;
     m.effect = x.ids[1];
     m.also_in_place_of = x.first->effect;
@@ -586,7 +600,6 @@ void CrossTieModels(const std::vector<const DiagnosisStep*>& tied,
                           : s.effect == x.second->effect ? x.ids[1]
                                                          : s.effect);
     }
-    m.check = CheckResiduals(x.fit, options);
     cross->push_back(std::move(m));
   }
 }

@@ -396,7 +396,7 @@ StageOutcome SolveStageOnce(const std::vector<PreparedSegment>& segments,
     outcome.termination = BeyondTermination(settings, names, *values);
   } else if (summary.termination_type == ceres::USER_SUCCESS) {
     outcome.termination =
-        "probable error changed by less than " +
+        kToleranceTermination +
         FormatNumber("%g", std::max(tolerance, relative_tolerance));
   } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
     outcome.termination = "CONVERGENCE CRITERIA NOT SATISFIED AFTER " +
@@ -506,8 +506,8 @@ StageOutcome SolveGaussNewton(const std::vector<PreparedSegment>& segments,
     const double e = std::sqrt(ressum / dof);
     if (old_e >= 0.0 && std::abs(e - old_e) < tolerance) {
       outcome.converged = true;
-      outcome.termination = "probable error changed by less than " +
-                            FormatNumber("%g", tolerance);
+      outcome.termination =
+          kToleranceTermination + FormatNumber("%g", tolerance);
       return outcome;
     }
     if (iteration == max_iterations) {

@@ -22,6 +22,9 @@ namespace fit3dof {
 inline constexpr char kBicRuleTermination[] = "BIC fell by less than ";
 // That of a run ended below StageSettings::stop_below.
 inline constexpr char kBelowTermination[] = "probable error below ";
+// That of a run ended by its tolerance on the probable error.
+inline constexpr char kToleranceTermination[] =
+    "probable error changed by less than ";
 // That of a run ended out of its reach (StageSettings::out_of_reach).
 inline constexpr char kOutOfReachTermination[] = "out of reach of ";
 // That of a run ended with a coordinate past its limit
