@@ -168,14 +168,16 @@ std::string RestsOnOneReading(const FitResult& before,
                               double min_bic_drop);
 
 // Each segment cut into `blocks` runs of samples, alternately kept for
-// training (the first, where the initial conditions hold, among them) and
-// held out: the held-out samples span the record's amplitudes and spin
-// rates, and the motion is integrated through them.
+// training and held out: the held-out samples span the record's amplitudes
+// and spin rates, and the motion is integrated through them. Half 0 holds
+// out the odd runs; half 1 the even ones but for the first reading, which
+// both keep: the initial conditions are fitted there, and the motion is
+// integrated from it to every held-out sample.
 struct HeldOut {
   std::vector<TimeHistory> train;
   std::vector<std::vector<bool>> held;  // per segment and sample
 };
-HeldOut HoldOut(const std::vector<TimeHistory>& data, int blocks);
+HeldOut HoldOut(const std::vector<TimeHistory>& data, int blocks, int half);
 
 // The weighted residual sum of squares over the held-out samples of the
 // case fitted to the training part (fit `trained`), the motion integrated

@@ -172,14 +172,17 @@ bool PredictsHeldOut(const Case& with,
                      OutOfSample* out_of_sample,
                      double* gain,
                      std::string* why) {
-  *gain = out_of_sample->Gain(with);
   const double needed = GainNeeded(terms, options);
+  *gain = out_of_sample->GainOfBothHalves(with, needed);
   if (*gain > needed) return true;
   *why =
       "it does not predict the held-out part of the record better "
       "(log-likelihood gain " +
-      FormatNumber("%.3g", *gain) + ", needs " + FormatNumber("%.3g", needed) +
-      ")";
+      FormatNumber("%.3g", *gain) +
+      (options.held_out_both_halves && *gain > 0.0
+           ? ", short of the bar with the other half held out too"
+           : "") +
+      ", needs " + FormatNumber("%.3g", needed) + ")";
   return false;
 }
 
@@ -414,8 +417,9 @@ bool EarnedTogether(const Case& c,
   if (!ImplausibleAmongAsJudged(added, c, fit, options).empty()) {
     return false;
   }
-  *gain = out_of_sample->Gain(FromSolution(c, fit));
-  return *gain > GainNeeded(terms, options);
+  const double needed = GainNeeded(terms, options);
+  *gain = out_of_sample->GainOfBothHalves(FromSolution(c, fit), needed);
+  return *gain > needed;
 }
 
 // The lowest BIC of `contenders`, refused or not, but for those refused

@@ -548,8 +548,8 @@ void CrossTieModels(const std::vector<const DiagnosisStep*>& tied,
                     const std::vector<Diagnosis::TieModel>& singles,
                     std::vector<Diagnosis::TieModel>* cross) {
   struct Pair {
-    const DiagnosisStep* first;
-    const DiagnosisStep* second;
+    const DiagnosisStep* first = nullptr;
+    const DiagnosisStep* second = nullptr;
     std::array<std::string, 2> ids;
     std::array<std::vector<std::string>, 2> terms;
     Case c;
@@ -561,7 +561,10 @@ void CrossTieModels(const std::vector<const DiagnosisStep*>& tied,
     for (size_t j = i + 1; j < tied.size(); ++j) {
       for (const std::string& a : SwappedRivals(*tied[i], singles)) {
         for (const std::string& b : SwappedRivals(*tied[j], singles)) {
-          Pair x{tied[i], tied[j], {a, b}};
+          Pair x;
+          x.first = tied[i];
+          x.second = tied[j];
+          x.ids = {a, b};
           Case one;
           if (RivalCase(WithoutStep(at, *tied[i]), a, &one, &x.terms[0]) &&
               RivalCase(WithoutStep(one, *tied[j]), b, &x.c, &x.terms[1])) {

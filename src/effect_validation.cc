@@ -528,13 +528,15 @@ std::string RestsOnOneReading(const FitResult& before,
          FormatNumber("%.3g", bic_drop - top);
 }
 
-HeldOut HoldOut(const std::vector<TimeHistory>& data, int blocks) {
+HeldOut HoldOut(const std::vector<TimeHistory>& data, int blocks, int half) {
+  CHECK(half == 0 || half == 1) << half;
   HeldOut h;
   for (const TimeHistory& d : data) {
     TimeHistory train;
     std::vector<bool> held(d.size(), false);
     for (int i = 0; i < d.size(); ++i) {
-      held[i] = (static_cast<long>(i) * blocks / d.size()) % 2 == 1;
+      held[i] =
+          i > 0 && (static_cast<long>(i) * blocks / d.size()) % 2 == 1 - half;
       if (!held[i]) train.Append(d.t[i], d.phi[i], d.theta[i], d.psi[i]);
     }
     h.train.push_back(std::move(train));

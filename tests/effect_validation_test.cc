@@ -2,7 +2,8 @@
 //
 // Implausible (effect_validation.cc): each effect's plausibility bound
 // (Effect::bounds) against fitted values and the record's angles; WrongSign:
-// a probe's terms against their physical sign.
+// a probe's terms against their physical sign; HoldOut: the two halves of
+// the out-of-sample check.
 
 #include <cmath>
 #include <string>
@@ -426,6 +427,35 @@ TEST(WrongSign, NamesEachTermPastZero) {
   EXPECT_EQ(wrong[0]->name, "theta_lag");
   fit.parameters[1].value = -0.00095;  // within two errors of zero
   EXPECT_EQ(WrongSignTerms(lag, fit).size(), 1u);
+}
+
+// The two halves of HoldOut: half 0 holds out the odd runs of samples,
+// half 1 the even ones; each sample but the first is held out by exactly
+// one, and the first, where the initial conditions are fitted, is trained
+// on by both. What each trains on is what it does not hold out.
+TEST(HoldOut, TheTwoHalvesHoldOutEverySampleButTheFirstOnce) {
+  TimeHistory d;
+  for (int i = 0; i < 53; ++i) d.Append(0.06 * i, i, 2.0 * i, 3.0 * i);
+  const HeldOut first = HoldOut({d}, 8, 0);
+  const HeldOut second = HoldOut({d}, 8, 1);
+  ASSERT_EQ(first.held.size(), 1u);
+  ASSERT_EQ(second.held.size(), 1u);
+  EXPECT_FALSE(first.held[0][0]);
+  EXPECT_FALSE(second.held[0][0]);
+  int held_first = 0;
+  for (int i = 1; i < d.size(); ++i) {
+    EXPECT_NE(first.held[0][i], second.held[0][i]) << "sample " << i;
+    held_first += first.held[0][i];
+  }
+  // The first run (samples 0-6 of 53) is half 0's training, the second
+  // (7-13) its held-out part.
+  EXPECT_FALSE(first.held[0][6]);
+  EXPECT_TRUE(first.held[0][7]);
+  EXPECT_TRUE(second.held[0][6]);
+  EXPECT_EQ(first.train[0].size(), d.size() - held_first);
+  EXPECT_EQ(second.train[0].size(), 1 + held_first);
+  EXPECT_EQ(second.train[0].t[0], 0.0);
+  EXPECT_EQ(second.train[0].t[1], d.t[7]);
 }
 
 }  // namespace
