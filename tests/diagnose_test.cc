@@ -2908,6 +2908,12 @@ TEST(Diagnose, ACrossModelHoldsTheTrueEffectsOfTwoTies) {
   const auto holds_truth = [](const Diagnosis::TieModel& m) {
     return Holds(m, kStiffnessDampingAsymmetry);
   };
+  const std::map<std::string, double> truth = {
+      {"Cm_alpha", -0.23},
+      {"Cn_beta", 0.23 * (1.0 - 0.0021670)},
+      {"tunnel_Cm_theta", 7.284e-4},
+      {"tunnel_Cn_psi", -2.549e-4},
+      {"Cm_q_alpha2", -504.56}};
   const Diagnosis both = Diagnose(c, DiagnoseOptions());
   const std::string both_text = FormatDiagnosis(both, {0.01, 0.01, 0.01});
   EXPECT_EQ(both.verdict, Verdict::kAmbiguous) << both_text;
@@ -2915,13 +2921,7 @@ TEST(Diagnose, ACrossModelHoldsTheTrueEffectsOfTwoTies) {
       std::find_if(both.tie_models.begin(), both.tie_models.end(), holds_truth);
   ASSERT_NE(single, both.tie_models.end()) << both_text;
   EXPECT_EQ(single->in_place_of, "roll_torque") << both_text;
-  ExpectCovers(single->parameters,
-               {{"Cm_alpha", -0.23},
-                {"Cn_beta", 0.23 * (1.0 - 0.0021670)},
-                {"tunnel_Cm_theta", 7.284e-4},
-                {"tunnel_Cn_psi", -2.549e-4},
-                {"Cm_q_alpha2", -504.56}},
-               both_text);
+  ExpectCovers(single->parameters, truth, both_text);
 
   DiagnoseOptions odd_runs;
   odd_runs.held_out_both_halves = false;
@@ -2941,13 +2941,7 @@ TEST(Diagnose, ACrossModelHoldsTheTrueEffectsOfTwoTies) {
   EXPECT_EQ(cross->effect, "tunnel_stiffness") << text;
   EXPECT_LT(cross->rise, 0.0) << text;
   EXPECT_TRUE(cross->check.at_noise_level) << text;
-  ExpectCovers(cross->parameters,
-               {{"Cm_alpha", -0.23},
-                {"Cn_beta", 0.23 * (1.0 - 0.0021670)},
-                {"tunnel_Cm_theta", 7.284e-4},
-                {"tunnel_Cn_psi", -2.549e-4},
-                {"Cm_q_alpha2", -504.56}},
-               text);
+  ExpectCovers(cross->parameters, truth, text);
   // diagnosis.json reports it among the tie models, with both swaps.
   const std::vector<nlohmann::json> reported =
       ReportedTieModels(d, c, kStiffnessDampingAsymmetry);
