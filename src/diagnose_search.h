@@ -11,6 +11,8 @@
 #ifndef FIT3DOF_SRC_DIAGNOSE_SEARCH_H_
 #define FIT3DOF_SRC_DIAGNOSE_SEARCH_H_
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -250,6 +252,7 @@ class OutOfSample {
   };
 
   Half& HalfOf(int half) {
+    CHECK(half == 0 || half == 1) << half;
     Half& h = halves_[half];
     if (h.samples < 0) {
       h.held_out = HoldOut(data_, blocks_, half);

@@ -118,10 +118,9 @@
 //     parameter it adds, AIC's price). A positive gain short of that
 //     gets a second chance: the other half held out in turn (the first
 //     reading still kept), whose gain must clear the bar. Held-out runs
-//     spread over the
-//     record test an effect at every amplitude and spin rate the record
-//     has: a calibration error that lives at the large early angles would
-//     go untested in a held-out final third.
+//     spread over the record test an effect at every amplitude and spin
+//     rate the record has: a calibration error that lives at the large
+//     early angles would go untested in a held-out final third.
 // When other contenders come within `ambiguity_bic` (10) of the BIC of
 // the best that earned its place (whether or not they earned theirs: the
 // effects still missing may be what refused them), the search follows the
