@@ -540,11 +540,9 @@ void AddTieModels(const Diagnosis& d,
   const double lowest = complete == nullptr
                             ? std::numeric_limits<double>::infinity()
                             : Bic(*complete);
-  for (const auto* all : {&d.tie_models, &d.cross_tie_models}) {
-    for (const Diagnosis::TieModel& m : *all) {
-      if (!(m.bic > lowest + options.ambiguity_bic)) {
-        models->push_back(&m.parameters);
-      }
+  for (const Diagnosis::TieModel* m : d.AllTieModels()) {
+    if (!(m->bic > lowest + options.ambiguity_bic)) {
+      models->push_back(&m->parameters);
     }
   }
 }

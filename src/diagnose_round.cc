@@ -179,7 +179,7 @@ bool PredictsHeldOut(const Case& with,
       "it does not predict the held-out part of the record better "
       "(log-likelihood gain " +
       FormatNumber("%.3g", *gain) +
-      (options.held_out_both_halves && *gain > 0.0
+      (out_of_sample->SecondChance(*gain, needed)
            ? ", short of the bar with the other half held out too"
            : "") +
       ", needs " + FormatNumber("%.3g", needed) + ")";

@@ -211,15 +211,22 @@ class OutOfSample {
               const DiagnoseOptions& options)
       : current_(FromSolution(current, fit)),
         data_(FittedData(fit)),
-        blocks_(options.held_out_blocks),
         both_halves_(options.held_out_both_halves) {
     for (const SegmentFit& s : fit.segments) weights_.push_back(s.sigma_deg);
+    for (int half : {0, 1}) {
+      Half& h = halves_[half];
+      h.held_out = HoldOut(data_, options.held_out_blocks, half);
+      for (const std::vector<bool>& held : h.held_out.held) {
+        h.samples += 3 * std::count(held.begin(), held.end(), true);
+      }
+    }
   }
 
   // n_test ln(RSS_without / RSS_with) over the samples `half` holds out;
   // -infinity when the contender cannot be fitted or integrated there.
   double Gain(const Case& with, int half = 0) {
-    Half& h = HalfOf(half);
+    CHECK(half == 0 || half == 1) << half;
+    Half& h = halves_[half];
     if (h.samples == 0) return 0.0;
     if (h.rss_without < 0.0) h.rss_without = Rss(current_, h.held_out);
     return h.samples * std::log(h.rss_without / Rss(with, h.held_out));
@@ -239,30 +246,24 @@ class OutOfSample {
   // record: AnEarlyStepThatRefusedABetterOneIsSearchedWithout).
   double GainOfBothHalves(const Case& with, double needed) {
     const double first = Gain(with, 0);
-    if (first > needed || !(first > 0.0) || !both_halves_) return first;
+    if (!SecondChance(first, needed)) return first;
     const double second = Gain(with, 1);
     return second > needed ? second : first;
+  }
+
+  // Whether a first half's gain `first` calls for the second half against
+  // the bar `needed` (GainOfBothHalves): positive, short of it, and both
+  // halves asked for (DiagnoseOptions::held_out_both_halves).
+  bool SecondChance(double first, double needed) const {
+    return both_halves_ && first > 0.0 && !(first > needed);
   }
 
  private:
   struct Half {
     HeldOut held_out;
-    int samples = -1;  // held out, times three channels; -1 before built
-    double rss_without = -1.0;
+    int samples = 0;            // held out, times three channels
+    double rss_without = -1.0;  // the current model's; -1 before fitted
   };
-
-  Half& HalfOf(int half) {
-    CHECK(half == 0 || half == 1) << half;
-    Half& h = halves_[half];
-    if (h.samples < 0) {
-      h.held_out = HoldOut(data_, blocks_, half);
-      h.samples = 0;
-      for (const std::vector<bool>& held : h.held_out.held) {
-        h.samples += 3 * std::count(held.begin(), held.end(), true);
-      }
-    }
-    return h;
-  }
 
   double Rss(const Case& c, const HeldOut& held_out) const {
     try {
@@ -275,7 +276,6 @@ class OutOfSample {
 
   const Case current_;
   const std::vector<TimeHistory> data_;
-  const int blocks_;
   const bool both_halves_;
   std::vector<ChannelValues> weights_;
   Half halves_[2];

@@ -241,8 +241,6 @@ struct Swap {
   std::string held;  // a tunnel term held at zero, or none
 };
 
-// The swap `w` of `step` (one of `steps`, fitted as `fit`) as a model
-// that keeps a tie open (Diagnosis::TieModel).
 // A model fitted as `swapped` that keeps a tie open (Diagnosis::TieModel),
 // its BIC against `fit` (the model with the tied steps): what it holds in
 // whose place is the caller's to fill in.

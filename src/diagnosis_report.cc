@@ -331,19 +331,17 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   const auto optional = [](const std::string& s) {
     return s.empty() ? json(nullptr) : json(s);
   };
-  for (const auto* all : {&d.tie_models, &d.cross_tie_models}) {
-    for (const Diagnosis::TieModel& m : *all) {
-      out["tie_models"].push_back(
-          {{"effects", m.effects},
-           {"effect", m.effect},
-           {"in_place_of", m.in_place_of},
-           {"also_effect", optional(m.also_effect)},
-           {"also_in_place_of", optional(m.also_in_place_of)},
-           {"held", optional(m.held)},
-           {"bic_rise", m.rise},
-           {"check", Check(m.check)},
-           {"parameters", Estimates(m.parameters)}});
-    }
+  for (const Diagnosis::TieModel* m : d.AllTieModels()) {
+    out["tie_models"].push_back(
+        {{"effects", m->effects},
+         {"effect", m->effect},
+         {"in_place_of", m->in_place_of},
+         {"also_effect", optional(m->also_effect)},
+         {"also_in_place_of", optional(m->also_in_place_of)},
+         {"held", optional(m->held)},
+         {"bic_rise", m->rise},
+         {"check", Check(m->check)},
+         {"parameters", Estimates(m->parameters)}});
   }
   out["tie_stand_in"] = d.stand_in.empty() ? json(nullptr) : json(d.stand_in);
   out["stood_in"] = json::array();
@@ -501,20 +499,17 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
            (a.check.at_noise_level ? ", at the noise level\n"
                                    : ", residuals structured\n");
   }
-  for (const auto* all : {&d.tie_models, &d.cross_tie_models}) {
-    for (const Diagnosis::TieModel& m : *all) {
-      const std::string swapped =
-          (m.also_effect.empty()
-               ? ""
-               : m.also_effect + " in place of " + m.also_in_place_of + ", ") +
-          m.effect + " in place of " + m.in_place_of;
-      out +=
-          std::string(m.also_effect.empty() ? "  model that keeps a tie"
-                                            : "  model that keeps two ties") +
-          " open: " + Joined(m.effects, " and ") + " (" + swapped + "): BIC " +
-          FormatNumber("%+.1f", m.rise) + ", probable error " +
-          FormatNumber("%.3g", m.check.probable_error) + "\n";
-    }
+  for (const Diagnosis::TieModel* m : d.AllTieModels()) {
+    const std::string swapped =
+        (m->also_effect.empty()
+             ? ""
+             : m->also_effect + " in place of " + m->also_in_place_of + ", ") +
+        m->effect + " in place of " + m->in_place_of;
+    out += std::string(m->also_effect.empty() ? "  model that keeps a tie"
+                                              : "  model that keeps two ties") +
+           " open: " + Joined(m->effects, " and ") + " (" + swapped +
+           "): BIC " + FormatNumber("%+.1f", m->rise) + ", probable error " +
+           FormatNumber("%.3g", m->check.probable_error) + "\n";
   }
   if (!d.outside_catalog.effect.empty()) {
     out += "  outside the catalog, not adopted: " + d.outside_catalog.effect +

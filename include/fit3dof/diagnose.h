@@ -823,6 +823,15 @@ struct Diagnosis {
 
   // The final model's fit.
   const FitResult& FinalFit() const { return fits[final_fit]; }
+  // The tie models, the single swaps (tie_models) and then the cross
+  // models (cross_tie_models): what the final error bars cover and
+  // diagnosis.json's tie_models report.
+  std::vector<const TieModel*> AllTieModels() const {
+    std::vector<const TieModel*> all;
+    for (const TieModel& m : tie_models) all.push_back(&m);
+    for (const TieModel& m : cross_tie_models) all.push_back(&m);
+    return all;
+  }
 };
 
 ResidualCheck CheckResiduals(const FitResult& fit,
