@@ -3958,7 +3958,14 @@ TEST(Diagnose, AnExplainedAnswerGivesWayToATiePastTheNoise) {
 // torque and the damping, the asymmetry tied with a Magnus moment, short
 // of the noise. Not the truth, but not a confident answer either: the
 // asymmetry stays in the tie and the final error bars cover the body's
-// coefficients.
+// coefficients. The search is that close to its turns: since the 70th
+// session's sines and cosines (angles.h, within two units in the last
+// place of the library's) the asymmetry, the damping and a roll torque
+// earn their place together, and the torque ties with the true stiffness
+// (its model 3.4 lower) and a tunnel damping: the asymmetry named, the
+// stiffness in the tie (OutdoneSwapBranch is no longer reached here; it
+// runs on other kept records, ATieOutdoneOnItsOtherSideIsSearchedWith-
+// outItsLead's among them).
 TEST(Diagnose, AnEffectOutdoneInASwapIsSearchedWithout) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
@@ -3966,8 +3973,8 @@ TEST(Diagnose, AnEffectOutdoneInASwapIsSearchedWithout) {
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
   EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
-  EXPECT_TRUE(EffectIds(d.ambiguous).count("asymmetric_body")) << text;
-  EXPECT_NE(text.find("followed in a tie"), std::string::npos) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("asymmetric_body")) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
   ExpectCovers(d.final_parameters, kShortCoefficients, text);
 }
 
