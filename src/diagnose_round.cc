@@ -293,10 +293,15 @@ bool ScoreTwins(const Candidate& a, const Candidate& b) {
 }
 
 // Whether contenders[a] may join the set the contender at `lead` leads
-// (JointPool's rule).
-bool MayJoin(int a, int lead, const std::vector<Contender>& contenders) {
+// (JointPool's rule); with `bounded_ahead`, one ahead of it that left its
+// bounds alone may too (BoundedAheadPool).
+bool MayJoin(int a,
+             int lead,
+             const std::vector<Contender>& contenders,
+             bool bounded_ahead = false) {
   return a != lead &&
-         (a > lead || std::isfinite(contenders[a].record.prediction_gain));
+         (a > lead || std::isfinite(contenders[a].record.prediction_gain) ||
+          (bounded_ahead && contenders[a].out_of_bounds));
 }
 
 // The others for the contender at `lead` (indices into `contenders`,
@@ -315,11 +320,13 @@ bool MayJoin(int a, int lead, const std::vector<Contender>& contenders) {
 // errors; drawn on after it first, its pool filled with the three ranked
 // below it, and the record ended `not_explained`, Cm_q 75 of its errors
 // off.
-std::vector<int> JointPool(int lead, const std::vector<Contender>& contenders) {
+std::vector<int> JointPool(int lead,
+                           const std::vector<Contender>& contenders,
+                           bool bounded_ahead = false) {
   std::vector<int> pool;
   const int count = static_cast<int>(contenders.size());
   for (int a = 0; a < count && pool.size() + 1 < kJointPool; ++a) {
-    if (MayJoin(a, lead, contenders)) pool.push_back(a);
+    if (MayJoin(a, lead, contenders, bounded_ahead)) pool.push_back(a);
   }
   return pool;
 }
@@ -381,16 +388,10 @@ std::vector<int> ScorePool(int lead, const std::vector<Contender>& contenders) {
 // had held the true model was lost.
 std::vector<int> BoundedAheadPool(int lead,
                                   const std::vector<Contender>& contenders) {
-  std::vector<int> pool;
-  bool drawn = false;
-  for (int a = 0;
-       a < static_cast<int>(contenders.size()) && pool.size() + 1 < kJointPool;
-       ++a) {
-    const bool ahead = a < lead && contenders[a].out_of_bounds;
-    if (!ahead && !MayJoin(a, lead, contenders)) continue;
-    pool.push_back(a);
-    drawn = drawn || ahead;
-  }
+  std::vector<int> pool = JointPool(lead, contenders, true);
+  const bool drawn = std::any_of(pool.begin(), pool.end(), [&](int a) {
+    return a < lead && contenders[a].out_of_bounds;
+  });
   return drawn ? pool : std::vector<int>();
 }
 
