@@ -28,6 +28,8 @@ json Check(const ResidualCheck& r) {
            {{"peak_over_mean", r.peak_ratio},
             {"peak_over_neighbours", r.line_ratio},
             {"peak_frequency_hz", r.peak_frequency_hz}}},
+          {"noise_limit", r.noise_limit},
+          {"whiteness_limit", r.whiteness_limit},
           {"at_noise_level", r.at_noise_level},
           {"white", r.white},
           {"below_sigma", r.below_sigma}};

@@ -151,17 +151,24 @@ std::string AmbiguousText(const Diagnosis& d) {
 // White residuals larger than sigma: their size is all that is wrong, and
 // noise larger than configured makes that as well as a missing effect (a
 // clean record with 0.015-deg noise fitted with sigma 0.01 had been called
-// structured).
-std::string LargerThanSigma(const ResidualCheck& check,
-                            const std::string& lag1) {
-  return "the residuals are white (" + lag1 + ", no spectral line) but " +
+// structured). "White" is the test's word, and its limit is said with it:
+// on a short record noise reaches a lag-1 autocorrelation that reads as
+// structure (draw 136's 34-sample run: psi 0.46 against a limit of 0.53).
+std::string LargerThanSigma(const ResidualCheck& check) {
+  return "the residuals pass the whiteness test (lag-1 autocorrelation "
+         "phi " +
+         FormatNumber("%.2f", check.lag1.phi) + " theta " +
+         FormatNumber("%.2f", check.lag1.theta) + " psi " +
+         FormatNumber("%.2f", check.lag1.psi) + ", each below the limit " +
+         FormatNumber("%.2f", check.whiteness_limit) +
+         " set for noise on this many samples; no spectral line) but " +
          FormatNumber("%.3g", check.probable_error) +
          " times the configured sigma (rms theta " +
          FormatNumber("%.3g", check.rms_deg.theta) + ", psi " +
          FormatNumber("%.3g", check.rms_deg.psi) +
          " deg): the noise may be larger than configured (a record of the "
          "model at rest, or sigma set to these or to auto, tells) or an "
-         "effect leaves no structure on this record";
+         "effect is missing that this record cannot confirm";
 }
 
 // sigma: auto (DiagnoseOptions::noise_held): the noise the search held,
@@ -255,7 +262,7 @@ std::string NotExplainedText(const Diagnosis& d) {
                            FormatNumber("%.2f", check.lag1.psi);
   return "not explained by the catalog: " +
          (check.at_noise_level ? AtTheNoiseYetStructured(check)
-          : check.white        ? LargerThanSigma(check, lag1)
+          : check.white        ? LargerThanSigma(check)
                                : "the residuals remain structured (probable "
                                  "error " +
                               FormatNumber("%.3g", check.probable_error) +

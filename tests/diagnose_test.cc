@@ -19,6 +19,7 @@
 #include "fit3dof/model_conversion.h"
 #include "fit3dof/noise.h"
 #include "fit3dof/simulator.h"
+#include "format.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
 
@@ -387,7 +388,15 @@ TEST(Diagnose, SaysWhenSigmaIsNotTheNoise) {
   EXPECT_TRUE(d.final.white) << d.verdict_text;
   EXPECT_FALSE(d.final.at_noise_level);
   EXPECT_EQ(VerdictToString(d.verdict), std::string("not_explained"));
-  EXPECT_NE(d.verdict_text.find("the residuals are white"), std::string::npos)
+  EXPECT_NE(d.verdict_text.find("the residuals pass the whiteness test"),
+            std::string::npos)
+      << d.verdict_text;
+  // The test's limit is said with it: 0.3, or more on a short record.
+  EXPECT_GE(d.final.whiteness_limit, 0.3);
+  EXPECT_NE(d.verdict_text.find(
+                "each below the limit " +
+                FormatNumber("%.2f", d.final.whiteness_limit)),
+            std::string::npos)
       << d.verdict_text;
   EXPECT_NE(d.verdict_text.find("the noise may be larger than configured"),
             std::string::npos)
