@@ -393,9 +393,8 @@ TEST(Diagnose, SaysWhenSigmaIsNotTheNoise) {
       << d.verdict_text;
   // The test's limit is said with it: 0.3, or more on a short record.
   EXPECT_GE(d.final.whiteness_limit, 0.3);
-  EXPECT_NE(d.verdict_text.find(
-                "each below the limit " +
-                FormatNumber("%.2f", d.final.whiteness_limit)),
+  EXPECT_NE(d.verdict_text.find("each below the limit " +
+                                FormatNumber("%.2f", d.final.whiteness_limit)),
             std::string::npos)
       << d.verdict_text;
   EXPECT_NE(d.verdict_text.find("the noise may be larger than configured"),
