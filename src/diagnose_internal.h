@@ -189,6 +189,11 @@ double PredictionRss(const Case& c,
                      const HeldOut& held_out,
                      const std::vector<ChannelValues>& weights);
 
+// How a contender's refusal for the held-out part opens (PredictsHeldOut):
+// the verdict reads it back (RollLockedUnconfirmed).
+inline constexpr char kHeldOutRefusal[] =
+    "it does not predict the held-out part of the record better";
+
 // The id of a roll-locked effect's rival outside the catalog (diagnose.h):
 // on less than a revolution of roll its signature is a drift in time.
 inline constexpr char kDriftInTime[] = "drift_in_time";

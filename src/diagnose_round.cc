@@ -175,14 +175,12 @@ bool PredictsHeldOut(const Case& with,
   const double needed = GainNeeded(terms, options);
   *gain = out_of_sample->GainOfBothHalves(with, needed);
   if (*gain > needed) return true;
-  *why =
-      "it does not predict the held-out part of the record better "
-      "(log-likelihood gain " +
-      FormatNumber("%.3g", *gain) +
-      (out_of_sample->SecondChance(*gain, needed)
-           ? ", short of the bar with the other half held out too"
-           : "") +
-      ", needs " + FormatNumber("%.3g", needed) + ")";
+  *why = std::string(kHeldOutRefusal) + " (log-likelihood gain " +
+         FormatNumber("%.3g", *gain) +
+         (out_of_sample->SecondChance(*gain, needed)
+              ? ", short of the bar with the other half held out too"
+              : "") +
+         ", needs " + FormatNumber("%.3g", needed) + ")";
   return false;
 }
 

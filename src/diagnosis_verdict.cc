@@ -252,6 +252,37 @@ std::string PartialLeaves(const Diagnosis& d) {
                                      "of the model at rest, tells)"));
 }
 
+// Roll-locked contenders of the last round that lowered BIC by 10 or more
+// (strong evidence in sample) but were refused for the held-out part, on
+// a record whose roll does not tell them from a drift: named with what
+// would confirm them. Over part of a revolution a first harmonic of roll
+// is part offset, part drift, and fitted to part of the record it
+// extrapolates poorly: draw 136's 34-sample run over 109 deg of roll with
+// a roll reading error at 1.5 times the noise had it, a trim moment and a
+// flow angularity lower BIC by 36-40 and each predict the held-out half
+// worse, and the verdict had only said the noise may be larger than
+// configured. Empty otherwise.
+std::string RollLockedUnconfirmed(const Diagnosis& d) {
+  if (d.roll_separates) return "";
+  std::string drops;
+  for (const CandidateFit& k : d.rejected) {
+    const Effect* e = FindEffect(k.effect);
+    if (e == nullptr || !e->roll_locked || !(k.bic_drop >= 10.0) ||
+        k.rejected.rfind(kHeldOutRefusal, 0) != 0) {
+      continue;
+    }
+    drops += (drops.empty() ? "" : ", ") + k.effect + " by " +
+             FormatNumber("%.1f", k.bic_drop);
+  }
+  if (drops.empty()) return "";
+  return "; roll-locked effects lower BIC (" + drops +
+         ") but do not predict the held-out samples better over this "
+         "record's " +
+         FormatNumber("%.0f", d.roll_span_deg) +
+         " deg of roll: a record spanning a revolution of roll, or a run at "
+         "another spin rate, would confirm or rule them out";
+}
+
 // The verdict text when the final model leaves the residuals structured:
 // what it holds, what was tried and not adopted, and the probe outside
 // the catalog that explains more, if one does.
@@ -275,6 +306,7 @@ std::string NotExplainedText(const Diagnosis& d) {
               : "; " + Described(d.partial) + " lowers the probable error to " +
                     FormatNumber("%.3g", d.fits[d.partial_fit].probable_error) +
                     PartialLeaves(d)) +
+         RollLockedUnconfirmed(d) +
          (d.outside_catalog.effect.empty()
               ? ""
               : "; " + Describe(d.outside_catalog.effect) +

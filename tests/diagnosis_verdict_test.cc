@@ -5,6 +5,7 @@
 // reads it.
 
 #include <string>
+#include <utility>
 
 #include "diagnose_internal.h"
 #include "fit3dof/diagnose.h"
@@ -80,6 +81,65 @@ TEST(Conclude, AStepPastTheNoiseLevelSaysWhatItLeaves) {
   EXPECT_NE(structured.verdict_text.find("leaves the residuals structured"),
             std::string::npos)
       << structured.verdict_text;
+}
+
+// A search that added nothing, its residuals white but past sigma, whose
+// last round refused a trim moment, a roll reading error and a flow
+// angularity for the held-out part (draw 136's 34-sample run over 109 deg
+// of roll, a roll reading error at 1.5 times the noise).
+Diagnosis UnconfirmedOverPartOfARevolution() {
+  Diagnosis d;
+  d.fits.resize(1);
+  d.final.probable_error = 1.48;
+  d.final.noise_limit = 1.21;
+  d.final.whiteness_limit = 0.53;
+  d.final.white = true;
+  d.roll_span_deg = 109.2;
+  d.roll_separates = false;
+  const std::string held_out =
+      std::string(kHeldOutRefusal) + " (log-likelihood gain -2.5, needs 4)";
+  for (const auto& [effect, drop] : {std::pair{"trim_moment", 39.6},
+                                     {"roll_interaction", 36.0},
+                                     {"flow_angularity", 27.4}}) {
+    CandidateFit k;
+    k.effect = effect;
+    k.bic_drop = drop;
+    k.rejected = held_out;
+    d.rejected.push_back(k);
+  }
+  return d;
+}
+
+TEST(Conclude, RollLockedEffectsUnconfirmedOverPartOfARevolutionAreNamed) {
+  Diagnosis d = UnconfirmedOverPartOfARevolution();
+  Conclude(&d);
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained);
+  EXPECT_NE(d.verdict_text.find("each below the limit 0.53"), std::string::npos)
+      << d.verdict_text;
+  // The flow angularity is an offset, not roll-locked: not named.
+  EXPECT_NE(d.verdict_text.find("roll-locked effects lower BIC (trim_moment "
+                                "by 39.6, roll_interaction by 36.0) but do "
+                                "not predict the held-out samples better "
+                                "over this record's 109 deg of roll: a "
+                                "record spanning a revolution of roll"),
+            std::string::npos)
+      << d.verdict_text;
+}
+
+TEST(Conclude, RollLockedEffectsAreNamedOnlyWhereTheRecordCannotTell) {
+  Diagnosis separated = UnconfirmedOverPartOfARevolution();
+  separated.roll_separates = true;
+  Conclude(&separated);
+  EXPECT_EQ(separated.verdict_text.find("roll-locked"), std::string::npos)
+      << separated.verdict_text;
+
+  // Weak in sample, or refused for another reason: not named.
+  Diagnosis weak = UnconfirmedOverPartOfARevolution();
+  weak.rejected[0].bic_drop = 9.0;
+  weak.rejected[1].rejected = "it moves Cm_q by 5 of its standard errors";
+  Conclude(&weak);
+  EXPECT_EQ(weak.verdict_text.find("roll-locked"), std::string::npos)
+      << weak.verdict_text;
 }
 
 }  // namespace
