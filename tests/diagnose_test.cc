@@ -680,6 +680,32 @@ TEST(Diagnose, ADriftBarelyBetterThanATrimMomentTiesWithIt) {
   EXPECT_TRUE(tied.count("reading_drift")) << text;
 }
 
+// tools/diagnose_suite --vary-conditions' `short` roll reading error at
+// 1.48 times the noise (draw 136), kept as
+// tests/data/short_roll_interaction_vary136.yaml: 34 samples over 109 deg
+// of roll, too short to confirm a roll-locked effect out of sample (the
+// reading error and a trim moment lower BIC by 36 and 40, and each
+// predicts the held-out odd runs worse). Whatever the answer, it is not
+// silent about the true effect: added, tied, or named among the
+// roll-locked contenders the record cannot confirm, with what would
+// (the verdict had said only that the noise may be larger than
+// configured).
+TEST(Diagnose, ARollLockedEffectTheRecordCannotConfirmIsNamed) {
+  const Diagnosis d = DiagnoseConfig("short_roll_interaction_vary136.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_NEAR(d.roll_span_deg, 109.0, 1.0) << text;
+  EXPECT_FALSE(d.roll_separates) << text;
+  std::set<std::string> named = EffectIds(d.ambiguous);
+  for (const DiagnosisStep& s : d.steps) named.insert(s.effect);
+  if (named.count("roll_interaction")) return;
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_NE(d.verdict_text.find("roll_interaction by"), std::string::npos)
+      << text;
+  EXPECT_NE(d.verdict_text.find("a record spanning a revolution of roll"),
+            std::string::npos)
+      << text;
+}
+
 // tools/diagnose_suite --vary's `short` roll reading error beside a
 // nonlinear damping of 3.5 times |Cm_q| at 8 deg (draw 13), kept as
 // tests/data/short_roll_nonlinear_damping_vary13.csv. The damping drags
