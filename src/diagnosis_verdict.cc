@@ -283,6 +283,24 @@ std::string RollLockedUnconfirmed(const Diagnosis& d) {
          "another spin rate, would confirm or rule them out";
 }
 
+// The catalog effects a probe outdid (Diagnosis::outdone_by_probe), each
+// with its BIC drop from `rejected`: the nearest catalog explanation, for
+// the engineer to weigh (draw 128's cone with a bearing moment: a pressure
+// drift outdid it by 17.7, and the verdict had named the drift alone).
+// Empty when there are none.
+std::string OutdoneByTheProbe(const Diagnosis& d) {
+  std::string outdone;
+  for (const std::string& id : d.outdone_by_probe) {
+    outdone += (outdone.empty() ? "" : ", ") + id;
+    for (const CandidateFit& k : d.rejected) {
+      if (k.effect != id) continue;
+      outdone += " (BIC lower by " + FormatNumber("%.1f", k.bic_drop) + ")";
+      break;
+    }
+  }
+  return outdone.empty() ? "" : "; outdone by it, not added: " + outdone;
+}
+
 // The verdict text when the final model leaves the residuals structured:
 // what it holds, what was tried and not adopted, and the probe outside
 // the catalog that explains more, if one does.
@@ -315,7 +333,7 @@ std::string NotExplainedText(const Diagnosis& d) {
                     (d.outside_at_noise_level
                          ? "; with it the residuals are at the noise level"
                          : "") +
-                    ")");
+                    ")" + OutdoneByTheProbe(d));
 }
 
 }  // namespace

@@ -83,6 +83,28 @@ TEST(Conclude, AStepPastTheNoiseLevelSaysWhatItLeaves) {
       << structured.verdict_text;
 }
 
+// The catalog effects a probe outdid are named with their BIC drops: the
+// nearest catalog explanation (draw 128's cone with a bearing moment,
+// outdone by a pressure drift 96.4 to 78.7).
+TEST(Conclude, TheCatalogEffectsAProbeOutdidAreNamed) {
+  Diagnosis d = PartialAtTheNoiseLevel();
+  d.partial.clear();
+  d.outside_catalog.bic_drop = 96.4;
+  d.outdone_by_probe = {"bearing_moment"};
+  CandidateFit outdone;
+  outdone.effect = "bearing_moment";
+  outdone.bic_drop = 78.7;
+  outdone.rejected = "a dynamic pressure drifting ... explains it better";
+  d.rejected = {outdone};
+  Conclude(&d);
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained);
+  EXPECT_NE(d.verdict_text.find("explains more than any catalog effect (BIC "
+                                "lower by 96.4); outdone by it, not added: "
+                                "bearing_moment (BIC lower by 78.7)"),
+            std::string::npos)
+      << d.verdict_text;
+}
+
 // A search that added nothing, its residuals white but past sigma, whose
 // last round refused a trim moment, a roll reading error and a flow
 // angularity for the held-out part (draw 136's 34-sample run over 109 deg
