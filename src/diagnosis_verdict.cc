@@ -252,22 +252,27 @@ std::string PartialLeaves(const Diagnosis& d) {
                                      "of the model at rest, tells)"));
 }
 
-// Roll-locked contenders of the last round that lowered BIC by 10 or more
-// (strong evidence in sample) but were refused for the held-out part, on
+// The BIC drop in sample from which a roll-locked contender refused out of
+// sample is named (RollLockedUnconfirmed): strong evidence on BIC's scale.
+constexpr double kUnconfirmedBicDrop = 10.0;
+
+// Roll-locked contenders of the last round that lowered BIC by
+// kUnconfirmedBicDrop or more but were refused for the held-out part, on
 // a record whose roll does not tell them from a drift: named with what
 // would confirm them. Over part of a revolution a first harmonic of roll
 // is part offset, part drift, and fitted to part of the record it
-// extrapolates poorly: draw 136's 34-sample run over 109 deg of roll with
-// a roll reading error at 1.5 times the noise had it, a trim moment and a
-// flow angularity lower BIC by 36-40 and each predict the held-out half
-// worse, and the verdict had only said the noise may be larger than
+// extrapolates poorly: on draw 136's 34-sample run over 109 deg of roll
+// with a roll reading error at 1.5 times the noise, the reading error and
+// a trim moment lowered BIC by 36 and 40 and each predicted the held-out
+// half worse, and the verdict had only said the noise may be larger than
 // configured. Empty otherwise.
 std::string RollLockedUnconfirmed(const Diagnosis& d) {
   if (d.roll_separates) return "";
   std::string drops;
   for (const CandidateFit& k : d.rejected) {
     const Effect* e = FindEffect(k.effect);
-    if (e == nullptr || !e->roll_locked || !(k.bic_drop >= 10.0) ||
+    if (e == nullptr || !e->roll_locked ||
+        !(k.bic_drop >= kUnconfirmedBicDrop) ||
         k.rejected.rfind(kHeldOutRefusal, 0) != 0) {
       continue;
     }
