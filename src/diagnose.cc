@@ -487,8 +487,6 @@ Diagnosis Concluded(const Case& c,
                     Diagnosis d) {
   WidenForNotExcluded(&d);
   WidenAlternatives(data, options, &d);
-  d.roll_span_deg = RollSpan(data);
-  d.roll_separates = RollSeparates(data);
   if (!d.ambiguous.empty()) {
     d.separated_by = SeparatedBy(d.ambiguous, quiet, d.FinalFit(), data);
   }

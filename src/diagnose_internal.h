@@ -189,6 +189,19 @@ double PredictionRss(const Case& c,
                      const HeldOut& held_out,
                      const std::vector<ChannelValues>& weights);
 
+// The samples `fit` used, one record per segment.
+std::vector<TimeHistory> FittedData(const FitResult& fit);
+
+// The largest roll angle any segment sweeps (deg).
+double RollSpan(const std::vector<TimeHistory>& data);
+
+// Whether a roll-locked signature can be told from a drift in time: a
+// segment sweeps a revolution of roll, or two segments roll at rates that
+// differ by more than a fifth (the same roll angle at different times).
+// The search's ties read it, and the verdict and diagnosis.json from the
+// final fit's samples.
+bool RollSeparates(const std::vector<TimeHistory>& data);
+
 // How a contender's refusal for the held-out part opens (PredictsHeldOut):
 // the verdict reads it back (RollLockedUnconfirmed).
 inline constexpr char kHeldOutRefusal[] =

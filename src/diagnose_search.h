@@ -77,9 +77,6 @@ bool KnownAbsent(const DiagnoseOptions& options, const std::string& id);
 // declared absent.
 bool Wanted(const DiagnoseOptions& options, const Effect& e);
 
-// The samples `fit` used, one record per segment.
-std::vector<TimeHistory> FittedData(const FitResult& fit);
-
 // The case `c` at the solution `fit`, set to be refitted from there
 // (RefitFromSolution).
 Case FromSolution(const Case& c, const FitResult& fit);
@@ -379,14 +376,6 @@ bool InOrder(const Case& current,
              const std::vector<Contender>& contenders,
              const std::vector<int>& order,
              JointSet* joint);
-
-// The largest roll angle any segment sweeps (deg).
-double RollSpan(const std::vector<TimeHistory>& data);
-
-// Whether a roll-locked signature can be told from a drift in time: a
-// segment sweeps a revolution of roll, or two segments roll at rates that
-// differ by more than a fifth (the same roll angle at different times).
-bool RollSeparates(const std::vector<TimeHistory>& data);
 
 // The probes outside the catalog at one round of the search, against the
 // best catalog contender that earned its place (earned[0], if any): better

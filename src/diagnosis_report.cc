@@ -373,8 +373,11 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
     out["residual_description"] = d.residual_description;
   }
   out["rejected"] = Contenders(d.rejected);
-  out["roll_span_deg"] = d.roll_span_deg;
-  out["roll_separates"] = d.roll_separates;
+  // What the verdict reads of the record's roll (RollLockedUnconfirmed).
+  const std::vector<TimeHistory> fitted =
+      d.fits.empty() ? std::vector<TimeHistory>() : FittedData(d.FinalFit());
+  out["roll_span_deg"] = RollSpan(fitted);
+  out["roll_separates"] = RollSeparates(fitted);
   // The nominal fit's wild points: the search saw the samples it kept.
   out["outliers"] = OutliersJson(d.fits.empty() ? std::vector<Outlier>()
                                                 : d.fits[0].outliers);

@@ -267,8 +267,10 @@ constexpr double kUnconfirmedBicDrop = 10.0;
 // half worse, and the verdict had only said the noise may be larger than
 // configured. Empty otherwise.
 std::string RollLockedUnconfirmed(const Diagnosis& d) {
-  if (d.roll_separates) return "";
-  std::string drops;
+  if (d.fits.empty()) return "";
+  const std::vector<TimeHistory> data = FittedData(d.FinalFit());
+  if (RollSeparates(data)) return "";
+  std::vector<std::string> drops;
   for (const CandidateFit& k : d.rejected) {
     const Effect* e = FindEffect(k.effect);
     if (e == nullptr || !e->roll_locked ||
@@ -276,14 +278,13 @@ std::string RollLockedUnconfirmed(const Diagnosis& d) {
         k.rejected.rfind(kHeldOutRefusal, 0) != 0) {
       continue;
     }
-    drops += (drops.empty() ? "" : ", ") + k.effect + " by " +
-             FormatNumber("%.1f", k.bic_drop);
+    drops.push_back(k.effect + " by " + FormatNumber("%.1f", k.bic_drop));
   }
   if (drops.empty()) return "";
-  return "; roll-locked effects lower BIC (" + drops +
+  return "; roll-locked effects lower BIC (" + Joined(drops, ", ") +
          ") but do not predict the held-out samples better over this "
          "record's " +
-         FormatNumber("%.0f", d.roll_span_deg) +
+         FormatNumber("%.0f", RollSpan(data)) +
          " deg of roll: a record spanning a revolution of roll, or a run at "
          "another spin rate, would confirm or rule them out";
 }
@@ -294,16 +295,17 @@ std::string RollLockedUnconfirmed(const Diagnosis& d) {
 // drift outdid it by 17.7, and the verdict had named the drift alone).
 // Empty when there are none.
 std::string OutdoneByTheProbe(const Diagnosis& d) {
-  std::string outdone;
+  std::vector<std::string> outdone;
   for (const std::string& id : d.outdone_by_probe) {
-    outdone += (outdone.empty() ? "" : ", ") + id;
-    for (const CandidateFit& k : d.rejected) {
-      if (k.effect != id) continue;
-      outdone += " (BIC lower by " + FormatNumber("%.1f", k.bic_drop) + ")";
-      break;
-    }
+    const CandidateFit* k = FindFit(d.rejected, id);
+    outdone.push_back(id + (k == nullptr
+                                ? ""
+                                : " (BIC lower by " +
+                                      FormatNumber("%.1f", k->bic_drop) + ")"));
   }
-  return outdone.empty() ? "" : "; outdone by it, not added: " + outdone;
+  return outdone.empty()
+             ? ""
+             : "; outdone by it, not added: " + Joined(outdone, ", ");
 }
 
 // The verdict text when the final model leaves the residuals structured:

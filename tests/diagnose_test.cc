@@ -15,6 +15,7 @@
 #include <set>
 #include <string>
 
+#include "diagnose_internal.h"
 #include "fit3dof/config.h"
 #include "fit3dof/model_conversion.h"
 #include "fit3dof/noise.h"
@@ -693,8 +694,9 @@ TEST(Diagnose, ADriftBarelyBetterThanATrimMomentTiesWithIt) {
 TEST(Diagnose, ARollLockedEffectTheRecordCannotConfirmIsNamed) {
   const Diagnosis d = DiagnoseConfig("short_roll_interaction_vary136.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_NEAR(d.roll_span_deg, 109.0, 1.0) << text;
-  EXPECT_FALSE(d.roll_separates) << text;
+  const std::vector<TimeHistory> data = FittedData(d.FinalFit());
+  EXPECT_NEAR(RollSpan(data), 109.0, 1.0) << text;
+  EXPECT_FALSE(RollSeparates(data)) << text;
   std::set<std::string> named = EffectIds(d.ambiguous);
   for (const DiagnosisStep& s : d.steps) named.insert(s.effect);
   if (named.count("roll_interaction")) return;

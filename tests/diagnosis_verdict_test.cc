@@ -105,19 +105,31 @@ TEST(Conclude, TheCatalogEffectsAProbeOutdidAreNamed) {
       << d.verdict_text;
 }
 
+// A final fit of one run whose roll sweeps `span_deg` over 34 samples
+// (its motion through them, for the residuals' description).
+FitResult RollingFit(double span_deg) {
+  FitResult fit;
+  SegmentFit s;
+  for (int i = 0; i < 34; ++i) {
+    const double phi = span_deg * i / 33.0;
+    s.data.Append(0.084 * i, phi, 8.0, 0.0);
+    s.computed.insert(s.computed.end(), {phi, 8.0, 0.0});
+  }
+  fit.segments.push_back(s);
+  return fit;
+}
+
 // A search that added nothing, its residuals white but past sigma, whose
 // last round refused a trim moment, a roll reading error and a flow
 // angularity for the held-out part (draw 136's 34-sample run over 109 deg
 // of roll, a roll reading error at 1.5 times the noise).
 Diagnosis UnconfirmedOverPartOfARevolution() {
   Diagnosis d;
-  d.fits.resize(1);
+  d.fits = {RollingFit(109.2)};
   d.final.probable_error = 1.48;
   d.final.noise_limit = 1.21;
   d.final.whiteness_limit = 0.53;
   d.final.white = true;
-  d.roll_span_deg = 109.2;
-  d.roll_separates = false;
   const std::string held_out =
       std::string(kHeldOutRefusal) + " (log-likelihood gain -2.5, needs 4)";
   for (const auto& [effect, drop] : {std::pair{"trim_moment", 39.6},
@@ -150,7 +162,7 @@ TEST(Conclude, RollLockedEffectsUnconfirmedOverPartOfARevolutionAreNamed) {
 
 TEST(Conclude, RollLockedEffectsAreNamedOnlyWhereTheRecordCannotTell) {
   Diagnosis separated = UnconfirmedOverPartOfARevolution();
-  separated.roll_separates = true;
+  separated.fits = {RollingFit(400.0)};  // over a revolution
   Conclude(&separated);
   EXPECT_EQ(separated.verdict_text.find("roll-locked"), std::string::npos)
       << separated.verdict_text;

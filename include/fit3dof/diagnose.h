@@ -670,13 +670,6 @@ struct Diagnosis {
   // of the last round, each with why it did not earn its place.
   std::string residual_description;
   std::vector<CandidateFit> rejected;
-  // The largest roll angle a segment of the record sweeps (deg), and
-  // whether the record tells a roll-locked signature from a drift in time
-  // (a revolution of roll, or runs at spin rates apart): a roll-locked
-  // effect refused for the held-out part of a record that does not is
-  // named in a `not_explained` verdict with what would confirm it.
-  double roll_span_deg = 0.0;
-  bool roll_separates = true;
   // When a probe outside the catalog (a drift of the readings or of the
   // dynamic pressure in time, a lag or gain error of the readings, a flow
   // stiffer in one plane, dry friction in the bearing) explains the
