@@ -83,3 +83,40 @@ def test_varied_conditions_are_drawn_per_draw_and_leave_table6(monkeypatch):
         first, second = conditions["pair"]["runs"]
         assert second[1] == pytest.approx(2.0 * first[1])
         assert second[2] == pytest.approx(first[2] / 2.0)
+
+
+def record(case, kind, ok, oracle_off=None):
+    return {"case": case, "kind": kind, "ok": ok, "why": "", "seconds": 0.5,
+            "oracle_off": oracle_off}
+
+
+def test_tally_sums_draws_and_counts_the_truths_own_floor(tmp_path, capsys):
+    import json
+    first = [record("short/magnus", "inside", True, 0.4),
+             record("short/roll_interaction", "inside", False, 3.6),
+             record("clean/0", "clean", True)]
+    second = [record("short/magnus", "inside", True, 3.2),
+              record("clean/0", "clean", True)]
+    paths = []
+    for i, rows in enumerate((first, second)):
+        paths.append(str(tmp_path / f"d{i}.json"))
+        with open(paths[-1], "w") as f:
+            json.dump(rows, f)
+    assert suite.tally(paths) == 1  # a failure among them
+    out = capsys.readouterr().out
+    assert "2 draws, 5 records" in out
+    assert "inside: 2/3 ok" in out
+    assert "1 failing where the true model's own fit is over 3 SE off" in out
+    # The floor counts the passes too: 3.6 and 3.2, not 0.4.
+    assert "over 3 SE off on 2 of 3" in out
+    assert "clean: 2/2 ok" in out
+    assert suite.tally(paths[1:]) == 0
+
+
+def test_tally_refuses_what_is_not_the_suites_json(tmp_path, capsys):
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"case": "short/magnus"}')
+    assert suite.tally([str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "bad.json" in err and "not a list of the suite's records" in err
+    assert suite.tally([str(tmp_path / "missing.json")]) == 2
