@@ -259,6 +259,7 @@ SeriesCorrelation CorrelationOf(const Eigen::VectorXd& residual) {
     q += rho * rho / (n - k);
   }
   s.ljung_box = n * (n + 2.0) * q;
+  s.ljung_box_lags = lags;
   s.ljung_box_limit = lags > 0 ? ChiSquareQuantile(lags, kZ99) : 0.0;
   s.white = !(s.ljung_box > s.ljung_box_limit);
   return s;

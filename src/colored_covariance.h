@@ -94,8 +94,9 @@ struct SeriesCorrelation {
   double variance = 0.0;            // rho(0), mean square residual
   int lag_window = 0;               // L (lags to 2L weighted)
   std::vector<double> normalized;   // rho(k) / rho(0), k = 1..10
-  double ljung_box = 0.0;           // Q over lags 1..20
+  double ljung_box = 0.0;           // Q over lags 1..ljung_box_lags
   double ljung_box_limit = 0.0;     // its 1% critical value
+  int ljung_box_lags = 0;           // 20, or half the samples if fewer
   bool white = true;                // Q below the limit
   std::vector<ResidualLine> lines;  // taken out and added back whole
 };

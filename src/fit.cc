@@ -306,6 +306,9 @@ void FitSegments(const Case& c,
       stats.noise_sigma_deg = std::sqrt(seg2[ch] / n);
       stats.autocorrelation = series.normalized;
       stats.lag_window = series.lag_window;
+      stats.ljung_box = series.ljung_box;
+      stats.ljung_box_limit = series.ljung_box_limit;
+      stats.ljung_box_lags = series.ljung_box_lags;
       stats.white = series.white;
       const double weight = p.sigma[ch];
       for (const ResidualLine& line : series.lines) {
@@ -355,24 +358,46 @@ std::string LineName(double hz, double spin_hz) {
   return name;
 }
 
-// How one segment's channel is not white: "0.81 in theta (lines at 1.72 Hz
-// = spin, ...)".
+// The lag (from 1) of the autocorrelation largest in size, 0 when none.
+int StrongestLag(const std::vector<double>& rho) {
+  int strongest = 0;
+  for (size_t k = 0; k < rho.size(); ++k) {
+    if (strongest == 0 || std::abs(rho[k]) > std::abs(rho[strongest - 1])) {
+      strongest = static_cast<int>(k) + 1;
+    }
+  }
+  return strongest;
+}
+
+// How one segment's channel is not white, and the test that says so:
+// "theta (Ljung-Box Q 86.2 over 20 lags, its 1% limit 37.6;
+// autocorrelation 0.00 at lag 1, -0.62 at lag 3; spectral lines at 1.72 Hz
+// = spin)". Q weighs every lag: quoting lag 1 alone, a pitch calibration
+// error on a 3-s run read "not white noise (lag-1 autocorrelation 0.00 in
+// theta)", its residual near a quarter of the sampling rate.
 std::string Structure(const SegmentFit& s, int ch, bool several) {
   const ResidualStatistics& stats = s.channels[ch];
-  std::string text =
-      FormatNumber(
-          "%.2f",
-          stats.autocorrelation.empty() ? 0.0 : stats.autocorrelation[0]) +
-      " in " + ChannelName(ch);
+  const std::vector<double>& rho = stats.autocorrelation;
+  std::string text = ChannelName(ch);
   if (several) text += " ('" + s.name + "')";
+  text += " (Ljung-Box Q " + FormatNumber("%.3g", stats.ljung_box) +
+          " over " + std::to_string(stats.ljung_box_lags) +
+          " lags, its 1% limit " + FormatNumber("%.3g", stats.ljung_box_limit);
+  if (!rho.empty()) {
+    text += "; autocorrelation " + FormatNumber("%.2f", rho[0]) + " at lag 1";
+    const int k = StrongestLag(rho);
+    if (k > 1) {
+      text += ", " + FormatNumber("%.2f", rho[k - 1]) + " at lag " +
+              std::to_string(k);
+    }
+  }
   if (!stats.spectral_lines_hz.empty()) {
-    text += " (spectral lines at ";
+    text += "; spectral lines at ";
     for (size_t i = 0; i < stats.spectral_lines_hz.size(); ++i) {
       text += (i ? ", " : "") + LineName(stats.spectral_lines_hz[i], SpinHz(s));
     }
-    text += ")";
   }
-  return text;
+  return text + ")";
 }
 
 // White residuals further from sigma than noise goes with chance 1e-3
@@ -501,7 +526,7 @@ void JudgeAdequacy(const Case& c, FitResult* result) {
     WarnOfSigma(c, result);
     return;
   }
-  result->adequacy = "structured: lag-1 autocorrelation " + structured;
+  result->adequacy = "structured: " + structured;
   result->warnings.push_back(
       "the residuals are not white noise (" + result->adequacy.substr(12) +
       "): the standard errors allow for it; fit3dof diagnose " + c.source +

@@ -24,7 +24,7 @@ using nlohmann::ordered_json;
 namespace {
 
 // Each channel's residual autocorrelation (lags 1..10), the lag window the
-// standard errors used and the whiteness verdict.
+// standard errors used, and the whiteness verdict with its Ljung-Box test.
 json ResidualsJson(const SegmentFit& s) {
   json out;
   for (int ch = 0; ch < 3; ++ch) {
@@ -43,6 +43,9 @@ json ResidualsJson(const SegmentFit& s) {
     }
     out[ChannelName(ch)] = {{"autocorrelation", lags},
                             {"lag_window", c.lag_window},
+                            {"ljung_box", JsonNumber(c.ljung_box)},
+                            {"ljung_box_limit", JsonNumber(c.ljung_box_limit)},
+                            {"ljung_box_lags", c.ljung_box_lags},
                             {"white", c.white},
                             {"spectral_lines_hz", lines},
                             {"error_lines", error_lines}};

@@ -211,7 +211,7 @@ void ExpectBatchDiagnoses(const std::string& dir) {
                 "diagnosed,converged,white,added flow_angularity; explained"),
             std::string::npos)
       << summary;
-  EXPECT_NE(summary.find("plain,converged,\"structured: lag-1 autocorrelation"),
+  EXPECT_NE(summary.find("plain,converged,\"structured: theta (Ljung-Box Q "),
             std::string::npos)
       << summary;
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/diagnosed/diagnosis.json"));

@@ -604,6 +604,51 @@ TEST(Fit, SaysWhenItCannotReachTheNoiseLevel) {
   EXPECT_TRUE(points_at_diagnose);
 }
 
+// Structured residuals are named with the test that found them: the
+// Ljung-Box statistic against its limit, lag 1 and the strongest lag. A
+// pitch calibration error (theta read as theta + c theta^3) on the 3-s run
+// leaves a residual at twice the pitch frequency, which at 10 points per
+// cycle correlates at lags 2 and 4 far more than at lag 1; quoting lag 1
+// alone had read "not white noise (lag-1 autocorrelation 0.00 in theta)".
+TEST(Fit, NamesTheTestThatFoundTheResidualsStructured) {
+  const std::string dir = testing::ScratchDirectory("fit_structured_words");
+  Case c = testing::ShortRun(dir, "  theta_cal3: -0.06\n", 3);
+  c.parameters[FindParameter(c.model, "theta_cal3")].value = 0.0;
+  const FitResult r = Fit(c);
+  const ResidualStatistics& theta = r.segments[0].channels[1];
+  ASSERT_FALSE(theta.white);
+  EXPECT_EQ(theta.ljung_box_lags, 20);
+  EXPECT_GT(theta.ljung_box, theta.ljung_box_limit);
+  EXPECT_NEAR(theta.ljung_box_limit, 37.57, 0.05);  // chi-square, 20, 1%
+  const std::vector<double>& rho = theta.autocorrelation;
+  ASSERT_EQ(rho.size(), 10u);
+  size_t strongest = 0;
+  for (size_t k = 1; k < rho.size(); ++k) {
+    if (std::abs(rho[k]) > std::abs(rho[strongest])) strongest = k;
+  }
+  // The case this test is for: lag 1 is not where the structure shows.
+  ASSERT_GT(strongest, 0u);
+  ASSERT_GT(std::abs(rho[strongest]), 2.0 * std::abs(rho[0]));
+  char words[160];
+  std::snprintf(words,
+                sizeof(words),
+                "theta (Ljung-Box Q %.3g over 20 lags, its 1%% limit %.3g; "
+                "autocorrelation %.2f at lag 1, %.2f at lag %zu)",
+                theta.ljung_box,
+                theta.ljung_box_limit,
+                rho[0],
+                rho[strongest],
+                strongest + 1);
+  EXPECT_NE(r.adequacy.find(words), std::string::npos) << r.adequacy;
+  EXPECT_EQ(r.adequacy.rfind("structured: ", 0), 0u) << r.adequacy;
+  bool warned = false;
+  for (const std::string& w : r.warnings) {
+    warned |= w.find(std::string("not white noise (") + words) !=
+              std::string::npos;
+  }
+  EXPECT_TRUE(warned);
+}
+
 // With sigma: auto the same rule holds: the fit weighs the residuals by
 // the noise the data show without a model before it relaxes the weights,
 // so a fit far above it still tries restarts (with the old fixed 1-deg

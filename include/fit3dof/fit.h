@@ -78,7 +78,15 @@ struct ResidualStatistics {
   double noise_sigma_deg = 0.0;         // the channel's noise level, estimated
   std::vector<double> autocorrelation;  // lags 1..10
   int lag_window = 0;  // lags the standard errors take into account
-  bool white = true;   // Ljung-Box test over 20 lags at 1%
+  // The Ljung-Box statistic Q over the first ljung_box_lags lags (20, or
+  // half the samples if fewer) and its 1% critical value: white when Q
+  // stays below it. Q weighs every lag, so residuals can fail it with a
+  // lag-1 autocorrelation near zero (a line near a quarter of the
+  // sampling rate).
+  double ljung_box = 0.0;
+  double ljung_box_limit = 0.0;
+  int ljung_box_lags = 0;
+  bool white = true;
   std::vector<double> spectral_lines_hz;  // strongest first (at most 3)
   std::vector<ErrorLine> error_lines;     // strongest first (at most 6)
 };
@@ -140,7 +148,8 @@ struct FitResult {
   Eigen::MatrixXd correlation;                 // empty if not computable
   std::vector<std::string> warnings;
   // Whether the residuals look like measurement noise: "white", or how they
-  // do not ("structured: lag-1 autocorrelation 0.81 in theta ..."). A fit
+  // do not ("structured: theta (Ljung-Box Q 86.2 over 20 lags, its 1% limit
+  // 37.6; autocorrelation 0.81 at lag 1) ..."). A fit
   // can converge (its iteration met the rule) and still not be adequate.
   std::string adequacy;
   // Every wild point found, in the order found; each is also a warning
