@@ -380,9 +380,9 @@ std::string Structure(const SegmentFit& s, int ch, bool several) {
   const std::vector<double>& rho = stats.autocorrelation;
   std::string text = ChannelName(ch);
   if (several) text += " ('" + s.name + "')";
-  text += " (Ljung-Box Q " + FormatNumber("%.3g", stats.ljung_box) +
-          " over " + std::to_string(stats.ljung_box_lags) +
-          " lags, its 1% limit " + FormatNumber("%.3g", stats.ljung_box_limit);
+  text += " (Ljung-Box Q " + FormatNumber("%.3g", stats.ljung_box) + " over " +
+          std::to_string(stats.ljung_box_lags) + " lags, its 1% limit " +
+          FormatNumber("%.3g", stats.ljung_box_limit);
   if (!rho.empty()) {
     text += "; autocorrelation " + FormatNumber("%.2f", rho[0]) + " at lag 1";
     const int k = StrongestLag(rho);

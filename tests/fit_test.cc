@@ -643,8 +643,8 @@ TEST(Fit, NamesTheTestThatFoundTheResidualsStructured) {
   EXPECT_EQ(r.adequacy.rfind("structured: ", 0), 0u) << r.adequacy;
   bool warned = false;
   for (const std::string& w : r.warnings) {
-    warned |= w.find(std::string("not white noise (") + words) !=
-              std::string::npos;
+    warned |=
+        w.find(std::string("not white noise (") + words) != std::string::npos;
   }
   EXPECT_TRUE(warned);
 }
