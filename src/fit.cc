@@ -358,17 +358,6 @@ std::string LineName(double hz, double spin_hz) {
   return name;
 }
 
-// The lag (from 1) of the autocorrelation largest in size, 0 when none.
-int StrongestLag(const std::vector<double>& rho) {
-  int strongest = 0;
-  for (size_t k = 0; k < rho.size(); ++k) {
-    if (strongest == 0 || std::abs(rho[k]) > std::abs(rho[strongest - 1])) {
-      strongest = static_cast<int>(k) + 1;
-    }
-  }
-  return strongest;
-}
-
 // How one segment's channel is not white, and the test that says so:
 // "theta (Ljung-Box Q 86.2 over 20 lags, its 1% limit 37.6;
 // autocorrelation 0.00 at lag 1, -0.62 at lag 3; spectral lines at 1.72 Hz
@@ -385,10 +374,13 @@ std::string Structure(const SegmentFit& s, int ch, bool several) {
           FormatNumber("%.3g", stats.ljung_box_limit);
   if (!rho.empty()) {
     text += "; autocorrelation " + FormatNumber("%.2f", rho[0]) + " at lag 1";
-    const int k = StrongestLag(rho);
-    if (k > 1) {
-      text += ", " + FormatNumber("%.2f", rho[k - 1]) + " at lag " +
-              std::to_string(k);
+    const auto strongest =
+        std::max_element(rho.begin(), rho.end(), [](double a, double b) {
+          return std::abs(a) < std::abs(b);
+        });
+    if (strongest != rho.begin()) {
+      text += ", " + FormatNumber("%.2f", *strongest) + " at lag " +
+              std::to_string(strongest - rho.begin() + 1);
     }
   }
   if (!stats.spectral_lines_hz.empty()) {
