@@ -120,3 +120,25 @@ def test_tally_refuses_what_is_not_the_suites_json(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "bad.json" in err and "not a list of the suite's records" in err
     assert suite.tally([str(tmp_path / "missing.json")]) == 2
+
+
+def test_again_counts_a_case_drawn_again_as_its_first_run_did(tmp_path,
+                                                               monkeypatch):
+    import json
+    kept = {"case": "short/magnus", "terms": {}, "sized_to": 1.0,
+            "redrawn": 2, "data": "data.csv"}
+    work = tmp_path / "short_magnus"
+    work.mkdir()
+    (work / "case.json").write_text(json.dumps(kept))
+    # No diagnosis run: the row as judged, without `redrawn`.
+    monkeypatch.setattr(suite, "diagnosed",
+                        lambda work, name: ({}, {}, 0.1, None))
+    monkeypatch.setattr(suite, "judged",
+                        lambda *args: {"case": "short/magnus", "ok": True})
+    assert suite.again(("short/magnus", "short"), str(tmp_path))[
+        "redrawn"] == 2
+    # A record kept before case.json carried it: not drawn again.
+    del kept["redrawn"]
+    (work / "case.json").write_text(json.dumps(kept))
+    assert suite.again(("short/magnus", "short"), str(tmp_path))[
+        "redrawn"] == 0
