@@ -117,14 +117,26 @@ bool FitProbes(const Case& current,
   // pitch reading's gain 16% off, the frictions about both axes and the
   // yaw axis, first and second, drove the motion, the gain probe was never
   // fitted, and a tunnel damping cancelling 85% of the yaw damping was
-  // named.
+  // named. So too while one refused for its sign fits better than every
+  // one of the right sign by more than ambiguity_bic: the wrong sign of a
+  // probe that explains the record says a kindred one may, with its own.
+  // On draw 141's cone with dry friction about the pitch axis (outside
+  // the catalog) the yaw axis' friction came second, driving the motion
+  // (BIC lower by 225.1), a reading lag first (184.2), and a tunnel damping
+  // (218.5) was named alone; the pitch axis' friction, fitted next (224.5),
+  // ties with it.
   RankByScore(at, data, candidates);
   constexpr int kProbesRefitted = 2;
   const int n = static_cast<int>(candidates->size());
   std::vector<Contender> fits(n);
   std::vector<char> fitted(n, false);  // not vector<bool>: written in parallel
   int best = -1;
-  for (int first = 0; first < n && best < 0; first += kProbesRefitted) {
+  // The lowest BIC of a probe refused for its sign so far (+inf: none).
+  double refused = std::numeric_limits<double>::infinity();
+  auto more = [&] {
+    return best < 0 || fits[best].bic > refused + options.ambiguity_bic;
+  };
+  for (int first = 0; first < n && more(); first += kProbesRefitted) {
     const int count = std::min(kProbesRefitted, n - first);
     ParallelFor(count, [&](int j) {
       const int i = first + j;
@@ -140,7 +152,10 @@ bool FitProbes(const Case& current,
       VLOG(1) << fit.name << ": probe " << fits[i].record.effect
               << ", BIC drop " << fits[i].record.bic_drop
               << (wrong.empty() ? "" : ", refused: " + wrong);
-      if (!wrong.empty()) continue;
+      if (!wrong.empty()) {
+        refused = std::min(refused, fits[i].bic);
+        continue;
+      }
       if (best < 0 || fits[i].bic < fits[best].bic) best = i;
     }
   }

@@ -1237,6 +1237,35 @@ TEST(Diagnose, AProbeJustBehindAStepIsNamedBesideIt) {
       << FormatDiagnosis(without, {0.01, 0.01, 0.01});
 }
 
+// The same friction on draw 141's cone of another body
+// (tests/data/coning_pitch_friction_vary141.yaml): the two probes ranked
+// first by their score were a reading lag, 34 of BIC behind a tunnel
+// damping, and the yaw axis' friction, ahead of it but driving the motion
+// (refused for its sign), and the damping was named alone, `explained`.
+// A probe refused for its sign that fits better than every one of the
+// right sign by more than ambiguity_bic sends the search on to the next
+// two: the pitch axis' friction, 6.0 ahead of the damping, ties with it.
+TEST(Diagnose, AProbeOfTheWrongSignThatFitsBestSendsTheSearchOn) {
+  if (testing::kSanitized) {
+    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
+  }
+  const Case config = LoadConfig(
+      testing::SourcePath("tests/data/coning_pitch_friction_vary141.yaml"));
+  const Diagnosis d = Diagnose(config, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  const nlohmann::json j = nlohmann::json::parse(DiagnosisJson(d, config));
+  EXPECT_EQ(j["ambiguous_between"].get<std::set<std::string>>(),
+            (std::set<std::string>{"tunnel_damping", "pitch_friction"}))
+      << text;
+  EXPECT_EQ(j["ambiguous_outside_catalog"], nlohmann::json({"pitch_friction"}))
+      << text;
+  EXPECT_NE(d.verdict_text.find("a run at another amplitude"),
+            std::string::npos)
+      << text;
+}
+
 // tools/diagnose_suite's `short` reading error at the second harmonic of
 // roll (draw 22: theta_m += -0.0281 cos(2 phi + 0.7), psi_m += -0.0225
 // sin(2 phi + 0.2)), kept as tests/data/short_second_roll_harmonic_
