@@ -520,7 +520,7 @@ void JudgeAdequacy(const Case& c, FitResult* result) {
   }
   result->adequacy = "structured: " + structured;
   result->warnings.push_back(
-      "the residuals are not white noise (" + result->adequacy.substr(12) +
+      "the residuals are not white noise (" + structured +
       "): the standard errors allow for it; fit3dof diagnose " + c.source +
       " looks for a missing effect");
 }
