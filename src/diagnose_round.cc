@@ -633,9 +633,15 @@ constexpr double kOtherFormBic = 10.0;
 // Whether `form` (an effect's other form) is to stand in the round for
 // `own`: where the score test ranks it higher (its score less its terms'
 // BIC cost), both refitted from `fit` and the form lower in BIC by
-// kOtherFormBic. The score alone misjudges it: on a coning run whose
-// readings erred as the signed square (suite draw 53), it put the form
-// 6.3 ahead, the refits 40.
+// kOtherFormBic, or lower at all where the own form lies outside the
+// effect's bounds and the form within them. The score alone misjudges it:
+// on a coning run whose readings erred as the signed square (suite draw
+// 53), it put the form 6.3 ahead, the refits 40. On a pair of 3-s runs
+// whose readings erred so (draw 142, sigma: auto) the form came 5.3
+// ahead; the cube, fitting the yaw reading's error over its 0.76 deg with
+// psi_cal3 = 7.4 +- 1.7, went past its bound there (0.0256 deg against
+// 0.0254), and the record was called `noise_level`, the error taken for
+// noise in pitch.
 bool FormFavored(const Candidate& form,
                  const Candidate& own,
                  const FitResult& fit,
@@ -657,7 +663,10 @@ bool FormFavored(const Candidate& form,
   VLOG(1) << own.effect->id << " as " << form.form->id << ": BIC drop "
           << refits[0].record.bic_drop << ", " << refits[1].record.bic_drop
           << " in its own form";
-  return refits[0].bic < refits[1].bic - kOtherFormBic;
+  if (refits[0].bic < refits[1].bic - kOtherFormBic) return true;
+  return refits[0].bic < refits[1].bic &&
+         !Implausible(*own.effect, own.c, refits[1].fit).empty() &&
+         Implausible(*form.effect, form.c, refits[0].fit).empty();
 }
 
 // Of each effect and its other form among `candidates`, the one FormFavored

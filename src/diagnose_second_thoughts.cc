@@ -435,6 +435,19 @@ Diagnosis SearchWithout(const Case& c,
   return Searched(c, nominal, without, notes);
 }
 
+// Whether `step`, the effect a search was run without, is roll-locked and
+// `other`, that search's answer, holds another roll-locked effect in its
+// place.
+bool RollLockedSwap(const std::string& step, const Diagnosis& other) {
+  const Effect* effect = FindEffect(step);
+  if (effect == nullptr || !effect->roll_locked) return false;
+  return std::any_of(
+      other.steps.begin(), other.steps.end(), [&](const DiagnosisStep& s) {
+        const Effect* e = FindEffect(s.effect);
+        return s.effect != step && e != nullptr && e->roll_locked;
+      });
+}
+
 // A step that the effects not excluded beat together by ambiguity_bic or
 // more (FindSetReplacements, `outdone`) was the search's wrong turn: the
 // search without its effect is the answer when it explains the record
@@ -444,8 +457,16 @@ Diagnosis SearchWithout(const Case& c,
 // tunnel damping + Magnus moment + angularity, 6.8 and 10.0 lower without
 // it (ANearTiesFirstStepMatchedWithoutItTiesWithWhatWasFound,
 // AStepTheEffectsNotExcludedBeatTogetherIsReplaced), where the search
-// without it names them; it had fixed only draw 114's `pair` roll reading
-// error (sigma: auto), 8.4 lower without it.
+// without it names them. But a roll-locked step that the search without
+// it replaces with the other roll-locked effect (RollLockedSwap) is kept
+// in that tie: well below the pitch frequency a trim moment and a roll
+// reading error leave the same first harmonic of roll at every spin rate
+// (Separation), and only BIC tells them apart. On draw 142's pair of 3-s
+// runs with a tunnel stiffness, a roll reading error and a flow
+// angularity (25.7 and 51.4 deg/s against a pitch frequency of 532), the
+// search without the reading error named a trim moment and the angularity,
+// 7.0 lower, `explained`; draw 114's `pair` roll reading error (sigma:
+// auto) had a trim moment and an angularity named 8.4 lower.
 bool ReplacedStep(const Case& c,
                   const FitResult& nominal,
                   const DiagnoseOptions& options,
@@ -458,6 +479,10 @@ bool ReplacedStep(const Case& c,
           << VerdictToString(other.verdict) << ", complete BIC "
           << FormatNumber("%+.1f", -margin) << " against the first answer";
   if (!ExplainsRecord(other) || !(margin > 0.0)) return false;
+  if (margin < options.ambiguity_bic && RollLockedSwap(outdone, other) &&
+      StandInForSearch(other, outdone, d)) {
+    return true;
+  }
   for (const DiagnosisStep& s : d->steps) {
     if (s.effect != outdone) continue;
     CandidateFit step = AsContender(s);
