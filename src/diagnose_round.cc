@@ -744,6 +744,10 @@ bool BackToOwnForms(const std::vector<TimeHistory>& data,
     VLOG(1) << step.effect << " in its own form beside the later steps: BIC "
             << FormatNumber("%+.1f", Bic(refit) - Bic(*fit));
     if (!(Bic(refit) < Bic(*fit) + kOtherFormBic)) continue;
+    if (!Implausible(effect, own, refit).empty() &&
+        Implausible(effect, *current, *fit).empty()) {
+      continue;
+    }
     *current = own;
     *fit = refit;
     step.step_parameters = Own(refit, added);

@@ -1424,6 +1424,9 @@ TEST(Diagnose, ACalibrationErrorsSignedSquareIsNamedInItsOtherForm) {
 // added, the pitch error taken for noise (`noise_level`, theta's noise
 // held at 0.0257 deg). A form lower in BIC at all stands in for an own
 // form out of its bounds: the calibration is named in the other form.
+// Nor does it go back to the cube beside the later steps (BackToOwnForms)
+// while the cube lies outside its bounds there: it had, and the pitch
+// noise was held again with the cube's residual in it (0.0131 deg).
 TEST(Diagnose, AnOtherFormLowerInBicStandsInForAnOwnFormOutOfItsBounds) {
   if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
@@ -1437,6 +1440,8 @@ TEST(Diagnose, AnOtherFormLowerInBicStandsInForAnOwnFormOutOfItsBounds) {
   ASSERT_NE(square, nullptr) << text;
   EXPECT_TRUE(square->free) << text;
   EXPECT_GT(square->value, 0.0) << text;
+  EXPECT_TRUE(d.noise_held) << text;
+  EXPECT_LT(DiagnosedNoise(d, {}).theta, 0.012) << text;  // simulated: 0.01
 }
 
 // tools/diagnose_suite's `pair` Magnus moment + nonlinear damping + cubic
