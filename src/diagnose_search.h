@@ -153,11 +153,11 @@ const std::vector<std::string>& TermsIn(const Case& at, const Effect& effect);
 // record no longer favors the other form by the margin a round asked of it
 // once the later steps are in (FormFavored's margin: not where the own form
 // would lie outside the effect's bounds and the other lies within them):
-// the round that took it saw only the effects before it. On a pair of runs with a Magnus moment, a nonlinear damping
-// and a cubic calibration error (suite draw 52) the signed square had come
-// 11.2 ahead of the cube with the Magnus moment alone beside it. Replaces
-// *current and *fit, and the step's step_parameters, and returns true when
-// it changed one.
+// the round that took it saw only the effects before it. On a pair of runs
+// with a Magnus moment, a nonlinear damping and a cubic calibration error
+// (suite draw 52) the signed square had come 11.2 ahead of the cube with
+// the Magnus moment alone beside it. Replaces *current and *fit, and the
+// step's step_parameters, and returns true when it changed one.
 bool BackToOwnForms(const std::vector<TimeHistory>& data,
                     Case* current,
                     FitResult* fit,
