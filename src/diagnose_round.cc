@@ -630,6 +630,19 @@ RecentMemo<ScoreKey, std::vector<Candidate>>& TheScoreMemo() {
 // min_bic_drop): the catalog's form is the report's.
 constexpr double kOtherFormBic = 10.0;
 
+// Whether `effect` lies outside its bounds in its own form (the case `own`
+// fitted as `own_fit`) and within them in its other form (`form`,
+// `form_fit`): the other form then stands in at any BIC below the own
+// form's (FormFavored, BackToOwnForms).
+bool OnlyOtherFormPlausible(const Effect& effect,
+                            const Case& own,
+                            const FitResult& own_fit,
+                            const Case& form,
+                            const FitResult& form_fit) {
+  return !Implausible(effect, own, own_fit).empty() &&
+         Implausible(effect, form, form_fit).empty();
+}
+
 // Whether `form` (an effect's other form) is to stand in the round for
 // `own`: where the score test ranks it higher (its score less its terms'
 // BIC cost), both refitted from `fit` and the form lower in BIC by
@@ -665,8 +678,8 @@ bool FormFavored(const Candidate& form,
           << " in its own form";
   if (refits[0].bic < refits[1].bic - kOtherFormBic) return true;
   return refits[0].bic < refits[1].bic &&
-         !Implausible(*own.effect, own.c, refits[1].fit).empty() &&
-         Implausible(*form.effect, form.c, refits[0].fit).empty();
+         OnlyOtherFormPlausible(
+             *own.effect, own.c, refits[1].fit, form.c, refits[0].fit);
 }
 
 // Of each effect and its other form among `candidates`, the one FormFavored
@@ -744,10 +757,7 @@ bool BackToOwnForms(const std::vector<TimeHistory>& data,
     VLOG(1) << step.effect << " in its own form beside the later steps: BIC "
             << FormatNumber("%+.1f", Bic(refit) - Bic(*fit));
     if (!(Bic(refit) < Bic(*fit) + kOtherFormBic)) continue;
-    if (!Implausible(effect, own, refit).empty() &&
-        Implausible(effect, *current, *fit).empty()) {
-      continue;
-    }
+    if (OnlyOtherFormPlausible(effect, own, refit, *current, *fit)) continue;
     *current = own;
     *fit = refit;
     step.step_parameters = Own(refit, added);

@@ -123,10 +123,10 @@ void FitWithoutEach(const std::vector<TimeHistory>& data,
 namespace {
 
 // Whether the effects of `steps` but the `drop`th stay within their bounds
-// as the search judged them (ImplausibleAmongAsJudged) in `without`, the
-// fit of `at` without that step, those on a ridge within two of their
-// errors (bounds_within_errors) in any search: there the point fit lands
-// anywhere the record allows, and a step that only held it inside its
+// as `options` judge them (ImplausibleAmongAsJudged) in `without`, the
+// fit of `at` without that step. Prune judges those on a ridge within two
+// of their errors (bounds_within_errors) in any search: there the point fit
+// lands anywhere the record allows, and a step that only held it inside its
 // bounds is no effect of the record's. On draw 143's pair of 3-s runs with
 // a tunnel damping, a Magnus moment and a flow angularity (sigma: auto), a
 // false body asymmetry stayed beside the three with Cn_beta at
@@ -137,8 +137,7 @@ bool OthersPlausibleWithout(const std::vector<DiagnosisStep>& steps,
                             int drop,
                             const Case& at,
                             const FitResult& without,
-                            DiagnoseOptions options) {
-  options.bounds_within_errors = true;
+                            const DiagnoseOptions& options) {
   std::vector<const Effect*> others;
   for (int i = 0; i < static_cast<int>(steps.size()); ++i) {
     const Effect* e = FindEffect(steps[i].effect);
@@ -152,7 +151,8 @@ bool OthersPlausibleWithout(const std::vector<DiagnosisStep>& steps,
 // Backward elimination (diagnose.h): while the record is explained by two
 // or more effects, the one whose removal costs least is dropped if the
 // residuals stay at the noise level, BIC rises by less than min_bic_drop,
-// and the others stay within their bounds without it: on a 3-s run with a
+// and the others stay within their bounds without it (those on a ridge
+// within two of their errors, OthersPlausibleWithout): on a 3-s run with a
 // bearing moment, a calibration error and a roll torque (draw 107), a
 // tunnel stiffness refused alone (t1 4.15 on Eq. 43's ridge, bound 0.146)
 // came in with a roll damping and the bearing moment (t1 0.93 +- 1.63);
@@ -163,6 +163,8 @@ void Prune(const std::vector<TimeHistory>& data,
            const DiagnoseOptions& options,
            Diagnosis* d,
            Case* current) {
+  DiagnoseOptions within = options;  // OthersPlausibleWithout's judgment
+  within.bounds_within_errors = true;
   while (d->steps.size() >= 2) {
     const FitResult& fit = d->FinalFit();
     const Case at = CaseAtSolution(*current, fit);
@@ -174,7 +176,7 @@ void Prune(const std::vector<TimeHistory>& data,
     double least = options.min_bic_drop;
     for (int i = 0; i < n; ++i) {
       if (!fitted[i] || !CheckResiduals(without[i], options).at_noise_level ||
-          !OthersPlausibleWithout(d->steps, i, at, without[i], options)) {
+          !OthersPlausibleWithout(d->steps, i, at, without[i], within)) {
         continue;
       }
       const double rise = Bic(without[i]) - Bic(fit);
