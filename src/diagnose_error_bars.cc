@@ -1477,7 +1477,18 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
   // answer; on draw 103's 3-s run with the same three a roll torque was
   // named, the stiffness 0.8 above the model beside it, and with t1 held
   // at zero in the torque's place it is 4 lower).
-  std::vector<const Effect*> singles, ridge;
+  // The mirror: a roll moment not excluded, whatever it does beside the
+  // model, in a tunnel term's place. Beside the tunnel term it adds nothing,
+  // as the term holds its roll part: on draw 144's coning run with a bearing
+  // moment, a calibration error and a roll torque (sigma: auto), a tunnel
+  // damping came first (its yaw term, at a steady coning rate, a torque
+  // about the tunnel axis whose roll part is the truth's) and stayed at
+  // 0.0046 and 0.033 +- 0.050; the roll torque, +5.1 beside it, is 2.9 lower
+  // in its place.
+  std::vector<const Effect*> singles, ridge, rolls_beside;
+  const auto roll_moment = [](const std::string& id) {
+    return id == "roll_torque" || id == "roll_damping";
+  };
   for (const CandidateFit& k : d->not_excluded) {
     if (!MayStandIn(*d, k.effect)) continue;
     const Effect* e = FindEffect(k.effect);
@@ -1485,15 +1496,23 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
       singles.push_back(e);
     } else if (OnTunnelRidge(*e)) {
       ridge.push_back(e);
+    } else if (roll_moment(k.effect)) {
+      rolls_beside.push_back(e);
     }
   }
   const std::vector<const Effect*> untried = UntriedRidge(*d, options);
   const auto rolls = [&](const DiagnosisStep& step) {
-    return step.effect == "roll_torque" || step.effect == "roll_damping";
+    return roll_moment(step.effect);
+  };
+  const auto tunnel = [&](const DiagnosisStep& step) {
+    const Effect* e = FindEffect(step.effect);
+    return e != nullptr && OnTunnelRidge(*e);
   };
   if (singles.empty() && ridge.empty() &&
       (untried.empty() ||
-       std::none_of(d->steps.begin(), d->steps.end(), rolls))) {
+       std::none_of(d->steps.begin(), d->steps.end(), rolls)) &&
+      (rolls_beside.empty() ||
+       std::none_of(d->steps.begin(), d->steps.end(), tunnel))) {
     return "";
   }
   const CompleteModel m = CompleteModels(*d, models, current).back();
@@ -1504,6 +1523,9 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
     here.insert(here.end(), ridge.begin(), ridge.end());
     if (rolls(d->steps[i])) {
       here.insert(here.end(), untried.begin(), untried.end());
+    }
+    if (tunnel(d->steps[i])) {
+      here.insert(here.end(), rolls_beside.begin(), rolls_beside.end());
     }
     for (const Effect* e : here) {
       trials.emplace_back();

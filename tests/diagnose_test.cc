@@ -5247,6 +5247,31 @@ TEST(Diagnose, ARollMomentStepIsTriedWithAnUntriedTunnelTermInItsPlace) {
   EXPECT_GT(stiffness->bic_drop, 0.0) << text;
 }
 
+// The mirror: a tunnel term named is tried with each roll moment not
+// excluded in its place, whatever that does beside the model (beside the
+// term it adds nothing, as the term holds its roll part). On draw 144's
+// coning run with a bearing moment, a calibration error and a roll torque
+// (sigma: auto; tests/data/coning_bearing_calibration_roll_torque_vary144.
+// yaml) a tunnel damping came first, its yaw term at the steady coning rate
+// a torque about the tunnel axis, and was named `explained` with the other
+// two at 0.0046 and 0.033 +- 0.050. In its place a roll moment (the torque
+// and the damping are twins at a constant spin) lowers BIC: the two tie.
+TEST(Diagnose, ATunnelTermStepIsTriedWithARollMomentInItsPlace) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_bearing_calibration_roll_torque_vary144.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_FALSE(EffectIds(d.steps).count("tunnel_damping")) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"bearing_moment",
+                                   "calibration_nonlinearity"}))
+      << text;
+  const std::set<std::string> tied = EffectIds(d.ambiguous);
+  EXPECT_TRUE(tied.count("roll_torque") || tied.count("roll_damping"))
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.2544}, {"Cm_q", -9.919}}, text);
+}
+
 // An effect named past the noise level is refitted there even where its
 // score, at the model's solution, gives it no degree of freedom
 // (WithScores): on draw 130's 3-s run with a tunnel stiffness, a
