@@ -5262,13 +5262,12 @@ TEST(Diagnose, ATunnelTermStepIsTriedWithARollMomentInItsPlace) {
       DiagnoseConfig("coning_bearing_calibration_roll_torque_vary144.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_FALSE(EffectIds(d.steps).count("tunnel_damping")) << text;
-  EXPECT_EQ(EffectIds(d.steps),
-            (std::set<std::string>{"bearing_moment",
-                                   "calibration_nonlinearity"}))
+  EXPECT_EQ(
+      EffectIds(d.steps),
+      (std::set<std::string>{"bearing_moment", "calibration_nonlinearity"}))
       << text;
   const std::set<std::string> tied = EffectIds(d.ambiguous);
-  EXPECT_TRUE(tied.count("roll_torque") || tied.count("roll_damping"))
-      << text;
+  EXPECT_TRUE(tied.count("roll_torque") || tied.count("roll_damping")) << text;
   ExpectFinalCovers(d, {{"Cm_alpha", -0.2544}, {"Cm_q", -9.919}}, text);
 }
 
