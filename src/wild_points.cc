@@ -415,6 +415,10 @@ void SortPoints(std::vector<WildPoint>* points) {
 
 }  // namespace
 
+double ReadingStepDeg(const TimeHistory& data, int channel) {
+  return ReadingQuantum(data.t, data.channel(channel), channel);
+}
+
 bool ParseOutlierPolicy(const std::string& text, OutlierPolicy* policy) {
   if (text == "warn") {
     *policy = OutlierPolicy::kWarn;

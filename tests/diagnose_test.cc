@@ -4708,6 +4708,22 @@ TEST(Diagnose, SigmaAutoHoldsTheNoiseAgainAboveALevelHeldLow) {
       text);
 }
 
+// sigma: auto holds a channel whose readings lie on a grid at least at
+// the rounding's own level, the step over sqrt(12) (RoundingLevelDeg): on
+// draw 146's 4-s run with no effect and its roll read in 2-deg counts at
+// 1.79 deg a sample (tests/data/short_quantized_roll_vary146.yaml) roll was
+// held at 0.373 deg, and a product of inertia that took part of the
+// rounding's sawtooth (its period near the pitch period) lowered BIC by
+// 10.3 and was named.
+TEST(Diagnose, SigmaAutoHoldsAQuantizedChannelAtLeastAtItsRounding) {
+  const Diagnosis d = DiagnoseConfig("short_quantized_roll_vary146.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_NE(d.verdict, Verdict::kExplained) << text;
+  EXPECT_NEAR(DiagnosedNoise(d, {}).phi, 2.0 / std::sqrt(12.0), 0.01) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.2197}, {"Cm_q", -6.305}}, text);
+}
+
 // A probe outside the catalog that outdoes a round no catalog effect won
 // must predict the held-out part of the record as a newcomer must: on draw
 // 127's 3-s run with a roll reading error (sigma: auto;

@@ -47,6 +47,11 @@ TEST(WildPoints, CleanRecordsHaveNone) {
     EXPECT_TRUE(ScreenData(clean).empty()) << name;
     for (double sigma : {0.001, 0.01, 0.1}) {
       for (int seed = 1; seed <= testing::Repetitions(20); ++seed) {
+        // Noise puts no channel on a grid.
+        for (int ch = 0; ch < 3; ++ch) {
+          EXPECT_EQ(ReadingStepDeg(Noisy(clean, sigma, seed), ch), 0.0)
+              << name << " channel " << ch;
+        }
         const std::vector<WildPoint> found =
             ScreenData(Noisy(clean, sigma, seed));
         EXPECT_TRUE(found.empty()) << name << " sigma " << sigma << " seed "
@@ -123,6 +128,8 @@ TEST(WildPoints, QuantizedReadingsAreNotWild) {
         data.theta[i] =
             0.02 * std::round((data.theta[i] + 0.01 * gauss.Next()) / 0.02);
       }
+      // The grid's step is what diagnose holds the channel's noise above.
+      EXPECT_NEAR(ReadingStepDeg(data, 1), 0.02, 1e-6) << name;
       std::vector<WildPoint> found = ScreenData(data);
       EXPECT_TRUE(found.empty())
           << name << " seed " << seed << ": " << found[0].Describe();

@@ -75,6 +75,12 @@ std::vector<WildPoint> ScreenResiduals(const TimeHistory& data,
                                        const std::vector<double>& computed,
                                        const std::vector<int>& known);
 
+// The step of channel `channel`'s readings (deg) where they lie on a grid
+// (encoder counts), or 0: nearly every reading on it over a span of at
+// least four steps, the rounding roughening the series. Roll is judged
+// unwrapped where its readings wrap into a turn.
+double ReadingStepDeg(const TimeHistory& data, int channel);
+
 // A copy of `data` without the samples at `drop` (indices, any order,
 // repeats allowed).
 TimeHistory DropSamples(const TimeHistory& data, const std::vector<int>& drop);
