@@ -1455,6 +1455,52 @@ std::vector<const Effect*> UntriedRidge(const Diagnosis& d,
   return untried;
 }
 
+bool IsRollMoment(const std::string& id) {
+  return id == "roll_torque" || id == "roll_damping";
+}
+
+bool IsTunnelTermStep(const DiagnosisStep& step) {
+  const Effect* e = FindEffect(step.effect);
+  return e != nullptr && OnTunnelRidge(*e);
+}
+
+// A trial of `e` alone in step `step`'s place, into *to.
+void AddTrial(int step, const Effect* e, std::vector<InPlace>* to) {
+  to->emplace_back();
+  to->back().step = step;
+  to->back().members = {e};
+}
+
+// UntriedRidge's mirror: each of `rolls` (roll moments not excluded that
+// lower no BIC beside the complete model `m` of `d`: beside a tunnel term
+// they add nothing, as the term holds their roll part) fitted in each
+// tunnel term step's place, *trials their storage. Returns the trial least
+// in BIC there when it is lower than `m` (its rise in *least), else nullptr.
+// On draw 144's coning run with a bearing moment, a calibration error and a
+// roll torque (sigma: auto) a tunnel damping came first (its yaw term, at a
+// steady coning rate, a torque about the tunnel axis whose roll part is the
+// truth's) and stayed at 0.0046 and 0.033 +- 0.050; the roll torque, +5.1
+// beside it, is 2.9 lower in its place. Only lower: on a cone of another
+// body with a tunnel damping, a Magnus moment and a flow angularity
+// (tests/data/coning_damping_magnus_angularity_varied80.yaml) a roll torque
+// came 0.6 above the damping in its place, and tied with it the search past
+// the noise kept neither (the damping, true, had been named).
+InPlace* LowerInTunnelTermsPlace(const CompleteModel& m,
+                                 const std::vector<const Effect*>& rolls,
+                                 const Diagnosis& d,
+                                 const std::vector<TimeHistory>& data,
+                                 const DiagnoseOptions& options,
+                                 std::vector<InPlace>* trials,
+                                 double* least) {
+  for (size_t i = 0; i < d.steps.size(); ++i) {
+    if (!IsTunnelTermStep(d.steps[i])) continue;
+    for (const Effect* e : rolls) AddTrial(static_cast<int>(i), e, trials);
+  }
+  if (trials->empty()) return nullptr;
+  InPlace* best = FitLeast(m, d, data, options, trials, least);
+  return best != nullptr && *least < 0.0 ? best : nullptr;
+}
+
 }  // namespace
 
 std::string FindSingleReplacement(const std::vector<Case>& models,
@@ -1477,18 +1523,9 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
   // answer; on draw 103's 3-s run with the same three a roll torque was
   // named, the stiffness 0.8 above the model beside it, and with t1 held
   // at zero in the torque's place it is 4 lower).
-  // The mirror: a roll moment not excluded, whatever it does beside the
-  // model, in a tunnel term's place. Beside the tunnel term it adds nothing,
-  // as the term holds its roll part: on draw 144's coning run with a bearing
-  // moment, a calibration error and a roll torque (sigma: auto), a tunnel
-  // damping came first (its yaw term, at a steady coning rate, a torque
-  // about the tunnel axis whose roll part is the truth's) and stayed at
-  // 0.0046 and 0.033 +- 0.050; the roll torque, +5.1 beside it, is 2.9 lower
-  // in its place.
+  // And the mirror (LowerInTunnelTermsPlace): each roll moment not excluded
+  // that lowers no BIC beside the model (`rolls_beside`).
   std::vector<const Effect*> singles, ridge, rolls_beside;
-  const auto roll_moment = [](const std::string& id) {
-    return id == "roll_torque" || id == "roll_damping";
-  };
   for (const CandidateFit& k : d->not_excluded) {
     if (!MayStandIn(*d, k.effect)) continue;
     const Effect* e = FindEffect(k.effect);
@@ -1496,59 +1533,40 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
       singles.push_back(e);
     } else if (OnTunnelRidge(*e)) {
       ridge.push_back(e);
-    } else if (roll_moment(k.effect)) {
+    } else if (IsRollMoment(k.effect)) {
       rolls_beside.push_back(e);
     }
   }
   const std::vector<const Effect*> untried = UntriedRidge(*d, options);
   const auto rolls = [&](const DiagnosisStep& step) {
-    return roll_moment(step.effect);
-  };
-  const auto tunnel = [&](const DiagnosisStep& step) {
-    const Effect* e = FindEffect(step.effect);
-    return e != nullptr && OnTunnelRidge(*e);
+    return IsRollMoment(step.effect);
   };
   if (singles.empty() && ridge.empty() &&
       (untried.empty() ||
        std::none_of(d->steps.begin(), d->steps.end(), rolls)) &&
       (rolls_beside.empty() ||
-       std::none_of(d->steps.begin(), d->steps.end(), tunnel))) {
+       std::none_of(d->steps.begin(), d->steps.end(), IsTunnelTermStep))) {
     return "";
   }
   const CompleteModel m = CompleteModels(*d, models, current).back();
   if (!CheckResiduals(*m.fit, options).at_noise_level) return "";
-  // The mirror's trials apart: a roll moment that adds nothing beside the
-  // model counts in a tunnel term's place only where it is lower in BIC
-  // there. On a cone of another body with a tunnel damping, a Magnus moment
-  // and a flow angularity (tests/data/coning_damping_magnus_angularity_
-  // varied80.yaml) a roll torque came 0.6 above the damping in its place,
-  // and tied with it the search past the noise kept neither (the damping,
-  // true, had been named).
-  std::vector<InPlace> trials, mirror;
-  const auto add = [](int step, const Effect* e, std::vector<InPlace>* to) {
-    to->emplace_back();
-    to->back().step = step;
-    to->back().members = {e};
-  };
+  std::vector<InPlace> trials;
   for (size_t i = 0; i < d->steps.size(); ++i) {
     std::vector<const Effect*> here = singles;
     here.insert(here.end(), ridge.begin(), ridge.end());
     if (rolls(d->steps[i])) {
       here.insert(here.end(), untried.begin(), untried.end());
     }
-    for (const Effect* e : here) add(static_cast<int>(i), e, &trials);
-    if (!tunnel(d->steps[i])) continue;
-    for (const Effect* e : rolls_beside) add(static_cast<int>(i), e, &mirror);
+    for (const Effect* e : here) AddTrial(static_cast<int>(i), e, &trials);
   }
   double least = 0.0, least_mirror = 0.0;
   InPlace* best = trials.empty()
                       ? nullptr
                       : FitLeast(m, *d, data, options, &trials, &least);
-  InPlace* lower = mirror.empty()
-                       ? nullptr
-                       : FitLeast(m, *d, data, options, &mirror, &least_mirror);
-  if (lower != nullptr && least_mirror < 0.0 &&
-      (best == nullptr || least_mirror < least)) {
+  std::vector<InPlace> mirror;
+  InPlace* lower = LowerInTunnelTermsPlace(
+      m, rolls_beside, *d, data, options, &mirror, &least_mirror);
+  if (lower != nullptr && (best == nullptr || least_mirror < least)) {
     best = lower;
     least = least_mirror;
   }
