@@ -313,9 +313,13 @@ std::string OutdoneByTheProbe(const Diagnosis& d) {
 // the catalog that explains more, if one does.
 std::string NotExplainedText(const Diagnosis& d) {
   const ResidualCheck& check = d.final;
-  const std::string lag1 = "lag-1 autocorrelation theta " +
-                           FormatNumber("%.2f", check.lag1.theta) + " psi " +
-                           FormatNumber("%.2f", check.lag1.psi);
+  // Roll too: its residual alone may be what fails the test (a roll read in
+  // counts leaves their rounding's sawtooth there).
+  const std::string lag1 =
+      "lag-1 autocorrelation phi " + FormatNumber("%.2f", check.lag1.phi) +
+      " theta " + FormatNumber("%.2f", check.lag1.theta) + " psi " +
+      FormatNumber("%.2f", check.lag1.psi) + " against a limit of " +
+      FormatNumber("%.2f", check.whiteness_limit);
   return "not explained by the catalog: " +
          (check.at_noise_level ? AtTheNoiseYetStructured(check)
           : check.white        ? LargerThanSigma(check)

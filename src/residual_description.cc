@@ -167,6 +167,34 @@ std::string FarReadings(const SegmentFit& s) {
   return text;
 }
 
+// The channels of `s` whose readings lie on a grid (ReadingStepDeg), each
+// with the RMS its rounding alone leaves (the step over sqrt(12)) beside its
+// residual's: a residual that size is the rounding's sawtooth, which reads
+// as structure where the motion crosses the counts at a steady pace.
+std::string GridReadings(const SegmentFit& s) {
+  static const char* const kNames[] = {"roll", "pitch", "yaw"};
+  std::string text;
+  for (int ch = 0; ch < 3; ++ch) {
+    const double step = ReadingStepDeg(s.data, ch);
+    if (!(step > 0.0)) continue;
+    const std::vector<double>& x = s.data.channel(ch);
+    double sum = 0.0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      // Roll compared modulo a turn, as the fit compares it.
+      double r = x[i] - s.computed[3 * i + ch];
+      if (ch == 0) r = std::remainder(r, 360.0);
+      sum += r * r;
+    }
+    const double rms = std::sqrt(sum / std::max<size_t>(1, x.size()));
+    text += std::string(text.empty() ? "" : "; ") + kNames[ch] +
+            " read in counts of " + FormatNumber("%.3g", step) +
+            " deg: their rounding alone leaves " +
+            FormatNumber("%.3g", step / std::sqrt(12.0)) +
+            " deg RMS, the residual " + FormatNumber("%.3g", rms);
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string DescribeResiduals(const FitResult& fit) {
@@ -199,6 +227,11 @@ std::string DescribeResiduals(const FitResult& fit) {
       readings = "'" + s.name + "': " + readings;
     }
     if (!readings.empty()) far += (far.empty() ? "" : "; ") + readings;
+    std::string grid = GridReadings(s);
+    if (fit.segments.size() > 1 && !grid.empty()) {
+      grid = "'" + s.name + "': " + grid;
+    }
+    if (!grid.empty()) far += (far.empty() ? "" : "; ") + grid;
     if (segment.empty()) continue;
     if (fit.segments.size() > 1) segment = "'" + s.name + "': " + segment;
     text += (text.empty() ? "" : "; ") + segment;

@@ -4721,6 +4721,12 @@ TEST(Diagnose, SigmaAutoHoldsAQuantizedChannelAtLeastAtItsRounding) {
   EXPECT_TRUE(d.steps.empty()) << text;
   EXPECT_NE(d.verdict, Verdict::kExplained) << text;
   EXPECT_NEAR(DiagnosedNoise(d, {}).phi, 2.0 / std::sqrt(12.0), 0.01) << text;
+  // The residuals' description says what the roll residual is.
+  EXPECT_NE(d.residual_description.find(
+                "roll read in counts of 2 deg: their rounding alone leaves "
+                "0.577 deg RMS"),
+            std::string::npos)
+      << d.residual_description;
   ExpectFinalCovers(d, {{"Cm_alpha", -0.2197}, {"Cm_q", -6.305}}, text);
 }
 

@@ -845,8 +845,10 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options);
 // spin's harmonics, a trend in time, a dependence on the pitch or yaw
 // angle, a dependence on the roll angle (residual_description.cc), each
 // named only above the share of the residual's variance that noise takes
-// with chance 1e-3; and the readings far off the fitted motion
-// (ScreenResiduals, wild_points.h), with channel and time.
+// with chance 1e-3; the readings far off the fitted motion
+// (ScreenResiduals, wild_points.h), with channel and time; and the channels
+// read in counts (ReadingStepDeg), with the RMS their rounding alone leaves
+// beside the residual's.
 std::string DescribeResiduals(const FitResult& fit);
 
 // The noise level the diagnosis weighed the residuals by: the record's own
