@@ -924,7 +924,7 @@ double ModelFreeNoiseDeg(const SegmentFit& s, int ch) {
 // readings lie on a grid (ReadingStepDeg), the rounding's standard
 // deviation, the step over sqrt(12), else 0. A reading moving across its
 // counts errs by that much whatever the fit; held lower, the rounding's
-// sawtooth reads as structure. On draw 146's 3-s run with its roll read in
+// sawtooth reads as structure. On draw 146's 4-s run with its roll read in
 // 2-deg counts at 1.79 deg a sample (the colored errors' `quantized`), roll
 // was held at 0.373 deg, the sawtooth's period near the pitch period, and
 // a product of inertia that took part of it lowered BIC by 10.3 and was
