@@ -177,20 +177,12 @@ std::string GridReadings(const SegmentFit& s) {
   for (int ch = 0; ch < 3; ++ch) {
     const double step = ReadingStepDeg(s.data, ch);
     if (!(step > 0.0)) continue;
-    const std::vector<double>& x = s.data.channel(ch);
-    double sum = 0.0;
-    for (size_t i = 0; i < x.size(); ++i) {
-      // Roll compared modulo a turn, as the fit compares it.
-      double r = x[i] - s.computed[3 * i + ch];
-      if (ch == 0) r = std::remainder(r, 360.0);
-      sum += r * r;
-    }
-    const double rms = std::sqrt(sum / std::max<size_t>(1, x.size()));
     text += std::string(text.empty() ? "" : "; ") + kNames[ch] +
             " read in counts of " + FormatNumber("%.3g", step) +
             " deg: their rounding alone leaves " +
             FormatNumber("%.3g", step / std::sqrt(12.0)) +
-            " deg RMS, the residual " + FormatNumber("%.3g", rms);
+            " deg RMS, the residual " +
+            FormatNumber("%.3g", s.rms_residual_deg[ch]);
   }
   return text;
 }
@@ -222,16 +214,13 @@ std::string DescribeResiduals(const FitResult& fit) {
       const std::string part = DescribeChannel(c, t, roll, spin_hz);
       if (!part.empty()) segment += (segment.empty() ? "" : "; ") + part;
     }
-    std::string readings = FarReadings(s);
-    if (fit.segments.size() > 1 && !readings.empty()) {
-      readings = "'" + s.name + "': " + readings;
+    // The readings' notes, each under its segment's name when there are
+    // several.
+    for (const std::string& note : {FarReadings(s), GridReadings(s)}) {
+      if (note.empty()) continue;
+      far += (far.empty() ? "" : "; ") +
+             (fit.segments.size() > 1 ? "'" + s.name + "': " : "") + note;
     }
-    if (!readings.empty()) far += (far.empty() ? "" : "; ") + readings;
-    std::string grid = GridReadings(s);
-    if (fit.segments.size() > 1 && !grid.empty()) {
-      grid = "'" + s.name + "': " + grid;
-    }
-    if (!grid.empty()) far += (far.empty() ? "" : "; ") + grid;
     if (segment.empty()) continue;
     if (fit.segments.size() > 1) segment = "'" + s.name + "': " + segment;
     text += (text.empty() ? "" : "; ") + segment;
