@@ -97,17 +97,18 @@ std::vector<Candidate> ScoredCandidates(const Case& current,
                                         const DiagnoseOptions& options);
 
 // Whether a round past the noise level (DiagnoseOptions::noise_held) may
-// add one of `candidates`, scored at `fit`: some score, the predicted
-// drop of the residual sum of squares in units of its variance, less the
-// candidate's ln(n) per parameter, reaches min_bic_drop. Past the noise
+// add one of `candidates`, scored at `fit`: the drop in BIC some score
+// predicts (ScoreBicDrop) reaches min_bic_drop. Past the noise
 // the effects left are small and the score predicts their fits well; the
 // refits it spares had taken the Table 6 triples past 5 s.
 bool ScoreMayEarn(const std::vector<Candidate>& candidates,
                   const FitResult& fit,
                   const DiagnoseOptions& options);
 
-// The drop in BIC a refit of `k` beside `fit` is predicted to bring: its
-// score less ln(n) per parameter (ScoreMayEarn's measure).
+// The drop in BIC a refit of `k` beside `fit` is predicted to bring: the
+// drop of the sum of squares its score predicts (the score in units of
+// the residuals' variance over their degrees of freedom), on Bic's log
+// scale, less ln(n) per parameter (ScoreMayEarn's measure).
 double ScoreBicDrop(const Candidate& k, const FitResult& fit);
 
 // Each model (`cases`, fitted as `fits`) refitted from its solution
