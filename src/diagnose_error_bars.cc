@@ -1471,22 +1471,29 @@ void AddTrial(int step, const Effect* e, std::vector<InPlace>* to) {
   to->back().members = {e};
 }
 
-// UntriedRidge's mirror: each of `rolls` (roll moments not excluded that
-// lower no BIC beside the complete model `m` of `d`: beside a tunnel term
-// they add nothing, as the term holds their roll part) fitted in each
-// tunnel term step's place, *trials their storage. Returns the trial least
-// in BIC there when it is lower than `m` (its rise in *least), else nullptr.
-// On draw 144's coning run with a bearing moment, a calibration error and a
-// roll torque (sigma: auto) a tunnel damping came first (its yaw term, at a
-// steady coning rate, a torque about the tunnel axis whose roll part is the
-// truth's) and stayed at 0.0046 and 0.033 +- 0.050; the roll torque, +5.1
-// beside it, is 2.9 lower in its place. Only lower: on a cone of another
-// body with a tunnel damping, a Magnus moment and a flow angularity
-// (tests/data/coning_damping_magnus_angularity_varied80.yaml) a roll torque
-// came 0.6 above the damping in its place, and tied with it the search past
-// the noise kept neither (the damping, true, had been named).
+// UntriedRidge's mirror: each of `others` (effects not excluded, off
+// Eq. 39's ridge, that lower no BIC beside the complete model `m` of `d`:
+// beside a tunnel term they add nothing where the term holds their
+// signature) fitted in each tunnel term step's place, *trials their
+// storage. Returns the trial least in BIC there when it is lower than `m`
+// (its rise in *least), else nullptr. On draw 144's coning run with a
+// bearing moment, a calibration error and a roll torque (sigma: auto) a
+// tunnel damping came first (its yaw term, at a steady coning rate, a
+// torque about the tunnel axis whose roll part is the truth's) and stayed
+// at 0.0046 and 0.033 +- 0.050; the roll torque, +5.1 beside it, is 2.9
+// lower in its place. On draw 148's cone with a Magnus moment, a nonlinear
+// damping and a calibration error a tunnel damping with pitch and yaw
+// terms of opposite signs (-0.134 and +0.134: a moment turning the
+// coning plane, the Magnus moment's) came in a joint set with the Magnus
+// moment, which was then dropped as redundant; the Magnus moment, +2.7
+// beside the answer, is 6.9 lower in the damping's place. Only lower: on a
+// cone of another body with a tunnel damping, a Magnus moment and a flow
+// angularity (tests/data/coning_damping_magnus_angularity_varied80.yaml) a
+// roll torque came 0.6 above the damping in its place, and tied with it
+// the search past the noise kept neither (the damping, true, had been
+// named).
 InPlace* LowerInTunnelTermsPlace(const CompleteModel& m,
-                                 const std::vector<const Effect*>& rolls,
+                                 const std::vector<const Effect*>& others,
                                  const Diagnosis& d,
                                  const std::vector<TimeHistory>& data,
                                  const DiagnoseOptions& options,
@@ -1494,7 +1501,7 @@ InPlace* LowerInTunnelTermsPlace(const CompleteModel& m,
                                  double* least) {
   for (size_t i = 0; i < d.steps.size(); ++i) {
     if (!IsTunnelTermStep(d.steps[i])) continue;
-    for (const Effect* e : rolls) AddTrial(static_cast<int>(i), e, trials);
+    for (const Effect* e : others) AddTrial(static_cast<int>(i), e, trials);
   }
   if (trials->empty()) return nullptr;
   InPlace* best = FitLeast(m, d, data, options, trials, least);
@@ -1523,9 +1530,10 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
   // answer; on draw 103's 3-s run with the same three a roll torque was
   // named, the stiffness 0.8 above the model beside it, and with t1 held
   // at zero in the torque's place it is 4 lower).
-  // And the mirror (LowerInTunnelTermsPlace): each roll moment not excluded
-  // that lowers no BIC beside the model (`rolls_beside`).
-  std::vector<const Effect*> singles, ridge, rolls_beside;
+  // And the mirror (LowerInTunnelTermsPlace): each other effect not
+  // excluded, which lowers no BIC beside the model (`others`), in each
+  // tunnel term step's place.
+  std::vector<const Effect*> singles, ridge, others;
   for (const CandidateFit& k : d->not_excluded) {
     if (!MayStandIn(*d, k.effect)) continue;
     const Effect* e = FindEffect(k.effect);
@@ -1533,8 +1541,8 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
       singles.push_back(e);
     } else if (OnTunnelRidge(*e)) {
       ridge.push_back(e);
-    } else if (IsRollMoment(k.effect)) {
-      rolls_beside.push_back(e);
+    } else {
+      others.push_back(e);
     }
   }
   const std::vector<const Effect*> untried = UntriedRidge(*d, options);
@@ -1544,7 +1552,7 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
   if (singles.empty() && ridge.empty() &&
       (untried.empty() ||
        std::none_of(d->steps.begin(), d->steps.end(), rolls)) &&
-      (rolls_beside.empty() ||
+      (others.empty() ||
        std::none_of(d->steps.begin(), d->steps.end(), IsTunnelTermStep))) {
     return "";
   }
@@ -1565,7 +1573,7 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
                       : FitLeast(m, *d, data, options, &trials, &least);
   std::vector<InPlace> mirror;
   InPlace* lower = LowerInTunnelTermsPlace(
-      m, rolls_beside, *d, data, options, &mirror, &least_mirror);
+      m, others, *d, data, options, &mirror, &least_mirror);
   if (lower != nullptr && (best == nullptr || least_mirror < least)) {
     best = lower;
     least = least_mirror;

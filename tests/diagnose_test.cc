@@ -5359,6 +5359,28 @@ TEST(Diagnose, ATunnelTermStepIsTriedWithARollMomentInItsPlace) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.2544}, {"Cm_q", -9.919}}, text);
 }
 
+// Any effect not excluded is tried in a tunnel term step's place, not a
+// roll moment alone: on draw 148's cone with a Magnus moment, a nonlinear
+// damping and a calibration error (sigma: auto;
+// tests/data/coning_magnus_damping_calibration_vary148.yaml) a tunnel
+// damping with pitch and yaw terms of opposite signs came in a joint set
+// with the Magnus moment, which was then dropped as redundant; the answer
+// was `explained` with the false damping, and the Magnus moment, +2.7
+// beside it, is 6.9 lower in its place. The two now tie.
+TEST(Diagnose, ATunnelTermStepIsTriedWithAnyEffectNotExcludedInItsPlace) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_magnus_damping_calibration_vary148.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_FALSE(EffectIds(d.steps).count("tunnel_damping")) << text;
+  EXPECT_EQ(
+      EffectIds(d.steps),
+      (std::set<std::string>{"calibration_nonlinearity", "nonlinear_damping"}))
+      << text;
+  EXPECT_EQ(EffectIds(d.ambiguous).count("magnus"), 1u) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.3285}, {"Cm_q", -3.298}}, text);
+}
+
 // Twins that earn their place together (the same fitted motion) are led by
 // the one within its bounds at the point fit: on draw 145's Table 6 record
 // with a bearing moment, a calibration error and a roll torque (sigma:
