@@ -1106,7 +1106,9 @@ void HoldAgainAt(
 // and the calibration's score, 14.5 at 2 terms, missed the 10 of BIC it
 // needed: `noise_level`, Cm_alpha 10.8 of its errors off. Only at the
 // noise level: a channel a missed effect holds above its level is the
-// record's structure, and a level raised to it would hide it.
+// record's structure, and a level raised to it would hide it; or where
+// the search leaves the record unexplained, its partial steps whiten it
+// just past the limit (HeldLowByWhiteSteps).
 bool HeldAgain(const Case& c,
                const Diagnosis& d,
                const DiagnoseOptions& options,
@@ -1131,8 +1133,11 @@ bool HeldAgain(const Case& c,
     if (too_high || too_low) {
       HoldAgainAt(c, ch, least, "", held);
       again = true;
-    } else if (HeldLowByWhiteSteps(d, ch, level, options, &least)) {
-      HoldAgainAt(c, ch, least, "the partial steps' ", held);
+      continue;
+    }
+    double white = 0.0;
+    if (HeldLowByWhiteSteps(d, ch, level, options, &white)) {
+      HoldAgainAt(c, ch, white, "the partial steps' ", held);
       again = true;
     }
   }
