@@ -1058,7 +1058,6 @@ bool ShowsHeldTooLow(const FitResult& fit,
 bool HeldLowByWhiteSteps(const Diagnosis& d,
                          int ch,
                          double level,
-                         const DiagnoseOptions& options,
                          double* residual) {
   if (d.verdict != Verdict::kNotExplained || d.partial.empty()) return false;
   const DiagnosisStep& last = d.partial.back();
@@ -1068,11 +1067,14 @@ bool HeldLowByWhiteSteps(const Diagnosis& d,
     return false;
   }
   const FitResult& fit = d.fits[last.fit_after];
-  std::array<double, 3> all;
-  for (int k = 0; k < 3; ++k) all[k] = CorrectedResidual(fit, k);
-  std::sort(all.begin(), all.end());
-  *residual = std::min(CorrectedResidual(fit, ch), all[1]);
-  return ShowsHeldTooLow(fit, ch, *residual, level, options);
+  std::array<double, 3> sorted;
+  for (int k = 0; k < 3; ++k) sorted[k] = CorrectedResidual(fit, k);
+  const double own = sorted[ch];
+  std::sort(sorted.begin(), sorted.end());
+  *residual = std::min(own, sorted[1]);
+  // Every channel is white there already (after.white, the step's own
+  // residual check): only the level is left to read.
+  return *residual >= kHeldTooLow * level;
 }
 
 // Holds channel `ch` of *held again at `level` (deg), which `source`
@@ -1136,7 +1138,7 @@ bool HeldAgain(const Case& c,
       continue;
     }
     double white = 0.0;
-    if (HeldLowByWhiteSteps(d, ch, level, options, &white)) {
+    if (HeldLowByWhiteSteps(d, ch, level, &white)) {
       HoldAgainAt(c, ch, white, "the partial steps' ", held);
       again = true;
     }
