@@ -827,15 +827,23 @@ Diagnosis SearchAnswer(const Case& c,
       s.contended.push_back(e);
     }
   }
-  FindNotExcluded(
-      s.contended, s.lesser, s.models, s.current, data, options, &d);
+  std::vector<const Effect*> open_ridge;
+  FindNotExcluded(s.contended,
+                  s.lesser,
+                  s.models,
+                  s.current,
+                  data,
+                  options,
+                  &d,
+                  &open_ridge);
   // A step outdone (by ambiguity_bic or more) by one effect in its place
   // stands in a tie with it only where the search without it does not
   // explain the record better (DiagnoseFrom): the answer with the tie is
   // kept aside. Not so for a set in its place: two or three effects beat
   // a true body yaw asymmetry by 10 or more on draws 22 and 25's coning
   // runs, and the asymmetry is named.
-  notes->outdone = FindSetReplacements(s.models, s.current, data, options, &d);
+  notes->outdone =
+      FindSetReplacements(s.models, s.current, data, options, open_ridge, &d);
   if (notes->outdone.empty()) {
     Diagnosis tie;
     notes->outdone =

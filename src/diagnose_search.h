@@ -612,13 +612,19 @@ void WidenForCatalogAlike(const Diagnosis& other,
 // another noise draw it was 35 below (outside rival_bic) and, when only
 // the steps' rivals were tried here, never tried: Cm_q ended 129 of its
 // errors off.
+//
+// Into *open_ridge, Eq. 39's tunnel terms whose score at the first
+// complete model says the record may not exclude them (ScoreBicDrop above
+// -ambiguity_bic, as Lesser reads a lesser refit's), for
+// FindSetReplacements.
 void FindNotExcluded(const std::vector<const Effect*>& contended,
                      const std::vector<const Effect*>& lesser,
                      const std::vector<Case>& models,
                      const Case& current,
                      const std::vector<TimeHistory>& data,
                      const DiagnoseOptions& options,
-                     Diagnosis* d);
+                     Diagnosis* d,
+                     std::vector<const Effect*>* open_ridge);
 
 // The final error bars cover the models of the effects the record cannot
 // exclude (FindNotExcluded), each with its Akaike weight against the
@@ -695,10 +701,13 @@ void WidenAlternatives(const std::vector<TimeHistory>& data,
 // joins a tie with them, and the final error bars cover the replacing
 // model's values. Returned (nothing changed) when they do better by
 // ambiguity_bic or more: the search took a wrong turn (DiagnoseFrom).
+// The tunnel terms of `open_ridge` (FindNotExcluded) that no round
+// refitted nor the search tried beside the model join the set last.
 std::string FindSetReplacements(const std::vector<Case>& models,
                                 const Case& current,
                                 const std::vector<TimeHistory>& data,
                                 const DiagnoseOptions& options,
+                                const std::vector<const Effect*>& open_ridge,
                                 Diagnosis* d);
 
 // One effect not excluded that lowered BIC beside the complete model,

@@ -35,6 +35,15 @@ std::set<std::string> EffectIds(const std::vector<T>& items) {
   return ids;
 }
 
+// The effect ids of every tie of `d` (the first and the later ones).
+std::set<std::string> TiedIds(const Diagnosis& d) {
+  std::set<std::string> tied = EffectIds(d.ambiguous);
+  for (const auto& tie : d.later_ties) {
+    for (const CandidateFit& k : tie) tied.insert(k.effect);
+  }
+  return tied;
+}
+
 // Whether `fits` (a diagnosis's rejected or not_excluded) list `effect`
 // with `why` in its reason.
 bool ListedWith(const std::vector<CandidateFit>& fits,
@@ -1582,10 +1591,7 @@ void ExpectTruthAddedOrTied(const Diagnosis& d,
     EXPECT_TRUE(truth.count(s.effect)) << s.effect << "\n" << text;
     named.insert(s.effect);
   }
-  for (const CandidateFit& k : d.ambiguous) named.insert(k.effect);
-  for (const auto& tie : d.later_ties) {
-    for (const CandidateFit& k : tie) named.insert(k.effect);
-  }
+  for (const std::string& id : TiedIds(d)) named.insert(id);
   for (const std::string& id : truth) {
     EXPECT_TRUE(named.count(id)) << id << "\n" << text;
   }
@@ -2056,12 +2062,7 @@ TEST(Diagnose, SwapsInARivalThatLostWhileAnEffectWasMissing) {
   const Diagnosis d = Diagnose(ShortConfig({data}), DiagnoseOptions());
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(VerdictToString(d.verdict), std::string("ambiguous")) << text;
-  std::set<std::string> tied;
-  for (const CandidateFit& k : d.ambiguous) tied.insert(k.effect);
-  for (const auto& tie : d.later_ties) {
-    for (const CandidateFit& k : tie) tied.insert(k.effect);
-  }
-  EXPECT_TRUE(tied.count("tunnel_stiffness")) << text;
+  EXPECT_TRUE(TiedIds(d).count("tunnel_stiffness")) << text;
   for (const DiagnosisStep& s : d.steps) {
     EXPECT_NE(s.effect, "roll_torque") << text;
   }
@@ -2403,20 +2404,26 @@ TEST(Diagnose, KeepsATiedEffectTheOthersNeedAsTheTiesStandIn) {
 // complete model with the stiffness is 10.2 lower in BIC than the one with
 // the torque: searched without the torque (OutdoneTieBranch), the record
 // is explained by the three true effects, the roll damping gone with the
-// torque. Before the tie's partial steps, nothing was added.
+// torque. Before the tie's partial steps, nothing was added. Since the
+// 77th session a set is trimmed no further than a tie allows (Needed's
+// ceiling): the roll damping, a Magnus moment and the roll torque together
+// rise 9.3 in the stiffness's place, and the stiffness stands in a tie with
+// them, the damping and the asymmetry added.
 TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d = DiagnoseConfig("pair_stiffness_damping_asymmetry.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  ExpectNamedExactly(
-      d,
-      {"nonlinear_damping", "asymmetric_body", "tunnel_stiffness"},
-      {{"Cm_alpha", -0.23},
-       {"Cm_q", -5.5},
-       {"Cm_q_alpha2", 136.0},
-       {"tunnel_Cm_theta", 0.000689},
-       {"tunnel_Cn_psi", -0.000241}},
-      text);
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"nonlinear_damping", "asymmetric_body"}))
+      << text;
+  EXPECT_TRUE(TiedIds(d).count("tunnel_stiffness")) << text;
+  ExpectFinalCovers(d,
+                    {{"Cm_alpha", -0.23},
+                     {"Cm_q", -5.5},
+                     {"Cm_q_alpha2", 136.0},
+                     {"tunnel_Cm_theta", 0.000689},
+                     {"tunnel_Cn_psi", -0.000241}},
+                    text);
   EXPECT_TRUE(EffectIds(d.rejected).count("roll_torque")) << text;
   EXPECT_TRUE(d.stand_in.empty()) << text;
 }
@@ -5382,6 +5389,66 @@ TEST(Diagnose, ATunnelTermStepIsTriedWithAnyEffectNotExcludedInItsPlace) {
       << text;
   EXPECT_EQ(EffectIds(d.ambiguous).count("magnus"), 1u) << text;
   ExpectFinalCovers(d, {{"Cm_alpha", -0.3285}, {"Cm_q", -3.298}}, text);
+}
+
+// A tunnel term no round refitted nor tried beside the model joins the
+// set of effects not excluded fitted in a step's place, and the set is
+// trimmed no further than a tie allows: on draw 150's cone with a tunnel
+// stiffness, a nonlinear damping and a body asymmetry a Magnus moment came
+// in a joint set with the damping and the answer was `explained`; the
+// asymmetry and the stiffness together in the moment's place tie with it.
+// The final Cm_alpha covers the truth: the stiffness's t1 + t3 is its twin
+// (Eq. 43), and the tie's model leaves them free.
+TEST(Diagnose, AnUntriedTunnelTermJoinsTheSetInAStepsPlace) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("coning_stiffness_damping_asymmetry_vary150.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps), (std::set<std::string>{"nonlinear_damping"}))
+      << text;
+  EXPECT_EQ(
+      EffectIds(d.ambiguous),
+      (std::set<std::string>{"magnus", "asymmetric_body", "tunnel_stiffness"}))
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.2469}, {"Cm_q", -1.559}}, text);
+}
+
+// The tunnel terms no round tried join the set in a step's place last,
+// where the set of the effects not excluded stands in for none: on draw
+// 147's 3-s run with a tunnel damping, a Magnus moment and a flow
+// angularity that set stands in for a false body asymmetry (+4.2), and
+// with an untried tunnel stiffness among it rose 12.0 and the asymmetry
+// was added.
+TEST(Diagnose, AnUntriedTunnelTermJoinsTheSetLast) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_damping_magnus_angularity_vary147.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_TRUE(d.steps.empty()) << text;
+  const std::set<std::string> tied = TiedIds(d);
+  for (const char* id : {"tunnel_damping", "magnus", "flow_angularity"}) {
+    EXPECT_TRUE(tied.count(id)) << id << "\n" << text;
+  }
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.2113}, {"Cm_q", -7.787}}, text);
+}
+
+// An effect not excluded that lowers BIC beside the complete model may
+// stand in for a step alone though a lesser refit at its round, and a
+// tunnel term in a step's place is judged within two of its errors, as
+// beside the model: on draw 150's 3-s run with a tunnel damping, a Magnus
+// moment and a flow angularity a body yaw asymmetry was added (its Cn_r
+// apart from Cm_q holds the damping's yaw term); the damping, 2.8 lower
+// beside the answer, is 6.5 lower in the asymmetry's place with t4 1.64,
+// past its bound of 1.59 at the point fit by a fifth of its error.
+TEST(Diagnose, ALesserRefitLowerBesideTheModelStandsInAlone) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_damping_magnus_angularity_vary150.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(EffectIds(d.steps), (std::set<std::string>{"magnus"})) << text;
+  EXPECT_TRUE(TiedIds(d).count("tunnel_damping")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.2076}, {"Cm_q", -2.213}}, text);
 }
 
 // Twins that earn their place together (the same fitted motion) are led by
