@@ -755,15 +755,28 @@ void NominalTwins(const CompleteModel& nominal,
   ListCoefficientTwins(twins, scores, nominal, FittedData(*nominal.fit), d);
 }
 
+// Whether the complete model `m` or a tie of `d` holds a member of the
+// offset family (OffsetFamily).
+bool HoldsOffsetFamily(const CompleteModel& m, const Diagnosis& d) {
+  for (const Effect* e : m.effects) {
+    if (e != nullptr && OffsetFamily(*e)) return true;
+  }
+  for (const CandidateFit& k : Tied(d)) {
+    const Effect* e = FindEffect(k.effect);
+    if (e != nullptr && OffsetFamily(*e)) return true;
+  }
+  return false;
+}
+
 // The effects neither in `contended` nor tied nor twins (IsTwin; Eq. 43's
 // tunnel terms near twins, IsNearTwin) whose score at the complete model's
-// solution (`scored`, at `fit`) may earn a place (ScoreMayEarn): no round
-// refitted them, the search having stopped at the noise level. Tried beside the
-// complete model, they are searched past the noise (PastNoise) when they lower
-// BIC there. On a 3-s run with a tunnel damping, a Magnus moment and a flow
-// angularity, a joint set with a false body asymmetry (Cm_alpha 8 of its errors
-// off) reached the noise; the Magnus moment, sixth by score at the first round
-// and refitted at none, scored 31.9 on its one parameter beside it, and
+// solution (`scored`, at `model`'s fit) may earn a place (ScoreMayEarn): no
+// round refitted them, the search having stopped at the noise level. Tried
+// beside the complete model, they are searched past the noise (PastNoise) when
+// they lower BIC there. On a 3-s run with a tunnel damping, a Magnus moment and
+// a flow angularity, a joint set with a false body asymmetry (Cm_alpha 8 of its
+// errors off) reached the noise; the Magnus moment, sixth by score at the first
+// round and refitted at none, scored 31.9 on its one parameter beside it, and
 // the true model's BIC was 45 lower. A tunnel term, an exact twin in one
 // direction (novelty under the score's rank drop), is scored on the
 // others alone: a tunnel stiffness's t1 + t3 is Cm_alpha's twin (Eq. 43),
@@ -775,18 +788,30 @@ void NominalTwins(const CompleteModel& nominal,
 // the Magnus moment's place. On draw 117's 3.5-s coning run with a tunnel
 // stiffness, a nonlinear damping and a body yaw asymmetry, the stiffness
 // scored 31.9 beside the other two (novelty 7e-9), was never tried, and the
-// true model was 32 lower in BIC than the answer.
+// true model was 32 lower in BIC than the answer. Where `model` or a tie
+// holds a member of the offset family (OffsetFamily), every other member
+// is taken unless its score excludes it (ScoreBicDrop at -ambiguity_bic or
+// less, as Lesser reads a lesser refit's): on draw 151's pair with a
+// tunnel stiffness, a roll reading error and a flow angularity a trim
+// moment tied with the reading error, the stiffness added; the angularity,
+// 2.9 by score beside them, was never tried, and beside the answer it
+// rises 5.8.
 std::vector<const Effect*> Unrefitted(
     const std::vector<Candidate>& scored,
     const std::vector<const Effect*>& contended,
-    const FitResult& fit,
+    const CompleteModel& model,
     const Diagnosis& d,
     const DiagnoseOptions& options) {
+  const FitResult& fit = *model.fit;
+  const bool offsets = HoldsOffsetFamily(model, d);
   std::vector<const Effect*> strong;
   for (const Candidate& k : scored) {
     const bool twin =
         OnTunnelRidge(*k.effect) ? IsNearTwin(k.score) : IsTwin(k.score);
-    if (!twin && !InTie(d, k.effect->id) && ScoreMayEarn({k}, fit, options) &&
+    const bool may = ScoreMayEarn({k}, fit, options) ||
+                     (offsets && OffsetFamily(*k.effect) &&
+                      ScoreBicDrop(k, fit) > -options.ambiguity_bic);
+    if (!twin && !InTie(d, k.effect->id) && may &&
         std::find(contended.begin(), contended.end(), k.effect) ==
             contended.end()) {
       strong.push_back(k.effect);
@@ -903,8 +928,7 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   const std::vector<const Effect*> twins =
       NearTwins(scored, effects, first[0], d);
   std::vector<const Effect*> alone = twins;
-  for (const Effect* e :
-       Unrefitted(scored, effects, *first[0].fit, *d, options)) {
+  for (const Effect* e : Unrefitted(scored, effects, first[0], *d, options)) {
     alone.push_back(e);
   }
   for (Beside& t : FitBeside(first, alone, data)) {

@@ -202,6 +202,12 @@ double RollSpan(const std::vector<TimeHistory>& data);
 // final fit's samples.
 bool RollSeparates(const std::vector<TimeHistory>& data);
 
+// An offset of the tunnel's planes and the roll-locked effects (a
+// body-fixed trim, a roll-synchronous reading error): over less than a
+// revolution of roll a first harmonic of roll is an offset and a slow
+// change, and the family's members have one signature.
+bool OffsetFamily(const Effect& e);
+
 // How a contender's refusal for the held-out part opens (PredictsHeldOut):
 // the verdict reads it back (RollLockedUnconfirmed).
 inline constexpr char kHeldOutRefusal[] =

@@ -988,13 +988,13 @@ int RefitCount(const std::vector<Candidate>& candidates,
   return n;
 }
 
-// An offset of the tunnel's planes and the roll-locked effects (a
-// body-fixed trim, a roll-synchronous reading error): over less than a
-// revolution of roll a first harmonic of roll is an offset and a slow
-// change, and the family's members have one signature.
+}  // namespace
+
 bool OffsetFamily(const Effect& e) {
   return e.roll_locked || e.id == "flow_angularity";
 }
+
+namespace {
 
 // Which of `candidates` (in the order of score) Contenders refits: the
 // first RefitCount, and where roll does not separate the offset family

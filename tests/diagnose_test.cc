@@ -5433,6 +5433,23 @@ TEST(Diagnose, AnUntriedTunnelTermJoinsTheSetLast) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.2113}, {"Cm_q", -7.787}}, text);
 }
 
+// Where the answer or a tie holds a member of the offset family (a trim
+// moment, a roll reading error, a flow angularity), every other member
+// whose score does not exclude it is tried beside the complete model: on
+// draw 151's pair with a tunnel stiffness, a roll reading error and a
+// flow angularity a trim moment tied with the reading error, the
+// stiffness added, and the angularity (a BIC drop of -7.4 as its score
+// reads) was never tried; beside the answer it rises 5.8, and is listed.
+TEST(Diagnose, AnOffsetBesideAnOffsetsTwinIsTriedBesideTheModel) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("pair_stiffness_roll_error_angularity_vary151.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_TRUE(TiedIds(d).count("roll_interaction")) << text;
+  EXPECT_TRUE(EffectIds(d.not_excluded).count("flow_angularity")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.1954}, {"Cm_q", -4.106}}, text);
+}
+
 // An effect not excluded that lowers BIC beside the complete model may
 // stand in for a step alone though a lesser refit at its round, and a
 // tunnel term in a step's place is judged within two of its errors, as
