@@ -790,12 +790,11 @@ bool HoldsOffsetFamily(const CompleteModel& m, const Diagnosis& d) {
 // scored 31.9 beside the other two (novelty 7e-9), was never tried, and the
 // true model was 32 lower in BIC than the answer. Where `model` or a tie
 // holds a member of the offset family (OffsetFamily), every other member
-// is taken unless its score excludes it (ScoreBicDrop at -ambiguity_bic or
-// less, as Lesser reads a lesser refit's): on draw 151's pair with a
-// tunnel stiffness, a roll reading error and a flow angularity a trim
-// moment tied with the reading error, the stiffness added; the angularity,
-// 2.9 by score beside them, was never tried, and beside the answer it
-// rises 5.8.
+// is taken where its score leaves it open (ScoreLeavesOpen, as Lesser
+// reads a lesser refit's): on draw 151's pair with a tunnel stiffness, a
+// roll reading error and a flow angularity a trim moment tied with the
+// reading error, the stiffness added; the angularity, 2.9 by score beside
+// them, was never tried, and beside the answer it rises 5.8.
 std::vector<const Effect*> Unrefitted(
     const std::vector<Candidate>& scored,
     const std::vector<const Effect*>& contended,
@@ -810,7 +809,7 @@ std::vector<const Effect*> Unrefitted(
         OnTunnelRidge(*k.effect) ? IsNearTwin(k.score) : IsTwin(k.score);
     const bool may = ScoreMayEarn({k}, fit, options) ||
                      (offsets && OffsetFamily(*k.effect) &&
-                      ScoreBicDrop(k, fit) > -options.ambiguity_bic);
+                      ScoreLeavesOpen(k, fit, options));
     if (!twin && !InTie(d, k.effect->id) && may &&
         std::find(contended.begin(), contended.end(), k.effect) ==
             contended.end()) {
@@ -823,14 +822,13 @@ std::vector<const Effect*> Unrefitted(
 // Of the `lesser` refits, those `scored` (at the complete model's
 // solution, fitted as `fit`) as twins of its free parameters (IsTwin:
 // their scores say nothing of what a refit does), or whose score says the
-// record may not exclude them (ScoreBicDrop above -ambiguity_bic, which
-// takes in those that may earn a place). Each lesser refit tried beside
-// every complete model had cost 9% more time over nine draws (a Table 6
-// triple 4.9 -> 5.2 s). Only those that may earn had been tried: on a pair
-// of 3-s runs with a tunnel stiffness, a roll reading error and a flow
-// angularity (varied draw 95) the angularity, refitted in a round at BIC
-// +8.5, was never tried beside the search's model (+6.7 there), and the
-// answer did not say the record allows it.
+// record may not exclude them (ScoreLeavesOpen, which takes in those that may
+// earn a place). Each lesser refit tried beside every complete model had cost
+// 9% more time over nine draws (a Table 6 triple 4.9 -> 5.2 s). Only those that
+// may earn had been tried: on a pair of 3-s runs with a tunnel stiffness, a
+// roll reading error and a flow angularity (varied draw 95) the angularity,
+// refitted in a round at BIC +8.5, was never tried beside the search's model
+// (+6.7 there), and the answer did not say the record allows it.
 std::vector<Candidate> Lesser(const std::vector<Candidate>& scored,
                               const std::vector<const Effect*>& lesser,
                               const FitResult& fit,
@@ -838,7 +836,7 @@ std::vector<Candidate> Lesser(const std::vector<Candidate>& scored,
   std::vector<Candidate> chosen;
   for (const Candidate& k : scored) {
     if (std::find(lesser.begin(), lesser.end(), k.effect) != lesser.end() &&
-        (IsTwin(k.score) || ScoreBicDrop(k, fit) > -options.ambiguity_bic)) {
+        (IsTwin(k.score) || ScoreLeavesOpen(k, fit, options))) {
       chosen.push_back(k);
     }
   }
@@ -891,7 +889,7 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   if (first[0].effects.empty()) NominalTwins(first[0], options, d);
   for (const Candidate& k : scored) {
     if (OnTunnelRidge(*k.effect) &&
-        ScoreBicDrop(k, *first[0].fit) > -options.ambiguity_bic) {
+        ScoreLeavesOpen(k, *first[0].fit, options)) {
       open_ridge->push_back(k.effect);
     }
   }
@@ -1120,8 +1118,7 @@ double RiseInPlace(const CompleteModel& m,
   for (const Effect* e : m.effects) {
     if (e->id != step.effect) effects.push_back(e);
   }
-  const double rise = Bic(fit) - Bic(*m.fit) +
-                      held * std::log(3.0 * std::max(1, m.fit->points));
+  const double rise = Bic(fit) - Bic(*m.fit) + held * BicPerTerm(*m.fit);
   DiagnoseOptions within = options;
   within.bounds_within_errors = true;
   const std::string why =
@@ -1405,8 +1402,7 @@ bool SetStandsIn(const CompleteModel& m,
   InPlace* best = FitLeast(m, *d, data, options, &trials, &least);
   if (best == nullptr) return false;
   InPlace& t = *best;
-  const double held_charge =
-      t.held.empty() ? 0.0 : std::log(3.0 * std::max(1, m.fit->points));
+  const double held_charge = t.held.empty() ? 0.0 : BicPerTerm(*m.fit);
   const std::vector<const Effect*> needed =
       Needed(t.c,
              t.fit,

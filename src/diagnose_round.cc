@@ -532,6 +532,10 @@ double Aic(const FitResult& r) {
   return Bic(r) - r.free_parameters * (std::log(n) - 2.0);
 }
 
+double BicPerTerm(const FitResult& r) {
+  return std::log(3.0 * std::max(1, r.points));
+}
+
 double TieGap(double rise,
               const Effect& lead,
               const FitResult& lead_fit,
@@ -543,7 +547,7 @@ double TieGap(double rise,
       extra <= 0) {
     return rise;
   }
-  return rise - extra * std::log(3.0 * std::max(1, rival_fit.points));
+  return rise - extra * BicPerTerm(rival_fit);
 }
 
 double TieGap(const Contender& lead,
@@ -665,7 +669,7 @@ bool FormFavored(const Candidate& form,
                  const Candidate& own,
                  const FitResult& fit,
                  const std::vector<TimeHistory>& data) {
-  const double per_term = std::log(3.0 * std::max(1, fit.points));
+  const double per_term = BicPerTerm(fit);
   const auto drop = [&](const Candidate& k) {
     return k.score.score - k.score.dof * per_term;
   };
@@ -940,6 +944,12 @@ double ScoreBicDrop(const Candidate& k, const FitResult& fit) {
   // and the record was called `noise_level`.
   const double share = std::min(k.score.score / dof, 1.0 - 1e-12);
   return -n * std::log1p(-share) - k.score.dof * std::log(n);
+}
+
+bool ScoreLeavesOpen(const Candidate& k,
+                     const FitResult& fit,
+                     const DiagnoseOptions& options) {
+  return ScoreBicDrop(k, fit) > -options.ambiguity_bic;
 }
 
 bool ScoreMayEarn(const std::vector<Candidate>& candidates,

@@ -36,6 +36,8 @@ namespace fit3dof {
 double Bic(const FitResult& r);
 // Akaike's: n ln(RSS / n) + 2 k.
 double Aic(const FitResult& r);
+// Bic's charge per free parameter of `r`, ln(n) (n at least 3).
+double BicPerTerm(const FitResult& r);
 
 // A catalog effect (or a probe) as a candidate: the current model with the
 // effect's terms free at zero (their names in `added`), and its score at
@@ -110,6 +112,12 @@ bool ScoreMayEarn(const std::vector<Candidate>& candidates,
 // the residuals' variance over their degrees of freedom), on Bic's log
 // scale, less ln(n) per parameter (ScoreMayEarn's measure).
 double ScoreBicDrop(const Candidate& k, const FitResult& fit);
+
+// Whether the score of `k` at `fit` leaves the record unable to exclude
+// it: the drop in BIC it predicts (ScoreBicDrop) above -ambiguity_bic.
+bool ScoreLeavesOpen(const Candidate& k,
+                     const FitResult& fit,
+                     const DiagnoseOptions& options);
 
 // Each model (`cases`, fitted as `fits`) refitted from its solution
 // without each of `steps` in turn, all in parallel: (*without)[k], for
@@ -614,9 +622,8 @@ void WidenForCatalogAlike(const Diagnosis& other,
 // errors off.
 //
 // Into *open_ridge, Eq. 39's tunnel terms whose score at the first
-// complete model says the record may not exclude them (ScoreBicDrop above
-// -ambiguity_bic, as Lesser reads a lesser refit's), for
-// FindSetReplacements.
+// complete model says the record may not exclude them (ScoreLeavesOpen,
+// as Lesser reads a lesser refit's), for FindSetReplacements.
 void FindNotExcluded(const std::vector<const Effect*>& contended,
                      const std::vector<const Effect*>& lesser,
                      const std::vector<Case>& models,

@@ -488,7 +488,7 @@ std::vector<CandidateFit> Unresolved(
     });
   };
   fit_all(&swaps);
-  const double log_n = std::log(3.0 * std::max(1, fit.points));
+  const double log_n = BicPerTerm(fit);
   const bool roll_separates = RollSeparates(data);
   // A held term counts as fitted; judged for a tie by TieGap.
   auto rise = [&](const Swap& w) {
