@@ -702,6 +702,7 @@ void TakeBest(const std::vector<Contender>& contenders,
   if (probe != nullptr && !(probe->bic < best.bic)) {
     s->d.steps.back().outside_alike = probe->record;
     s->d.steps.back().outside_alike_bic = probe->bic - best.bic;
+    s->d.steps.back().outside_alike_model = probe->fit.parameters;
   }
 }
 
@@ -816,6 +817,7 @@ Diagnosis SearchAnswer(const Case& c,
   }
   ReportedAll(reported, data, fits);
   WidenForTie(options, &d);
+  WidenForOutsideAlike(&d);
   // What the search was run without is tried beside its model too: the
   // record may not exclude it there (DiagnoseOptions::searched_without;
   // catalog effects only, as contenders are).

@@ -592,6 +592,26 @@ void WidenForCatalogAlike(const Diagnosis& other,
                  &d->model_standard_errors);
 }
 
+void WidenForOutsideAlike(Diagnosis* d) {
+  if (d->steps.empty()) return;
+  const DiagnosisStep& last = d->steps.back();
+  if (last.outside_alike.effect.empty() || last.outside_alike_model.empty()) {
+    return;
+  }
+  // On draw 151's 3-s coning run with a dynamic pressure drifting 10%, a
+  // bearing moment on its ridge (angle 1.0 +- 23.5 deg) came 1.2 below
+  // the drift: Cm_q -5.915 +- 0.020 against a truth of -5.984, the
+  // drift's model -5.953 +- 0.018.
+  WidenErrorBars({&last.outside_alike_model},
+                 {},
+                 "the model with " + last.outside_alike.effect +
+                     " (outside "
+                     "the catalog, alike) in " +
+                     last.effect + "'s place",
+                 &d->fits[d->final_fit],
+                 &d->model_standard_errors);
+}
+
 namespace {
 
 // What an effect fitted beside the `model` model (`at_noise`: its

@@ -588,6 +588,14 @@ void WidenForCatalogAlike(const Diagnosis& other,
                           const DiagnoseOptions& options,
                           Diagnosis* d);
 
+// The final error bars of `d` widened to cover the model with a probe
+// outside the catalog in the place of its last step's effect, where the
+// probe explained the record alike there (DiagnosisStep::outside_alike:
+// no evidence either way), as a tie's are: the mirror of
+// WidenForCatalogAlike. Only the last step's: an earlier step's probe was
+// fitted without the effects added after it.
+void WidenForOutsideAlike(Diagnosis* d);
+
 // The contenders of the search's rounds (`contended`: each lowered BIC by
 // more than min_bic_drop where it was tried) that the record cannot
 // exclude beside a complete model (tied effects aside: WidenForTie covers

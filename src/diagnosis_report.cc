@@ -128,9 +128,9 @@ std::string Values(const std::vector<ParameterEstimate>& estimates) {
 }
 
 // The coefficients' error bars the models the record cannot exclude (a
-// tie, an effect not excluded, a term left open) widened at least twice,
-// each with the final model's own: along Eq. 43's ridge a tunnel term not
-// excluded widens Cm_alpha's or Cm_q's a hundred-fold (only their sums
+// tie, an effect not excluded, a term left open, a probe alike) widened at
+// least twice, each with the final model's own: along Eq. 43's ridge a tunnel
+// term not excluded widens Cm_alpha's or Cm_q's a hundred-fold (only their sums
 // with t1, t2 are determined), which is honest but should not surprise
 // the reader. Empty when none did.
 std::string Widened(const Diagnosis& d) {

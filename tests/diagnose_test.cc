@@ -1246,6 +1246,30 @@ TEST(Diagnose, AProbeJustBehindAStepIsNamedBesideIt) {
       << FormatDiagnosis(without, {0.01, 0.01, 0.01});
 }
 
+// A probe outside the catalog alike beside the last step (no evidence
+// either way) widens the final error bars to cover its model, as a
+// catalog answer alike widens a probe's (WidenForCatalogAlike): on draw
+// 151's cone with a dynamic pressure falling 1.75% over the run
+// (tests/data/coning_q_drift_vary151.yaml) a bearing moment on its ridge
+// came 1.2 below the pressure-drift probe and the final Cm_q was 3.5 of
+// its errors off, the nominal fit's 3.1.
+TEST(Diagnose, AProbeAlikeBesideTheLastStepWidensTheFinalErrorBars) {
+  const Diagnosis d = DiagnoseConfig("coning_q_drift_vary151.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  ASSERT_FALSE(d.steps.empty()) << text;
+  EXPECT_EQ(d.steps.back().outside_alike.effect, "pressure_drift") << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.1464}, {"Cm_q", -5.984}}, text);
+  const std::vector<std::string>& pipeline = d.FinalFit().pipeline;
+  EXPECT_TRUE(std::any_of(
+      pipeline.begin(),
+      pipeline.end(),
+      [](const std::string& line) {
+        return line.find("pressure_drift (outside the catalog, alike)") !=
+               std::string::npos;
+      }))
+      << text;
+}
+
 // The same friction on draw 141's cone of another body
 // (tests/data/coning_pitch_friction_vary141.yaml): the two probes ranked
 // first by their score were a reading lag, 34 of BIC behind a tunnel

@@ -588,6 +588,10 @@ struct DiagnosisStep {
   // verdict names the probe beside it, with what would separate them.
   CandidateFit outside_alike;
   double outside_alike_bic = 0.0;  // its BIC above the step's effect's
+  // Every parameter of the model with the probe in the effect's place: the
+  // final error bars cover it when the step is the final model's last
+  // (WidenForOutsideAlike).
+  std::vector<ParameterEstimate> outside_alike_model;
 };
 
 // A complete model of an ambiguous diagnosis: the effects adopted and one
