@@ -1270,6 +1270,38 @@ TEST(Diagnose, AProbeAlikeBesideTheLastStepWidensTheFinalErrorBars) {
       << text;
 }
 
+// A widening of the final error bars never narrows them: the profile
+// along a bearing moment's ridge starts from the model's own error bars,
+// not from ones a probe alike (or a tie) widened first, which start it
+// elsewhere on the curved ridge. On draw 149's 3-s run with a bearing
+// moment fading at half a degree (tests/data/short_bearing_at_half_degree_
+// vary149.yaml) the pressure-drift probe alike had narrowed the final
+// Cm_alpha from 0.049 to 0.019; declared absent, nothing is said of it and
+// the error bars are the profile's alone.
+TEST(Diagnose, AProbeAlikeNeverNarrowsTheProfilesErrorBars) {
+  const Case config = LoadConfig(testing::SourcePath(
+      "tests/data/short_bearing_at_half_degree_vary149.yaml"));
+  const Diagnosis d = Diagnose(config, DiagnoseOptions());
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  DiagnoseOptions options;
+  options.absent = {"pressure_drift"};
+  const Diagnosis without = Diagnose(config, options);
+  ASSERT_FALSE(d.steps.empty()) << text;
+  ASSERT_FALSE(without.steps.empty()) << text;
+  EXPECT_EQ(d.steps.back().outside_alike.effect, "pressure_drift") << text;
+  EXPECT_TRUE(without.steps.back().outside_alike.effect.empty()) << text;
+  for (const char* name : {"Cm_alpha", "Cm_q"}) {
+    const ParameterEstimate* with_probe = SharedEstimate(d.FinalFit(), name);
+    const ParameterEstimate* alone = SharedEstimate(without.FinalFit(), name);
+    ASSERT_NE(with_probe, nullptr) << name;
+    ASSERT_NE(alone, nullptr) << name;
+    EXPECT_GE(with_probe->standard_error, 0.999 * alone->standard_error)
+        << name << "\n"
+        << text;
+  }
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.3372}, {"Cm_q", -2.827}}, text);
+}
+
 // The same friction on draw 141's cone of another body
 // (tests/data/coning_pitch_friction_vary141.yaml): the two probes ranked
 // first by their score were a reading lag, 34 of BIC behind a tunnel
