@@ -19,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -1305,6 +1306,23 @@ void CheckAbsent(const DiagnoseOptions& options) {
   }
 }
 
+// The free shared error bars of `fit` set back to the model's own
+// (`own`: Diagnosis::model_standard_errors) where a widening changed them;
+// returns them as they were.
+std::vector<ParameterEstimate> ToOwnErrorBars(
+    const std::map<std::string, double>& own, FitResult* fit) {
+  std::vector<ParameterEstimate> widened = fit->parameters;
+  for (ParameterEstimate& e : fit->parameters) {
+    const auto it = own.find(e.name);
+    if (!e.segment.empty() || it == own.end() || !(e.standard_error > 0.0)) {
+      continue;
+    }
+    e.rms_error *= it->second / e.standard_error;
+    e.standard_error = it->second;
+  }
+  return widened;
+}
+
 // The final model's error bars of the stiffness its bearing moment trades
 // with on its ridge, widened to their profiles' (WidenTradedStiffness,
 // fit.h), once the diagnosis has decided: its decisions read the error bars
@@ -1323,18 +1341,10 @@ void StiffnessOnTheRidge(Diagnosis* d) {
   // bar it is given, and on a curved ridge one already widened (by a tie,
   // an effect not excluded, a probe alike) starts it elsewhere and ends it
   // elsewhere. On draw 149's 3-s run with a bearing moment fading at half
-  // a degree Cm_alpha's profile was 0.049 from its own 0.00063 and 0.019
+  // a degree Cm_alpha's profile was 0.056 from its own 0.00048 and 0.019
   // from 0.0074, a pressure-drift probe's model having widened it.
-  const std::vector<ParameterEstimate> widened = fit.parameters;
-  for (ParameterEstimate& e : fit.parameters) {
-    const auto own = d->model_standard_errors.find(e.name);
-    if (!e.segment.empty() || own == d->model_standard_errors.end() ||
-        !(e.standard_error > 0.0)) {
-      continue;
-    }
-    e.rms_error *= own->second / e.standard_error;
-    e.standard_error = own->second;
-  }
+  const std::vector<ParameterEstimate> widened =
+      ToOwnErrorBars(d->model_standard_errors, &fit);
   const std::vector<std::string> profiled =
       WidenTradedStiffness(c, FittedData(fit), &fit);
   for (size_t i = 0; i < fit.parameters.size(); ++i) {

@@ -598,16 +598,16 @@ void WidenForOutsideAlike(Diagnosis* d) {
   if (last.outside_alike.effect.empty() || last.outside_alike_model.empty()) {
     return;
   }
-  // On draw 151's 3-s coning run with a dynamic pressure drifting 10%, a
-  // bearing moment on its ridge (angle 1.0 +- 23.5 deg) came 1.2 below
-  // the drift: Cm_q -5.915 +- 0.020 against a truth of -5.984, the
-  // drift's model -5.953 +- 0.018.
+  // On draw 151's 2.55-s coning run with a dynamic pressure falling 1.75%
+  // over the run, a bearing moment on its ridge (angle 1.0 +- 23.5 deg)
+  // came 1.2 below the drift: Cm_q -5.915 +- 0.020 against a truth of
+  // -5.984, the drift's model -5.953 +- 0.018.
+  const std::string by = "the model with " + last.outside_alike.effect +
+                         " (outside the catalog, alike) in " + last.effect +
+                         "'s place";
   WidenErrorBars({&last.outside_alike_model},
                  {},
-                 "the model with " + last.outside_alike.effect +
-                     " (outside "
-                     "the catalog, alike) in " +
-                     last.effect + "'s place",
+                 by,
                  &d->fits[d->final_fit],
                  &d->model_standard_errors);
 }
