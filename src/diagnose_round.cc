@@ -1581,6 +1581,28 @@ void OtherMembersLead(const Leads& leads,
   }
 }
 
+// The joint set *joint, led by a contender refused alone and ranked ahead
+// of `earned`, the best that earned its place alone, against the sets
+// `earned` leads (JointlyLedBy), the lowest in BIC kept. The refused lead
+// may stand in for a partner of the one that earned: on draw 152's 3-s
+// coning run with a tunnel stiffness, a nonlinear damping and a body yaw
+// asymmetry, a Magnus moment (dragging Cm_q) came first, 0.3 lower in BIC
+// than the asymmetry, which earned its place alone; the Magnus moment's set
+// with the damping earned its place (BIC 111 lower), a pitch-friction probe
+// outdid the tunnel stiffness at the next round, and the record ended
+// `not_explained` while the asymmetry with the damping lowered BIC by 219.
+void EarnedLeads(int earned, const JointRound& round, JointSet* joint) {
+  JointSet other;
+  if (JointlyLedBy(earned, round, &other) &&
+      Bic(other.fits.back()) < Bic(joint->fits.back())) {
+    VLOG(1) << round.fit.name << ": the set led by "
+            << round.contenders[earned].record.effect
+            << ", which earned its place alone, is lower in BIC by "
+            << Bic(joint->fits.back()) - Bic(other.fits.back());
+    *joint = std::move(other);
+  }
+}
+
 // The sets led by each of the first `judged` contenders that `leads`
 // (JointlyLedBy), then, when none earns, by each with pools drawn from
 // its own scores (LeadPool, UnionPool); Jointly's search for one lead
@@ -1646,6 +1668,7 @@ bool Jointly(const Case& current,
                          out_of_sample,
                          *contenders};
   if (LedJointly(refused, judged, round, candidates, contenders, joint)) {
+    if (!earned.empty()) EarnedLeads(earned[0], round, joint);
     return true;
   }
   // A round nothing else ends: the contenders that predicted nothing held

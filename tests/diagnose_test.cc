@@ -5542,6 +5542,24 @@ TEST(Diagnose, AnEffectWhoseScoreLowersBicBesideTheModelIsTried) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.2017}, {"Cm_q", -3.539}}, text);
 }
 
+// A set led by a contender refused alone is weighed against the sets of
+// the one that earned its place alone (EarnedLeads): on draw 152's 3-s
+// coning run with a tunnel stiffness, a nonlinear damping and a body yaw
+// asymmetry (tests/data/coning_stiffness_damping_asymmetry_vary152.yaml),
+// a Magnus moment's set with the damping was taken ahead of the asymmetry,
+// and the record ended `not_explained`, silent about the asymmetry.
+TEST(Diagnose, TheSetsOfTheEffectThatEarnedItsPlaceAloneAreWeighed) {
+  const Diagnosis d =
+      DiagnoseConfig("coning_stiffness_damping_asymmetry_vary152.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_NE(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(EffectIds(d.steps).count("nonlinear_damping")) << text;
+  EXPECT_TRUE(TiedIds(d).count("asymmetric_body") ||
+              EffectIds(d.steps).count("asymmetric_body"))
+      << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.267}, {"Cm_q", -2.114}}, text);
+}
+
 // Twins that earn their place together (the same fitted motion) are led by
 // the one within its bounds at the point fit: on draw 145's Table 6 record
 // with a bearing moment, a calibration error and a roll torque (sigma:
