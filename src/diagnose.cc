@@ -1122,6 +1122,14 @@ void HoldAgainAt(
 // record's structure, and a level raised to it would hide it; or where
 // the search leaves the record unexplained, its partial steps whiten it
 // just past the limit (HeldLowByWhiteSteps).
+// Whether the search `d` found the record at the noise level with nothing
+// added, its residuals perhaps dependent (Explains): a level held low hides
+// what depends on it (a cube of the pitch reading in a yaw level held low).
+bool AtTheNoiseWithNothing(const Diagnosis& d) {
+  return d.steps.empty() && d.ambiguous.empty() &&
+         d.outside_catalog.effect.empty() && d.final.at_noise_level;
+}
+
 bool HeldAgain(const Case& c,
                const Diagnosis& d,
                const DiagnoseOptions& options,
@@ -1141,7 +1149,7 @@ bool HeldAgain(const Case& c,
     }
     least = std::max(least, RoundingLevelDeg(*at, ch));
     const bool too_high = least * kHeldTooHigh <= level;
-    const bool too_low = d.verdict == Verdict::kNoiseLevel &&
+    const bool too_low = AtTheNoiseWithNothing(d) &&
                          ShowsHeldTooLow(*at, ch, least, level, options);
     if (too_high || too_low) {
       HoldAgainAt(c, ch, least, "", held);

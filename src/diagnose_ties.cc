@@ -1668,7 +1668,7 @@ ResidualCheck SettleFinalModel(
     const ResidualCheck& check,
     Diagnosis* d,
     Case* current) {
-  if (!check.at_noise_level) {
+  if (!Explains(check)) {
     // Nothing explains the record: the steps taken are partial and not
     // adopted (Diagnosis::partial says why), a tie on the way included.
     d->partial = std::move(d->steps);

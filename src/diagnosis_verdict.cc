@@ -216,6 +216,18 @@ std::string AtTheNoiseYetStructured(const ResidualCheck& check) {
          "), yet effects earn their place in them";
 }
 
+// What `fit`'s residuals at the noise level depend on (Explains): "its
+// residuals within the noise level's limit still show pitch: a dependence
+// on the pitch angle (64%) ...".
+std::string DependentResiduals(const FitResult& fit) {
+  std::string shown = DescribeResiduals(fit);
+  const std::string prefix = "the residuals show ";
+  if (shown.rfind(prefix, 0) == 0) shown.erase(0, prefix.size());
+  return "its residuals, within the noise level's limit (probable error " +
+         FormatNumber("%.3g", fit.probable_error) + "), still show " + shown +
+         ": structure that noise does not leave";
+}
+
 // What the partial steps' model leaves (Diagnosis::partial, not adopted:
 // the final model is the one before them). White residuals past the noise
 // level's limit are the noise's size, not a structure, and the words had
@@ -235,6 +247,9 @@ std::string PartialLeaves(const Diagnosis& d) {
   const std::string final_model =
       ": not adopted, the final model is the one before it";
   if (!after.white) return " but leaves the residuals structured" + final_model;
+  if (after.at_noise_level && !after.independent) {
+    return " but " + DependentResiduals(d.fits[d.partial_fit]) + final_model;
+  }
   if (after.at_noise_level) {
     return " and leaves the residuals at the noise level's limit (" +
            FormatNumber("%.3g", after.noise_limit) + ") or below" +
@@ -321,10 +336,12 @@ std::string NotExplainedText(const Diagnosis& d) {
       FormatNumber("%.2f", check.lag1.psi) + " against a limit of " +
       FormatNumber("%.2f", check.whiteness_limit);
   return "not explained by the catalog: " +
-         (check.at_noise_level ? AtTheNoiseYetStructured(check)
-          : check.white        ? LargerThanSigma(check)
-                               : "the residuals remain structured (probable "
-                                 "error " +
+         (check.at_noise_level && !check.independent
+              ? DependentResiduals(d.FinalFit())
+          : check.at_noise_level ? AtTheNoiseYetStructured(check)
+          : check.white          ? LargerThanSigma(check)
+                                 : "the residuals remain structured (probable "
+                                   "error " +
                               FormatNumber("%.3g", check.probable_error) +
                               ", " + lag1 + ")") +
          (d.steps.empty() ? "" : " after adding " + Described(d.steps)) +
@@ -392,7 +409,7 @@ void Conclude(Diagnosis* d) {
   if (!d->ambiguous.empty()) {
     d->verdict = Verdict::kAmbiguous;
     d->verdict_text = AmbiguousText(*d);
-  } else if (d->final.at_noise_level && d->outside_catalog.effect.empty()) {
+  } else if (Explains(d->final) && d->outside_catalog.effect.empty()) {
     d->verdict = d->steps.empty() ? Verdict::kNoiseLevel : Verdict::kExplained;
     d->verdict_text = (d->steps.empty() ? "residuals at noise level"
                                         : "explained: " + Described(d->steps) +

@@ -145,6 +145,7 @@ ResidualCheck CheckResiduals(const FitResult& fit,
   check.white = worst < whiteness_limit && check.peak_ratio < spectral_limit &&
                 check.line_ratio < line_limit;
   check.at_noise_level = fit.probable_error < noise_limit && check.white;
+  check.independent = !ResidualsDepend(fit);
   check.below_sigma = fit.probable_error * fit.probable_error < 1.0 - spread;
   return check;
 }

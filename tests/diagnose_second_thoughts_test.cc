@@ -28,9 +28,13 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // stiffness, which then ties with a tunnel damping, and searches the record
 // again without the reading error (WithoutTiedPartner), taking that answer
 // only below its own complete model's BIC. There a drift of the readings
-// outdoes the catalog; the catalog's answer, 86 above the bound, cannot be
-// taken whoever wins, and weighing the drift beside it (half the record's
-// time) is skipped: the same answer, fewer fits.
+// outdoes the catalog; the catalog's answer, 86 above the bound, could not
+// be taken whoever won, and weighing the drift beside it (half the record's
+// time) was skipped: the same answer, fewer fits. Since the catalog's
+// answer must leave residuals that depend on no angle, roll or time
+// (Explains), it no longer explains this record (the roll reading error
+// is out) and neither search weighs the drift beside it: the bound must
+// still cost no fit.
 TEST(SearchedWithout, WeighsNoProbeBesideACatalogAnswerItCannotTake) {
   if (testing::kSanitized) GTEST_SKIP() << "three searches; plain build";
   Case c = LoadConfig(testing::SourcePath(
@@ -51,7 +55,7 @@ TEST(SearchedWithout, WeighsNoProbeBesideACatalogAnswerItCannotTake) {
   EXPECT_EQ(bounded.outside_catalog.effect, "reading_drift");
   EXPECT_EQ(any.verdict, bounded.verdict);
   EXPECT_EQ(any.outside_catalog.effect, bounded.outside_catalog.effect);
-  EXPECT_LT(middle.calls - start.calls, end.calls - middle.calls);
+  EXPECT_LE(middle.calls - start.calls, end.calls - middle.calls);
 }
 
 // DiagnoseFrom in its two halves (WithNoiseHeld reads the search's answer

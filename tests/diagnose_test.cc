@@ -5560,6 +5560,23 @@ TEST(Diagnose, TheSetsOfTheEffectThatEarnedItsPlaceAloneAreWeighed) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.267}, {"Cm_q", -2.114}}, text);
 }
 
+// A model explains the record only where its residuals depend on no angle,
+// roll or time (Explains): on draw 152's coning run with an even
+// calibration error of the pitch reading (tests/data/coning_even_
+// calibration_vary152.yaml; outside the catalog) a flow angularity and a
+// roll reading error tied at the noise level's limit, and the record was
+// called `ambiguous` between them.
+TEST(Diagnose, ResidualsThatDependOnTheAngleExplainNothing) {
+  const Diagnosis d = DiagnoseConfig("coning_even_calibration_vary152.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_TRUE(d.ambiguous.empty()) << text;
+  EXPECT_NE(d.verdict_text.find("a dependence on the pitch angle"),
+            std::string::npos)
+      << text;
+}
+
 // Twins that earn their place together (the same fitted motion) are led by
 // the one within its bounds at the point fit: on draw 145's Table 6 record
 // with a bearing moment, a calibration error and a roll torque (sigma:

@@ -161,9 +161,10 @@ TEST(CheckResiduals, ANeighbourhoodTheFitEmptiedRaisesNoLine) {
 }
 
 // A 3-s run at 10 points per cycle (47 samples), 30 deg/s of roll, pitching
-// at 8 deg: the measured angles are the computed ones plus white noise and
-// a pitch reading drifting by `drift` deg over the run.
-FitResult ShortRun(double drift, int seed) {
+// at 8 deg: the measured angles are the computed ones plus white noise, a
+// pitch reading drifting by `drift` deg over the run and an even
+// calibration error of the pitch reading, `even` deg at 8 deg.
+FitResult ShortRun(double drift, int seed, double even = 0.0) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, kNoise);
   SegmentFit s;
@@ -175,7 +176,8 @@ FitResult ShortRun(double drift, int seed) {
     const double psi = 0.2 * std::sin(2.0 * M_PI * 1.56 * t);
     s.data.Append(t,
                   phi + noise(rng),
-                  theta + noise(rng) + drift * t / 3.0,
+                  theta + noise(rng) + drift * t / 3.0 +
+                      even * (theta / 8.0) * (theta / 8.0),
                   psi + noise(rng));
     s.computed.insert(s.computed.end(), {phi, theta, psi});
   }
@@ -203,6 +205,31 @@ TEST(DescribeResiduals, NamesNoChanceStructureOnAShortRun) {
     trends += text.find("pitch: a trend in time") != std::string::npos;
   }
   EXPECT_GE(trends, 8);
+}
+
+// ResidualsDepend refuses an explanation (Explains), so it holds a share to
+// chance 1e-5: noise alone all but never depends, while an even calibration
+// error of the pitch reading at four times the noise at the largest angle
+// (half of it an offset a flow angularity takes) and a drift of three times
+// the noise do.
+TEST(ResidualsDepend, NoiseAllButNeverDependsAMissingEffectDoes) {
+  int noise = 0;
+  for (int seed = 1; seed <= 500; ++seed) {
+    noise += ResidualsDepend(ShortRun(0.0, seed));
+  }
+  // Two channels, three regressions each, 1e-5 apiece: 0.03 of 500.
+  EXPECT_LE(noise, 1);
+  int even = 0, drift = 0;
+  for (int seed = 1; seed <= 20; ++seed) {
+    even += ResidualsDepend(ShortRun(0.0, seed, 0.04));
+    drift += ResidualsDepend(ShortRun(0.03, seed));
+  }
+  std::printf("noise %d of 500, even error %d of 20, drift %d of 20\n",
+              noise,
+              even,
+              drift);
+  EXPECT_GE(even, 18);
+  EXPECT_GE(drift, 14);
 }
 
 // A reading far off the fitted motion is named with its time, whatever

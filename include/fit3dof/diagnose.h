@@ -510,6 +510,11 @@ struct ResidualCheck {
   bool white = false;
   bool below_sigma = false;
   double noise_limit = 0.0;  // the largest probable error noise reaches
+  // Whether the residuals depend on nothing the model knows: no trend in
+  // time, no dependence on the pitch or yaw angle or on roll stands out
+  // (ResidualsDepend). The search goes by at_noise_level; a model explains
+  // the record only with this too (Explains).
+  bool independent = true;
   // The largest lag-1 autocorrelation of a channel's residual noise
   // reaches (`white` holds every channel's below it).
   double whiteness_limit = 0.0;
@@ -841,8 +846,30 @@ struct Diagnosis {
 ResidualCheck CheckResiduals(const FitResult& fit,
                              const DiagnoseOptions& options);
 
+// Whether the model `check` was made of explains the record: at the noise
+// level, and residuals that depend on no angle, roll or time
+// (ResidualCheck::independent). A missing effect in one channel's readings
+// alone is diluted in the pooled probable error by the two others: on draw
+// 152's 3-s coning run with an even calibration error of the pitch reading
+// (theta_cal2 -0.031, outside the catalog) a flow angularity took its mean
+// and left E 1.36 against a limit of 1.47, the pitch residual 1.7 times
+// the level held, and the record was called `ambiguous` between two catalog
+// effects; the pitch angle's powers took most of that residual. The pitch
+// residual's own E cannot tell: held from 56 samples, the level of a
+// channel may come 0.6 times the truth (draw 149's run with a flow
+// angularity, whose true model's pitch residual was 1.7 times its level).
+inline bool Explains(const ResidualCheck& check) {
+  return check.at_noise_level && check.independent;
+}
+
 // Throws InputError for bad input (as Fit does).
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options);
+
+// Whether a trend in time, a dependence on the pitch or yaw angle (its
+// powers 1-3) or on roll (harmonics 1-3) stands out of a residual of `fit`:
+// above a tenth of its variance and above what noise reaches with chance
+// 1e-5 (DescribeResiduals names them from 1e-3).
+bool ResidualsDepend(const FitResult& fit);
 
 // What structured residuals show, for an engineer to act on: the strongest
 // lines of theta + i psi against the motion's modal frequencies and the
