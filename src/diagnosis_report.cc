@@ -32,7 +32,8 @@ json Check(const ResidualCheck& r) {
           {"whiteness_limit", r.whiteness_limit},
           {"at_noise_level", r.at_noise_level},
           {"white", r.white},
-          {"below_sigma", r.below_sigma}};
+          {"below_sigma", r.below_sigma},
+          {"independent", r.independent}};
 }
 
 // name -> {value, standard_error, rms_error, units}.
