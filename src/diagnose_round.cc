@@ -1584,18 +1584,18 @@ void OtherMembersLead(const Leads& leads,
 // The joint set *joint, led by a contender refused alone and ranked ahead
 // of `earned`, the best that earned its place alone, against the sets
 // `earned` leads (JointlyLedBy): one lower in BIC by more than
-// ambiguity_bic is taken instead. Within it there is no evidence either
-// way, and the refused lead's set stands: on draw 0's 3-s `short` run with
-// a tunnel damping, a Magnus moment and a flow angularity, the Magnus
-// moment's set with a body yaw asymmetry (which predicted nothing held out
-// alone) came 2.4 below the damping's. The refused lead
-// may stand in for a partner of the one that earned: on draw 152's 3-s
-// coning run with a tunnel stiffness, a nonlinear damping and a body yaw
-// asymmetry, a Magnus moment (dragging Cm_q) came first, 0.3 lower in BIC
-// than the asymmetry, which earned its place alone; the Magnus moment's set
-// with the damping earned its place (BIC 111 lower), a pitch-friction probe
-// outdid the tunnel stiffness at the next round, and the record ended
-// `not_explained` while the asymmetry with the damping lowered BIC by 219.
+// ambiguity_bic is taken instead. The refused lead may stand in for a
+// partner of the one that earned: on draw 152's 3-s coning run with a
+// tunnel stiffness, a nonlinear damping and a body yaw asymmetry, a Magnus
+// moment (dragging Cm_q) came first, 0.3 lower in BIC than the asymmetry,
+// which earned its place alone; the Magnus moment's set with the damping
+// earned its place (BIC 155.7), a pitch-friction probe outdid the tunnel
+// stiffness at the next round, and the record ended `not_explained`, while
+// the asymmetry's set with the damping reached 129.0. Within ambiguity_bic
+// there is no evidence either way and the refused lead's set stands: on
+// draw 0's 3-s `short` run with a tunnel damping, a Magnus moment and a
+// flow angularity, the Magnus moment's set with a body yaw asymmetry
+// (which predicted nothing held out alone) came 2.4 below the damping's.
 void EarnedLeads(int earned, const JointRound& round, JointSet* joint) {
   JointSet other;
   if (JointlyLedBy(earned, round, &other) &&
