@@ -1097,6 +1097,14 @@ void HoldAgainAt(
   held->sigma[ch] = level;
 }
 
+// Whether the search `d` found the record at the noise level with nothing
+// added, its residuals perhaps dependent (Explains): a level held low hides
+// what depends on it (a cube of the pitch reading in a yaw level held low).
+bool AtTheNoiseWithNothing(const Diagnosis& d) {
+  return d.steps.empty() && d.ambiguous.empty() &&
+         d.outside_catalog.effect.empty() && d.final.at_noise_level;
+}
+
 // Whether some fit of the search `d` (held at held->sigma) left an auto
 // channel's residual (LeastResidual; where `d` leaves the record
 // unexplained, the effects it found fitted together too, FittedTogether)
@@ -1122,14 +1130,6 @@ void HoldAgainAt(
 // record's structure, and a level raised to it would hide it; or where
 // the search leaves the record unexplained, its partial steps whiten it
 // just past the limit (HeldLowByWhiteSteps).
-// Whether the search `d` found the record at the noise level with nothing
-// added, its residuals perhaps dependent (Explains): a level held low hides
-// what depends on it (a cube of the pitch reading in a yaw level held low).
-bool AtTheNoiseWithNothing(const Diagnosis& d) {
-  return d.steps.empty() && d.ambiguous.empty() &&
-         d.outside_catalog.effect.empty() && d.final.at_noise_level;
-}
-
 bool HeldAgain(const Case& c,
                const Diagnosis& d,
                const DiagnoseOptions& options,

@@ -216,14 +216,16 @@ std::string AtTheNoiseYetStructured(const ResidualCheck& check) {
          "), yet effects earn their place in them";
 }
 
-// What `fit`'s residuals at the noise level depend on (Explains): "its
-// residuals within the noise level's limit still show pitch: a dependence
-// on the pitch angle (64%) ...".
-std::string DependentResiduals(const FitResult& fit) {
+// What `fit`'s residuals at the noise level depend on (Explains), `whose`
+// ("its", "the") they are: "its residuals, within the noise level's limit
+// (probable error 1.36), still show pitch: a dependence on the pitch angle
+// (73%) ...".
+std::string DependentResiduals(const FitResult& fit, const char* whose) {
   std::string shown = DescribeResiduals(fit);
   const std::string prefix = "the residuals show ";
   if (shown.rfind(prefix, 0) == 0) shown.erase(0, prefix.size());
-  return "its residuals, within the noise level's limit (probable error " +
+  return std::string(whose) +
+         " residuals, within the noise level's limit (probable error " +
          FormatNumber("%.3g", fit.probable_error) + "), still show " + shown +
          ": structure that noise does not leave";
 }
@@ -248,7 +250,8 @@ std::string PartialLeaves(const Diagnosis& d) {
       ": not adopted, the final model is the one before it";
   if (!after.white) return " but leaves the residuals structured" + final_model;
   if (after.at_noise_level && !after.independent) {
-    return " but " + DependentResiduals(d.fits[d.partial_fit]) + final_model;
+    return " but " + DependentResiduals(d.fits[d.partial_fit], "its") +
+           final_model;
   }
   if (after.at_noise_level) {
     return " and leaves the residuals at the noise level's limit (" +
@@ -337,7 +340,7 @@ std::string NotExplainedText(const Diagnosis& d) {
       FormatNumber("%.2f", check.whiteness_limit);
   return "not explained by the catalog: " +
          (check.at_noise_level && !check.independent
-              ? DependentResiduals(d.FinalFit())
+              ? DependentResiduals(d.FinalFit(), "the")
           : check.at_noise_level ? AtTheNoiseYetStructured(check)
           : check.white          ? LargerThanSigma(check)
                                  : "the residuals remain structured (probable "

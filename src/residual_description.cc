@@ -70,6 +70,7 @@ bool Named(double share, int k, int n, double z) {
 // reading (draw 152's coning run) leaves 73% on the pitch angle, where 43%
 // is the 1e-5 mark.
 constexpr double kZ1e5 = 4.2648907939228;
+
 // Frequencies within this fraction of a reference are called "at" it.
 constexpr double kNear = 0.05;
 
