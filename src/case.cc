@@ -165,7 +165,8 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
                   a.from_solution,
                   a.far_start,
                   a.bic_tolerance,
-                  a.stop_below) == std::tie(b.max_iterations,
+                  a.stop_below,
+                  a.search_step) == std::tie(b.max_iterations,
                                             b.tolerance,
                                             b.step,
                                             b.continuation,
@@ -177,7 +178,8 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
                                             b.from_solution,
                                             b.far_start,
                                             b.bic_tolerance,
-                                            b.stop_below);
+                                            b.stop_below,
+                                            b.search_step);
 }
 
 bool operator==(const ProcessNoiseModel& a, const ProcessNoiseModel& b) {

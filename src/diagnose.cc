@@ -25,6 +25,7 @@
 
 #include "diagnose_search.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/integration_step.h"
 #include "fit3dof/model_conversion.h"
 #include "fit3dof/wild_points.h"
 #include "noise_relaxation.h"
@@ -1259,8 +1260,9 @@ Diagnosis FirstHeld(const Case& c,
 // times the noise, the fit with sigma: auto had left residuals as white as
 // noise at its own level, and the diagnosis had said `noise_level`. The
 // final config keeps sigma: auto for its rerun.
-Diagnosis WithNoiseHeld(const Case& c, const DiagnoseOptions& options) {
-  const FitResult relaxed = Fit(c);
+Diagnosis WithNoiseHeld(const Case& c,
+                        const FitResult& relaxed,
+                        const DiagnoseOptions& options) {
   Case held = c;
   for (int ch = 0; ch < 3; ++ch) {
     if (!c.sigma_auto[ch]) continue;
@@ -1377,11 +1379,40 @@ void StiffnessOnTheRidge(Diagnosis* d) {
 
 }  // namespace
 
+namespace {
+
+// `c` with the search step set (SolverOptions::search_step) from `first`,
+// its fit at the config's step: the coarsest step whose motion there stays
+// within a 16th of kStepChiSquare, so that the models the search fits,
+// whose effects change the motion little, keep within kStepChiSquare (the
+// motion's integration error grows as the step to the 8th power in it: a
+// step twice as coarse is 256 times further).
+Case AtSearchStep(const Case& c,
+                  const FitResult& first,
+                  const DiagnoseOptions& options) {
+  Case searched = c;
+  if (!options.coarse_search || c.solver.method == FitMethod::kFilterError) {
+    return searched;
+  }
+  const double step =
+      CoarsestStep(c, FittedData(first), first, kStepChiSquare / 16.0);
+  if (step > c.solver.step) searched.solver.search_step = step;
+  return searched;
+}
+
+}  // namespace
+
 Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options) {
   CheckAbsent(options);
-  Diagnosis d = c.AnySigmaAuto() ? WithNoiseHeld(c, options)
-                                 : DiagnoseFrom(c, Fit(c), options);
+  // The first fit is the config's own, at its step: the search's fits at
+  // a coarser one are within kStepChiSquare of it.
+  const FitResult first = Fit(c);
+  const Case searched = AtSearchStep(c, first, options);
+  Diagnosis d = c.AnySigmaAuto() ? WithNoiseHeld(searched, first, options)
+                                 : DiagnoseFrom(searched, first, options);
   StiffnessOnTheRidge(&d);
+  d.search_step = std::max(searched.solver.step, searched.solver.search_step);
+  d.final_case.solver.search_step = 0.0;
   return d;
 }
 

@@ -292,6 +292,7 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["verdict"] = VerdictToString(d.verdict);
   out["verdict_text"] = d.verdict_text;
   out["noise_held"] = d.noise_held;
+  out["search_step"] = d.search_step;
   out["effects_known_absent"] = d.absent;
   out["effects_added"] = json::array();
   for (const DiagnosisStep& s : d.steps)

@@ -21,6 +21,7 @@
 #include "filter_error.h"
 #include "fit3dof/angles.h"
 #include "fit3dof/input_error.h"
+#include "fit3dof/integration_step.h"
 #include "fit3dof/interrupt.h"
 #include "fit3dof/parameters.h"
 #include "fit3dof/start_values.h"
@@ -702,9 +703,36 @@ void AngleAsMagnitude(const FitProblem& problem, std::vector<double>* values) {
   angle = std::abs(angle);
 }
 
+// FitSamples at c.solver.search_step: kept where its motion stays within
+// kStepChiSquare of the motion at c.solver.step (integration_step.h);
+// otherwise the fit at c.solver.step, as if no search step were given.
+FitResult FitAtSearchStep(const Case& c, const std::vector<TimeHistory>& data) {
+  Case coarse = c;
+  coarse.solver.step = c.solver.search_step;
+  coarse.solver.search_step = 0.0;
+  FitResult fit = FitSamples(coarse, data);
+  const double apart = StepChiSquare(c, data, fit, c.solver.search_step);
+  if (apart <= kStepChiSquare) {
+    fit.step_chi_square = apart;
+    return fit;
+  }
+  VLOG(1) << c.name << ": at the step of " << c.solver.search_step
+          << " s the motion is " << apart << " apart; fitted again at "
+          << c.solver.step << " s";
+  Case fine = c;
+  fine.solver.search_step = 0.0;
+  FitResult again = FitSamples(fine, data);
+  again.seconds += fit.seconds;
+  return again;
+}
+
 }  // namespace
 
 FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
+  if (c.solver.search_step > c.solver.step &&
+      c.solver.method != FitMethod::kFilterError) {
+    return FitAtSearchStep(c, data);
+  }
   const auto start_time = std::chrono::steady_clock::now();
   FitProblem problem = PrepareProblem(c, data);
   CheckSize(c, problem);
@@ -712,6 +740,7 @@ FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data) {
   FitResult result;
   result.name = c.name;
   result.model = c.model;
+  result.step = c.solver.step;
   result.points = problem.points;
   result.free_parameters = problem.free.size();
   AutoStart(c, &problem, &result.pipeline);

@@ -52,6 +52,7 @@ struct Flags {
   std::uint64_t seed = 1;
   std::string methods = "gauss_newton,levenberg_marquardt,robust";
   std::vector<std::string> absent;  // diagnose: effects known absent
+  bool exact_step = false;          // diagnose: no coarser search step
 };
 Flags FLAGS;
 
@@ -177,6 +178,7 @@ int DiagnoseCommand(const std::vector<std::string>& args) {
                                      : LoadConfig(args[0]);
   DiagnoseOptions options;
   options.absent = FLAGS.absent;
+  options.coarse_search = !FLAGS.exact_step;
   Diagnosis d;
   {
     ProgressLine progress("diagnose " + c.name);
@@ -307,6 +309,11 @@ void AddNamelistBasinAndDiagnose(CLI::App* app, Handlers* handlers) {
                    "comma-separated): never tried, never widen the error "
                    "bars")
       ->delimiter(',');
+  diagnose->add_flag("--exact_step",
+                     FLAGS.exact_step,
+                     "integrate every fit at the config's solver.step (by "
+                     "default the search takes the coarsest step within 0.1 "
+                     "of each value's error of it)");
   AddData(diagnose);
   (*handlers)[diagnose] = &DiagnoseCommand;
 }

@@ -182,6 +182,13 @@ struct SolverOptions {
   // its last iterations, even kept up, the remaining ones would leave it
   // far above (stage_solver.h, kOutOfReachMargin).
   double stop_below = 0.0;
+  // Integrate at this coarser step (s; 0 or at most `step`: at `step`).
+  // Not a config key: diagnose sets it from its nominal fit (CoarsestStep,
+  // integration_step.h). A fit at it is kept only where its motion stays
+  // within kStepChiSquare of the motion at `step`, every value then within
+  // 0.1 of its standard error of the fit at `step`; otherwise it is fitted
+  // again at `step` from there (FitSamples).
+  double search_step = 0.0;
 };
 
 struct SimulateOptions {

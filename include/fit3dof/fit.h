@@ -157,6 +157,11 @@ struct FitResult {
   std::vector<Outlier> outliers;
   std::vector<SegmentFit> segments;
   double seconds = 0.0;
+  // The integration step the fit's motion took (s): the config's, or
+  // solver.search_step where that served (then step_chi_square: how far
+  // its motion was from the config's step's, StepChiSquare).
+  double step = 0.0;
+  double step_chi_square = 0.0;
   // Set by Fit (FitSamples reads no files and leaves it empty).
   Provenance provenance;
   // solver.method: filter_error only: the intensities per axis.
