@@ -347,16 +347,22 @@ PYBIND11_MODULE(_fit3dof, m) {
       "case's simulate: times with its noise, as `fit3dof simulate`.");
   m.def(
       "diagnose",
-      [](const Case& c, const std::vector<std::string>& absent) {
+      [](const Case& c, const std::vector<std::string>& absent,
+         bool exact_step) {
         DiagnoseOptions options;
         options.absent = absent;
+        options.coarse_search = !exact_step;
         return Diagnose(c, options);
       },
       py::arg("case"),
       py::arg("absent") = std::vector<std::string>(),
+      py::arg("exact_step") = false,
       Release(),
       "Finds, names and adds missing effects; `absent`: catalog effect ids "
-      "known absent, never tried (InputError for any other id).");
+      "known absent, never tried (InputError for any other id); "
+      "`exact_step`: every fit at the config's solver.step (by default the "
+      "search integrates at the coarsest step within 0.1 of each value's "
+      "error of it; to_dict's search_step).");
   m.def(
       "batch",
       [](const std::string& manifest,

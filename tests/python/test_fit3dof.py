@@ -230,6 +230,18 @@ def test_diagnose_takes_effects_known_absent(tmp_path):
         fit3dof.diagnose(case, absent=["tunnel_buzz"])
 
 
+def test_diagnose_at_the_configs_step_on_request():
+    path = os.path.join(REPORT, "table6_sigma0.01.yaml")
+    case = fit3dof.load_config(path)
+    exact = fit3dof.diagnose(case, exact_step=True).to_dict(case)
+    searched = fit3dof.diagnose(case).to_dict(case)
+    assert exact["search_step"] == 0.01  # the config's solver.step
+    # Table 6 at twice its step: the motion more than 0.01/16 apart.
+    assert searched["search_step"] == 0.01
+    assert exact["verdict"] == searched["verdict"]
+    assert exact["effects_added"] == searched["effects_added"]
+
+
 def test_batch_writes_the_summary_and_returns_it(tmp_path):
     manifest = tmp_path / "manifest.yaml"
     manifest.write_text(
