@@ -28,9 +28,10 @@ def run_benchmark(root, runs=8):
     return times
 
 
-def time_command(root, command, config, output, repeats, exits=(0,)):
-    """`fit3dof COMMAND CONFIG --out_dir=...` run `repeats` times: the
-    median seconds and the JSON file `output` it wrote; any exit status
+def time_command(root, command, config, output, repeats, exits=(0,),
+                 flags=()):
+    """`fit3dof COMMAND CONFIG --out_dir=... FLAGS` run `repeats` times:
+    the median seconds and the JSON file `output` it wrote; any exit status
     outside `exits` fails the benchmark."""
     fit3dof = os.path.join(root, "build", "fit3dof")
     samples = []
@@ -38,7 +39,8 @@ def time_command(root, command, config, output, repeats, exits=(0,)):
         for _ in range(repeats):
             began = time.perf_counter()
             done = subprocess.run([fit3dof, command, config,
-                                   "--out_dir=" + out], capture_output=True)
+                                   "--out_dir=" + out, *flags],
+                                  capture_output=True)
             assert done.returncode in exits, done.stderr[-2000:]
             samples.append(time.perf_counter() - began)
         with open(os.path.join(out, output)) as f:
@@ -51,12 +53,20 @@ def time_fit(root, config, repeats=5):
 
 
 def time_diagnose(root, config, repeats=3):
-    """`fit3dof diagnose` on `config` (median of `repeats`) and a plain
-    `fit3dof fit` of it, the search's baseline: the verdict is not
-    checked (diagnose exits 1 when the record stays unexplained)."""
+    """`fit3dof diagnose` on `config` (median of `repeats`), the same with
+    every fit at the config's step (--exact_step: the search step's
+    baseline) and a plain `fit3dof fit` of it, the search's baseline: the
+    verdict is not checked (diagnose exits 1 when the record stays
+    unexplained)."""
     seconds, diagnosis = time_command(root, "diagnose", config,
                                       "diagnosis.json", repeats, (0, 1))
+    exact_seconds, exact = time_command(root, "diagnose", config,
+                                        "diagnosis.json", repeats, (0, 1),
+                                        ("--exact_step",))
     fit_seconds, _ = time_fit(root, config, repeats)
+    diagnosis["exact_step"] = {"seconds": exact_seconds,
+                               "verdict": exact["verdict"],
+                               "effects_added": exact["effects_added"]}
     return seconds, fit_seconds, diagnosis
 
 
@@ -274,13 +284,23 @@ def main():
                  "pair_stiffness_roll_angularity_draw120"):
         config = os.path.join(root, "tests", "data", name + ".yaml")
         seconds, fit_seconds, d = time_diagnose(root, config)
+        exact = d["exact_step"]
         rows.append({"record": name, "diagnose_seconds": seconds,
                      "fit_seconds": fit_seconds,
                      "ratio": seconds / fit_seconds, "verdict": d["verdict"],
-                     "effects_added": d["effects_added"]})
+                     "effects_added": d["effects_added"],
+                     "search_step": d["search_step"],
+                     "exact_step_seconds": exact["seconds"],
+                     "exact_step_ratio": seconds / exact["seconds"],
+                     "exact_step_same_answer":
+                         exact["verdict"] == d["verdict"] and
+                         exact["effects_added"] == d["effects_added"]})
         print(f"  {name}: {seconds:.2f} s, {seconds / fit_seconds:.0f}x "
               f"its fit ({fit_seconds:.2f} s); {d['verdict']} "
-              f"{', '.join(d['effects_added'])}")
+              f"{', '.join(d['effects_added'])}; search step "
+              f"{d['search_step']} s: {seconds / exact['seconds']:.2f}x "
+              f"the time at the config's step ("
+              f"{'same answer' if rows[-1]['exact_step_same_answer'] else 'another answer: ' + exact['verdict']})")
     result["diagnose"] = rows
 
     print("== Python module: two fits in two threads against one fit")

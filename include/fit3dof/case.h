@@ -187,7 +187,7 @@ struct SolverOptions {
   // integration_step.h). A fit at it is kept only where its motion stays
   // within kStepChiSquare of the motion at `step`, every value then within
   // 0.1 of its standard error of the fit at `step`; otherwise it is fitted
-  // again at `step` from there (FitSamples).
+  // again at a finer step, at `step` last (FitSamples).
   double search_step = 0.0;
 };
 

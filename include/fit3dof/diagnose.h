@@ -428,10 +428,10 @@ struct DiagnoseOptions {
   // Integrate the search's fits at the coarsest step the record allows
   // (SolverOptions::search_step, integration_step.h): every fit within
   // 0.1 of its errors of the fit at the config's step, or fitted again at
-  // that step. On draw 0's 3-s pair of runs with a bearing moment, a
-  // calibration error and a roll torque (step 2 ms) the step was 8 ms and
-  // the diagnosis 3.2 times faster, its answer the same. False: every fit
-  // at the config's step (fit3dof diagnose --exact_step).
+  // a finer step, at the config's last. On draw 0's 3-s pair of runs with a
+  // bearing moment, a calibration error and a roll torque (step 2 ms) the step
+  // was 8 ms and the diagnosis 3.2 times faster, its answer the same. False:
+  // every fit at the config's step (fit3dof diagnose --exact_step).
   bool coarse_search = true;
   std::vector<std::string> effects;  // restrict the catalog (empty: all)
   // Catalog effects the engineer knows absent (a tunnel without flow

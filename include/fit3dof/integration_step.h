@@ -7,8 +7,8 @@
 // integrates them at the coarsest step the record allows
 // (SolverOptions::search_step, case.h) and FitSamples keeps such a fit
 // only where its motion at its solution stays within kStepChiSquare of
-// the motion at the config's step, fitting it again at that step
-// otherwise.
+// the motion at the config's step, fitting it again at a finer step
+// otherwise (at the config's own, last).
 //
 // Why the sum of squares bounds the values: a model error e (the two
 // motions' difference, weighted as the residuals) moves the least-squares
