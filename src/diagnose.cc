@@ -1377,10 +1377,6 @@ void StiffnessOnTheRidge(Diagnosis* d) {
   }
 }
 
-}  // namespace
-
-namespace {
-
 // `c` with the search step set (SolverOptions::search_step) from `first`,
 // its fit at the config's step: the coarsest step whose motion there stays
 // within a 16th of kStepChiSquare, so that the models the search fits,

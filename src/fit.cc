@@ -715,18 +715,27 @@ FitResult FitAtSearchStep(const Case& c, const std::vector<TimeHistory>& data) {
   at.solver.search_step = 0.0;
   double step = c.solver.search_step;
   double seconds = 0.0;  // of the fits not kept
+  int iterations = 0;
   while (step > c.solver.step) {
     at.solver.step = step;
-    FitResult fit = FitSamples(at, data);
-    double apart = StepChiSquare(c, data, fit, step);
-    if (apart <= kStepChiSquare) {
-      fit.step_chi_square = apart;
-      fit.seconds += seconds;
-      return fit;
+    // A motion the coarser step cannot integrate from the start (a stiff
+    // moment) is the finer steps' to judge.
+    double apart = std::numeric_limits<double>::infinity();
+    try {
+      FitResult fit = FitSamples(at, data);
+      apart = StepChiSquare(c, data, fit, step);
+      if (apart <= kStepChiSquare) {
+        fit.step_chi_square = apart;
+        fit.seconds += seconds;
+        fit.iterations += iterations;
+        return fit;
+      }
+      seconds += fit.seconds;
+      iterations += fit.iterations;
+    } catch (const InputError&) {
     }
     VLOG(1) << c.name << ": at the step of " << step << " s the motion is "
             << apart << " apart; fitted again at a finer one";
-    seconds += fit.seconds;
     do {
       step /= 2.0;
       apart /= 256.0;
@@ -735,6 +744,7 @@ FitResult FitAtSearchStep(const Case& c, const std::vector<TimeHistory>& data) {
   at.solver.step = c.solver.step;
   FitResult fit = FitSamples(at, data);
   fit.seconds += seconds;
+  fit.iterations += iterations;
   return fit;
 }
 
