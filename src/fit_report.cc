@@ -132,6 +132,10 @@ ordered_json ReportObject(const FitResult& r) {
                              {"reached_best", r.starts_reached_best}};
   }
   report["seconds"] = r.seconds;
+  // The step the motion was integrated at: in diagnose's step reports a
+  // coarser search step, with how far its motion was from the config's.
+  report["integration_step"] = r.step;
+  if (r.step_chi_square > 0.0) report["step_chi_square"] = r.step_chi_square;
   if (!r.process_noise.empty()) {
     json noise = json::object();
     for (const ProcessNoiseEstimate& e : r.process_noise) {

@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "fit3dof/config.h"
+#include "fit3dof/parameters.h"
 #include "gtest/gtest.h"
 #include "test_util.h"
 
@@ -68,6 +70,8 @@ TEST(FitCli, WritesReportFitComparisonAndTable) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
   EXPECT_EQ(report["name"], "table6-sigma0.01");
+  EXPECT_EQ(report["integration_step"], 0.01);  // the config's solver.step
+  EXPECT_FALSE(report.contains("step_chi_square"));
   EXPECT_TRUE(report["converged"].get<bool>());
   EXPECT_EQ(report["points"], 800);
   EXPECT_EQ(report["free_parameters"], 10);
@@ -203,6 +207,48 @@ TEST(FitCli, DiagnoseAbsentTakesCatalogEffectsAndProbesOnly) {
             std::string::npos)
       << result.output;
   EXPECT_FALSE(fs::exists(dir + "/out/diagnosis.json"));
+}
+
+// diagnose says the step its search integrated at, and each step's
+// report.json the step of its own fit: the nominal fit at the config's
+// step, the search's at the coarser one within 0.01 of it.
+TEST(FitCli, DiagnoseSaysTheStepItsSearchIntegratedAt) {
+  const std::string dir = testing::ScratchDirectory("fit_cli_search_step");
+  Case c = testing::ShortRun(dir,
+                             "  Cm_alpha_delta2: -1.13\n"
+                             "  Cm_bearing: -0.02\n"
+                             "  bearing_angle: 1.0\n",
+                             3);
+  c.parameters[FindParameter(c.model, "Cm_alpha")].free = true;
+  c.parameters[FindParameter(c.model, "Cm_q")].free = true;
+  c.parameters[FindParameter(c.model, "Cm_bearing")].value = 0.0;
+  testing::WriteText(dir + "/fit.yaml", CaseToYaml(c));
+  for (const bool exact : {false, true}) {
+    const std::string out = dir + (exact ? "/exact" : "/out");
+    const auto result =
+        testing::RunFit3dof("diagnose " + dir + "/fit.yaml --out_dir=" + out +
+                            (exact ? " --exact_step" : ""));
+    ASSERT_LE(result.exit_status, 1) << result.output;
+    const json d = json::parse(testing::ReadText(out + "/diagnosis.json"));
+    const double step = d["search_step"].get<double>();
+    if (exact) {
+      EXPECT_EQ(step, 0.002);
+    } else {
+      EXPECT_GE(step, 0.008);
+    }
+    const json first =
+        json::parse(testing::ReadText(out + "/step0/report.json"));
+    EXPECT_EQ(first["integration_step"], 0.002);
+    int at_search_step = 0;
+    for (int i = 1; fs::exists(out + "/step" + std::to_string(i)); ++i) {
+      const json r = json::parse(testing::ReadText(
+          out + "/step" + std::to_string(i) + "/report.json"));
+      if (r["integration_step"].get<double>() != step) continue;
+      ++at_search_step;
+      if (!exact) EXPECT_LE(r["step_chi_square"].get<double>(), 0.01);
+    }
+    EXPECT_GE(at_search_step, 1);
+  }
 }
 
 }  // namespace
