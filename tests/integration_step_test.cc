@@ -29,16 +29,24 @@ Case BearingRun(const std::string& name) {
   return c;
 }
 
-std::vector<TimeHistory> Data(const FitResult& fit) {
-  std::vector<TimeHistory> data;
-  for (const SegmentFit& s : fit.segments) data.push_back(s.data);
-  return data;
+// Every value of `fit` within a tenth of its standard error of `exact`'s,
+// the fit of the same model at the config's step.
+void ExpectWithinATenthOfTheirErrors(const FitResult& fit,
+                                     const FitResult& exact) {
+  ASSERT_EQ(fit.parameters.size(), exact.parameters.size());
+  for (size_t i = 0; i < exact.parameters.size(); ++i) {
+    const ParameterEstimate& e = exact.parameters[i];
+    if (!(e.standard_error > 0.0)) continue;
+    EXPECT_LE(std::abs(fit.parameters[i].value - e.value),
+              0.1 * e.standard_error)
+        << e.name;
+  }
 }
 
 TEST(StepChiSquare, NoneAtTheConfigsStepAndGrowingAsTheStepToTheEighth) {
   const Case c = BearingRun("step_chi_square");
   const FitResult fit = Fit(c);
-  const std::vector<TimeHistory> data = Data(fit);
+  const std::vector<TimeHistory> data = testing::FittedSamples(fit);
   EXPECT_EQ(StepChiSquare(c, data, fit, c.solver.step), 0.0);
   // RK4's error grows as the step to the 4th, its square to the 8th:
   // doubling the step multiplies the distance by about 256.
@@ -52,7 +60,7 @@ TEST(StepChiSquare, NoneAtTheConfigsStepAndGrowingAsTheStepToTheEighth) {
 TEST(CoarsestStep, TheLastDoublingWithinTheLimit) {
   const Case c = BearingRun("coarsest_step");
   const FitResult fit = Fit(c);
-  const std::vector<TimeHistory> data = Data(fit);
+  const std::vector<TimeHistory> data = testing::FittedSamples(fit);
   const double limit = kStepChiSquare / 16;
   const double step = CoarsestStep(c, data, fit, limit);
   EXPECT_GT(step, c.solver.step);
@@ -67,7 +75,7 @@ TEST(CoarsestStep, NoCoarserThanTheSamples) {
   const FitResult fit = Fit(c);
   // The samples 0.064 s apart: from 0.02 s one doubling at most.
   c.solver.step = 0.02;
-  EXPECT_EQ(CoarsestStep(c, Data(fit), fit, 1e300), 0.04);
+  EXPECT_EQ(CoarsestStep(c, testing::FittedSamples(fit), fit, 1e300), 0.04);
 }
 
 // The promise of the search step: every value within a tenth of its
@@ -75,20 +83,14 @@ TEST(CoarsestStep, NoCoarserThanTheSamples) {
 TEST(FitSamples, AtASearchStepEveryValueWithinATenthOfItsError) {
   Case c = BearingRun("search_step_values");
   const FitResult exact = Fit(c);
-  c.solver.search_step = CoarsestStep(c, Data(exact), exact, kStepChiSquare);
+  c.solver.search_step =
+      CoarsestStep(c, testing::FittedSamples(exact), exact, kStepChiSquare);
   ASSERT_GT(c.solver.search_step, c.solver.step);
-  const FitResult coarse = FitSamples(c, Data(exact));
+  const FitResult coarse = FitSamples(c, testing::FittedSamples(exact));
   ASSERT_EQ(coarse.step, c.solver.search_step);
   EXPECT_GT(coarse.step_chi_square, 0.0);
   EXPECT_LE(coarse.step_chi_square, kStepChiSquare);
-  ASSERT_EQ(coarse.parameters.size(), exact.parameters.size());
-  for (size_t i = 0; i < exact.parameters.size(); ++i) {
-    const ParameterEstimate& e = exact.parameters[i];
-    if (!(e.standard_error > 0.0)) continue;
-    EXPECT_LE(std::abs(coarse.parameters[i].value - e.value),
-              0.1 * e.standard_error)
-        << e.name;
-  }
+  ExpectWithinATenthOfTheirErrors(coarse, exact);
 }
 
 // A search step too coarse for the fit's motion: fitted again at the
@@ -97,7 +99,7 @@ TEST(FitSamples, AtASearchStepEveryValueWithinATenthOfItsError) {
 TEST(FitSamples, ASearchStepTooCoarseFitsAgainAtAFinerOne) {
   Case c = BearingRun("search_step_too_coarse");
   const FitResult exact = Fit(c);
-  const std::vector<TimeHistory> data = Data(exact);
+  const std::vector<TimeHistory> data = testing::FittedSamples(exact);
   c.solver.search_step = 32 * c.solver.step;  // about one step per sample
   ASSERT_GT(StepChiSquare(c, data, exact, c.solver.search_step),
             kStepChiSquare);
@@ -105,13 +107,7 @@ TEST(FitSamples, ASearchStepTooCoarseFitsAgainAtAFinerOne) {
   EXPECT_LT(fit.step, c.solver.search_step);
   EXPECT_GT(fit.step, c.solver.step);
   EXPECT_LE(fit.step_chi_square, kStepChiSquare);
-  for (size_t i = 0; i < exact.parameters.size(); ++i) {
-    const ParameterEstimate& e = exact.parameters[i];
-    if (!(e.standard_error > 0.0)) continue;
-    EXPECT_LE(std::abs(fit.parameters[i].value - e.value),
-              0.1 * e.standard_error)
-        << e.name;
-  }
+  ExpectWithinATenthOfTheirErrors(fit, exact);
 }
 
 // Where no coarser step serves, the fit at the config's step, exactly as
@@ -120,7 +116,7 @@ TEST(FitSamples, NoStepServingTheFitAtTheConfigsStep) {
   Case c = BearingRun("search_step_none_serves");
   c.solver.step = 0.016;  // 4 substeps per sample
   const FitResult exact = Fit(c);
-  const std::vector<TimeHistory> data = Data(exact);
+  const std::vector<TimeHistory> data = testing::FittedSamples(exact);
   c.solver.search_step = 2 * c.solver.step;
   ASSERT_GT(StepChiSquare(c, data, exact, c.solver.search_step),
             kStepChiSquare);

@@ -58,12 +58,6 @@ Case BearingHeldFit(const std::string& dir, std::uint64_t seed) {
   return c;
 }
 
-std::vector<TimeHistory> Data(const FitResult& fit) {
-  std::vector<TimeHistory> data;
-  for (const SegmentFit& s : fit.segments) data.push_back(s.data);
-  return data;
-}
-
 // Where the profile is quadratic (Cm_alpha, determined to 0.3%), the
 // secant gives the linear error bar back: 15% at most wider.
 TEST(ProfileErrorBar, IsTheLinearOneOnAQuadraticProfile) {
@@ -71,7 +65,8 @@ TEST(ProfileErrorBar, IsTheLinearOneOnAQuadraticProfile) {
   const Case c = BearingHeldFit(dir, 3);
   const FitResult fit = Fit(c);
   ProfileErrorBar profile;
-  ASSERT_TRUE(ProfileOf(c, Data(fit), fit, "Cm_alpha", &profile));
+  ASSERT_TRUE(
+      ProfileOf(c, testing::FittedSamples(fit), fit, "Cm_alpha", &profile));
   EXPECT_TRUE(profile.bounded);
   EXPECT_EQ(profile.refits, 2);  // one probe per side reached E^2
   EXPECT_LT(profile.rms_error, 1.15 * profile.linear);
@@ -86,9 +81,11 @@ TEST(ProfileErrorBar, ASecondProfileOfOneSolutionRefitsNothing) {
   const Case c = BearingHeldFit(dir, 3);
   const FitResult fit = Fit(c);
   ProfileErrorBar first, second;
-  ASSERT_TRUE(ProfileOf(c, Data(fit), fit, "Cm_alpha", &first));
+  ASSERT_TRUE(
+      ProfileOf(c, testing::FittedSamples(fit), fit, "Cm_alpha", &first));
   const FitMemoCounts before = GetFitMemoCounts();
-  ASSERT_TRUE(ProfileOf(c, Data(fit), fit, "Cm_alpha", &second));
+  ASSERT_TRUE(
+      ProfileOf(c, testing::FittedSamples(fit), fit, "Cm_alpha", &second));
   const FitMemoCounts after = GetFitMemoCounts();
   EXPECT_EQ(after.calls - before.calls, second.refits);
   EXPECT_EQ(after.hits - before.hits, second.refits);
@@ -105,8 +102,10 @@ TEST(ProfileErrorBar, NoneForAFrozenParameter) {
   c.parameters[FindParameter(c.model, "bearing_angle")].free = false;
   const FitResult fit = Fit(c);
   ProfileErrorBar profile;
-  EXPECT_FALSE(ProfileOf(c, Data(fit), fit, "Cm_bearing", &profile));
-  EXPECT_FALSE(ProfileOf(c, Data(fit), fit, "no_such_term", &profile));
+  EXPECT_FALSE(
+      ProfileOf(c, testing::FittedSamples(fit), fit, "Cm_bearing", &profile));
+  EXPECT_FALSE(
+      ProfileOf(c, testing::FittedSamples(fit), fit, "no_such_term", &profile));
   EXPECT_EQ(profile.refits, 0);
 }
 
@@ -273,7 +272,8 @@ TEST(ProfileErrorBar, SweepsTheAngleTheRecordDoesNotDetermine) {
   // The sweep itself: up to the far branch, its refits kept for the
   // profiles, and the solution's own angle within its range.
   AngleSweep sweep;
-  ASSERT_TRUE(SweepBearingAngle(c, Data(linear), linear, 10.0, &sweep));
+  ASSERT_TRUE(SweepBearingAngle(
+      c, testing::FittedSamples(linear), linear, 10.0, &sweep));
   EXPECT_GT(sweep.highest, 1.5);
   EXPECT_LE(sweep.lowest,
             std::abs(SharedEstimate(linear, "bearing_angle")->value));
@@ -288,7 +288,8 @@ TEST(ProfileErrorBar, NoSweepWithoutAFreeAngle) {
   c.parameters[FindParameter(c.model, "bearing_angle")].free = false;
   const FitResult fit = Fit(c);
   AngleSweep sweep;
-  EXPECT_FALSE(SweepBearingAngle(c, Data(fit), fit, 10.0, &sweep));
+  EXPECT_FALSE(
+      SweepBearingAngle(c, testing::FittedSamples(fit), fit, 10.0, &sweep));
   EXPECT_EQ(sweep.refits, 0);
 }
 

@@ -97,6 +97,12 @@ bool InPipeline(const FitResult& fit, const std::string& prefix) {
       });
 }
 
+std::vector<TimeHistory> FittedSamples(const FitResult& fit) {
+  std::vector<TimeHistory> data;
+  for (const SegmentFit& s : fit.segments) data.push_back(s.data);
+  return data;
+}
+
 Case ShortRun(const std::string& dir,
               const std::string& terms,
               std::uint64_t seed) {

@@ -75,6 +75,10 @@ std::vector<double> ShortRecordTimes();
 // Whether a line of `fit`'s pipeline starts with `prefix`.
 bool InPipeline(const FitResult& fit, const std::string& prefix);
 
+// The samples `fit` was fitted to, one record per segment (as FitSamples
+// takes them).
+std::vector<TimeHistory> FittedSamples(const FitResult& fit);
+
 // Runs the built fit3dof binary with the given arguments (shell-quoted by
 // the caller where needed).
 CommandResult RunFit3dof(const std::string& arguments);
