@@ -179,7 +179,11 @@ FitResult Fit(const Case& c);
 // Fit without reading: the samples of each segment given (one record per
 // segment of `c`, as ReadSegmentData returns them or a FitResult's
 // segments hold them), no wild-point screen. Diagnose fits its candidates
-// and its out-of-sample checks on the samples the first fit used.
+// and its out-of-sample checks on the samples the first fit used. With
+// c.solver.search_step (case.h), at that coarser step where the motion
+// stays within kStepChiSquare of the motion at c.solver.step
+// (integration_step.h), else at a finer one, at c.solver.step last;
+// FitResult::step says which.
 FitResult FitSamples(const Case& c, const std::vector<TimeHistory>& data);
 
 // Error bars along the known curved ridges of the sum of squares: a
