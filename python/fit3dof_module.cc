@@ -347,7 +347,8 @@ PYBIND11_MODULE(_fit3dof, m) {
       "case's simulate: times with its noise, as `fit3dof simulate`.");
   m.def(
       "diagnose",
-      [](const Case& c, const std::vector<std::string>& absent,
+      [](const Case& c,
+         const std::vector<std::string>& absent,
          bool exact_step) {
         DiagnoseOptions options;
         options.absent = absent;

@@ -167,19 +167,19 @@ bool operator==(const SolverOptions& a, const SolverOptions& b) {
                   a.bic_tolerance,
                   a.stop_below,
                   a.search_step) == std::tie(b.max_iterations,
-                                            b.tolerance,
-                                            b.step,
-                                            b.continuation,
-                                            b.method,
-                                            b.max_probable_error,
-                                            b.multi_start,
-                                            b.starts,
-                                            b.profile_ridges,
-                                            b.from_solution,
-                                            b.far_start,
-                                            b.bic_tolerance,
-                                            b.stop_below,
-                                            b.search_step);
+                                             b.tolerance,
+                                             b.step,
+                                             b.continuation,
+                                             b.method,
+                                             b.max_probable_error,
+                                             b.multi_start,
+                                             b.starts,
+                                             b.profile_ridges,
+                                             b.from_solution,
+                                             b.far_start,
+                                             b.bic_tolerance,
+                                             b.stop_below,
+                                             b.search_step);
 }
 
 bool operator==(const ProcessNoiseModel& a, const ProcessNoiseModel& b) {
