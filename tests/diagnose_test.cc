@@ -4153,25 +4153,40 @@ TEST(Diagnose, ANoiseLevelAnswerSaysWhatItsCoefficientsCarry) {
 
 // tools/diagnose_suite's `short` tunnel stiffness + nonlinear damping +
 // body yaw asymmetry (draw 35, --vary; tests/data/short_stiffness_damping_
-// asymmetry_draw35.yaml). The search's answer was `ambiguous` (a roll
-// torque or a tunnel damping, nothing added) with the asymmetry, the
-// damping and the stiffness lowering BIC by 93.2, 40.7 and 11.8 beside
-// it, not excluded. An ambiguous answer is searched past the noise too,
-// and the three are named.
-TEST(Diagnose, AnAmbiguousAnswerIsSearchedPastTheNoise) {
+// asymmetry_draw35.yaml), its nominal fit 3.7 times the noise off. Its
+// refits had taken the growing windows from there (kNearSolution was 3),
+// which stopped the stiffness short of its minimum along Eq. 43's ridge
+// (BIC 83.1 lower than the nominal fit); the first answer was then a tie
+// of a roll torque and a tunnel damping, nothing added, and past the
+// noise the three were named. Refitted from the solution (kNearSolution
+// 10) the stiffness reaches its minimum (94.1 lower, t1 2.1 +- 0.96,
+// Cm_alpha with it along the ridge, out of its bounds) and the first
+// search names the asymmetry and the damping and ties the stiffness with
+// a roll torque and a tunnel damping: the answer of this class on every
+// suite draw whose nominal fit starts below 3 times the noise.
+TEST(Diagnose, AStiffnessAtItsRidgesMinimumTiesWithRollEffects) {
   if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw35.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
-  EXPECT_EQ(d.verdict, Verdict::kExplained) << text;
-  std::set<std::string> added;
-  for (const DiagnosisStep& s : d.steps) added.insert(s.effect);
-  EXPECT_EQ(added,
-            std::set<std::string>(
-                {"asymmetric_body", "tunnel_stiffness", "nonlinear_damping"}))
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            std::set<std::string>({"asymmetric_body", "nonlinear_damping"}))
       << text;
-  ExpectCovers(d.final_parameters,
-               {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}, {"Cm_q_alpha2", 937.5}},
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
+  ExpectFinalCovers(
+      d,
+      {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}, {"Cm_q_alpha2", 937.5}},
+      text);
+  const auto stiffness =
+      std::find_if(d.tie_models.begin(),
+                   d.tie_models.end(),
+                   [](const Diagnosis::TieModel& m) {
+                     return m.effect == "tunnel_stiffness";
+                   });
+  ASSERT_NE(stiffness, d.tie_models.end()) << text;
+  ExpectCovers(stiffness->parameters,
+               {{"tunnel_Cm_theta", 1.04e-3}, {"tunnel_Cn_psi", -3.64e-4}},
                text);
 }
 
