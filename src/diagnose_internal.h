@@ -32,8 +32,8 @@ namespace fit3dof {
 // Table 6 record with a stiffness, a nonlinear damping and an asymmetry
 // (its nominal fit 4.5 times the noise off); from 10, summed over nine
 // draws of tools/diagnose_suite (1521 diagnoses), 0.93x the time and no
-// verdict changed that the suite judges (docs/diagnose_history.md,
-// Session 81).
+// pass or failure of the suite changed (docs/diagnose_history.md, Session
+// 81).
 inline constexpr double kNearSolution = 10.0;
 inline constexpr double kFarStart = 30.0;
 // Such a fit also stops once an iteration lowers its BIC by less than this
