@@ -746,14 +746,24 @@ const std::vector<std::string>& TermsIn(const Case& at, const Effect& effect) {
                               : effect.Terms(at.model);
 }
 
-bool BackToOwnForms(const std::vector<TimeHistory>& data,
+namespace {
+
+// BackToOwnForms, a step's form read off its step_parameters or,
+// `by_model`, off `current` (a step's parameters are those of the model it
+// was last refitted in, whose form may differ).
+bool OwnFormsWithin(bool by_model,
+                    const std::vector<TimeHistory>& data,
                     Case* current,
                     FitResult* fit,
                     std::vector<DiagnosisStep>* steps) {
   bool changed = false;
   for (DiagnosisStep& step : *steps) {
-    if (!InOtherForm(step, current->model)) continue;
-    const Effect& effect = *FindEffect(step.effect);
+    const Effect* found = FindEffect(step.effect);
+    if (by_model ? found == nullptr || !FormHeld(*current, *found)
+                 : !InOtherForm(step, current->model)) {
+      continue;
+    }
+    const Effect& effect = *found;
     Case own;
     std::vector<std::string> added;
     FitResult refit;
@@ -767,13 +777,33 @@ bool BackToOwnForms(const std::vector<TimeHistory>& data,
     VLOG(1) << step.effect << " in its own form beside the later steps: BIC "
             << FormatNumber("%+.1f", Bic(refit) - Bic(*fit));
     if (!(Bic(refit) < Bic(*fit) + kOtherFormBic)) continue;
-    if (OnlyOtherFormPlausible(effect, own, refit, *current, *fit)) continue;
+    if (OnlyOtherFormPlausible(effect, own, refit, *current, *fit)) {
+      VLOG(1) << step.effect << " in its own form leaves its bounds: "
+              << Implausible(effect, own, refit);
+      continue;
+    }
     *current = own;
     *fit = refit;
     step.step_parameters = Own(refit, added);
     changed = true;
   }
   return changed;
+}
+
+}  // namespace
+
+bool BackToOwnForms(const std::vector<TimeHistory>& data,
+                    Case* current,
+                    FitResult* fit,
+                    std::vector<DiagnosisStep>* steps) {
+  return OwnFormsWithin(false, data, current, fit, steps);
+}
+
+bool BackToOwnFormsInModel(const std::vector<TimeHistory>& data,
+                           Case* current,
+                           FitResult* fit,
+                           std::vector<DiagnosisStep>* steps) {
+  return OwnFormsWithin(true, data, current, fit, steps);
 }
 
 namespace {

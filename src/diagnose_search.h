@@ -172,6 +172,15 @@ bool BackToOwnForms(const std::vector<TimeHistory>& data,
                     FitResult* fit,
                     std::vector<DiagnosisStep>* steps);
 
+// BackToOwnForms for each effect of `steps` that `current` holds in its
+// other form, whatever the step's own parameters say (they are those of
+// the model the step was last refitted in): for a final model refitted
+// without an open tie's effect (OwnFormsBeforeTie, diagnose_ties.cc).
+bool BackToOwnFormsInModel(const std::vector<TimeHistory>& data,
+                           Case* current,
+                           FitResult* fit,
+                           std::vector<DiagnosisStep>* steps);
+
 // The case `c` fitted from `from`, its solution, into *fit; false (and a
 // warning naming the refit, `what`) when the fit fails.
 bool FitFrom(const Case& c,

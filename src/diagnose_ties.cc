@@ -1325,6 +1325,55 @@ void WithoutPrunedBeforeTie(const std::vector<TimeHistory>& data,
   if (!d->steps.empty()) d->steps.back().after = *check;
 }
 
+// The final model *current (d->FinalFit(), the model before an open tie;
+// *check its residual check), short of the noise level where the search's
+// model with the tie's effect in (d->fits[d->partial_fit]) reaches it,
+// with each effect it holds in the other form back in its own form where
+// that model holds it so and the record no longer favors the other
+// (BackToOwnFormsInModel). The search took the form back beside the tied
+// effect and updated the step's parameters, but the model before the tie
+// still holds the form the step was taken in: on draw 155's 3-s run with a
+// bearing moment, a cubic calibration error and a roll torque, the
+// calibration came first as the signed square, then the bearing moment;
+// the roll torque, with the cube beside it, tied with a tunnel damping,
+// and the final model, the one before it, kept the signed square while
+// the complete models with either tied effect held the cube: the answer
+// held the true term at zero. The refit is a new fit; the step's own fit
+// keeps the form it was taken in. Unchanged when no such effect, or the
+// refit fails.
+void OwnFormsBeforeTie(const std::vector<TimeHistory>& data,
+                       const DiagnoseOptions& options,
+                       Diagnosis* d,
+                       Case* current,
+                       ResidualCheck* check) {
+  if (check->at_noise_level || d->partial_fit >= d->fits.size()) return;
+  const FitResult& complete = d->fits[d->partial_fit];
+  if (!CheckResiduals(complete, options).at_noise_level) return;
+  std::vector<DiagnosisStep> steps;
+  for (const DiagnosisStep& s : d->steps) {
+    const Effect* effect = FindEffect(s.effect);
+    if (effect != nullptr && OtherForm(*effect) != nullptr &&
+        InOtherFormIn(*effect, d->FinalFit()) &&
+        !InOtherFormIn(*effect, complete)) {
+      steps.push_back(s);
+    }
+  }
+  if (steps.empty()) return;
+  Case own = CaseAtSolution(*current, d->FinalFit());
+  FitResult fit = d->FinalFit();
+  if (!BackToOwnFormsInModel(data, &own, &fit, &steps)) return;
+  for (DiagnosisStep& s : d->steps) {
+    for (const DiagnosisStep& back : steps) {
+      if (back.effect == s.effect) s.step_parameters = back.step_parameters;
+    }
+  }
+  *check = CheckResiduals(fit, options);
+  d->fits.push_back(std::move(fit));
+  d->final_fit = d->fits.size() - 1;
+  *current = std::move(own);
+  if (!d->steps.empty()) d->steps.back().after = *check;
+}
+
 // Each complete model of `d`, an ambiguous answer (Diagnosis::alternatives),
 // refitted without each of its steps: model m without step i in
 // (*without)[m * n + i] (n steps), and what that costs in *rises (the same
@@ -1709,6 +1758,7 @@ ResidualCheck SettleFinalModel(
     *current = models[tie];
     ResidualCheck before = tie == 0 ? d->initial : d->steps.back().after;
     WithoutPrunedBeforeTie(data, options, tied, d, current, &before);
+    OwnFormsBeforeTie(data, options, d, current, &before);
     return before;
   }
   d->final_fit = d->steps.size();

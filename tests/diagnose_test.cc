@@ -3722,6 +3722,40 @@ TEST(Diagnose, ALesserRefitInAJointSetTiesWithItsTwins) {
       d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}, {"theta_cal3", 0.02}}, text);
 }
 
+// tools/diagnose_suite's `short` bearing moment + cubic calibration error +
+// roll torque on another body (draw 155, sigma: auto; tests/data/short_
+// bearing_calibration_roll_torque_draw155.yaml). The calibration came
+// first as the signed square, then the bearing moment; beside the roll
+// torque the search took the calibration back to the cube, and the roll
+// torque tied with a tunnel damping. The final model, the one before the
+// tie, still held the signed square: the true cube held at zero in the
+// answer while both complete models held it. The final model holds each
+// effect in its own form where the complete model does
+// (OwnFormsBeforeTie).
+TEST(Diagnose, AFinalModelWithoutATiedEffectHoldsTheCompleteModelsForm) {
+  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_bearing_calibration_roll_torque_draw155.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("roll_torque")) << text;
+  EXPECT_EQ(
+      EffectIds(d.steps),
+      (std::set<std::string>{"bearing_moment", "calibration_nonlinearity"}))
+      << text;
+  const ParameterEstimate* cube =
+      SharedEstimate(d.FinalFit().parameters, "theta_cal3");
+  const ParameterEstimate* square =
+      SharedEstimate(d.FinalFit().parameters, "theta_cal2");
+  ASSERT_TRUE(cube != nullptr && square != nullptr) << text;
+  EXPECT_TRUE(cube->free) << text;
+  EXPECT_FALSE(square->free) << text;
+  ExpectFinalCovers(
+      d,
+      {{"Cm_alpha", -0.2462}, {"Cm_q", -3.751}, {"theta_cal3", -0.02814}},
+      text);
+}
+
 // `d` (a Table 6 record) adds the bearing moment and the calibration error
 // beside a tie of a roll damping and a roll torque (twins at constant
 // spin), its final model covering Cm_alpha, Cm_q and the calibration's
@@ -4175,15 +4209,12 @@ TEST(Diagnose, AStiffnessAtItsRidgesMinimumTiesWithRollEffects) {
       << text;
   EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
   ExpectFinalCovers(
-      d,
-      {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}, {"Cm_q_alpha2", 937.5}},
-      text);
-  const auto stiffness =
-      std::find_if(d.tie_models.begin(),
-                   d.tie_models.end(),
-                   [](const Diagnosis::TieModel& m) {
-                     return m.effect == "tunnel_stiffness";
-                   });
+      d, {{"Cm_alpha", -0.23}, {"Cm_q", -5.5}, {"Cm_q_alpha2", 937.5}}, text);
+  const auto stiffness = std::find_if(d.tie_models.begin(),
+                                      d.tie_models.end(),
+                                      [](const Diagnosis::TieModel& m) {
+                                        return m.effect == "tunnel_stiffness";
+                                      });
   ASSERT_NE(stiffness, d.tie_models.end()) << text;
   ExpectCovers(stiffness->parameters,
                {{"tunnel_Cm_theta", 1.04e-3}, {"tunnel_Cn_psi", -3.64e-4}},
