@@ -1623,11 +1623,32 @@ void CompanionsWithinTie(const std::vector<TimeHistory>& data,
 // The case of complete model `a` (fitted as `own`) started from `best`, the
 // fit of another side of the tie: its own solution with every parameter free
 // in both, and the initial conditions, at best's values (CaseAtSolution of
-// best with only those parameters).
+// best with only those parameters). A side in the other program (a body
+// asymmetry's side fits the asymmetric one) gives its shared terms by name
+// and not its initial conditions, whose coordinates differ: read by
+// position, its parameters had been written past the end of the case's
+// table (draw 29's 3-s stiffness + damping + asymmetry, a heap overflow
+// AddressSanitizer found; diagnose_test aborted now and then).
 Case FromOtherSide(const AlternativeModel& a,
                    const FitResult& own,
                    const FitResult& best) {
   const Case at = CaseAtSolution(a.model, own);
+  if (best.model != at.model) {
+    Case c = at;
+    for (const ParameterEstimate& e : best.parameters) {
+      const int position = FindParameter(c.model, e.name);
+      if (!e.free || !e.segment.empty() || position < 0 ||
+          IsInitialCondition(c.model, position)) {
+        continue;
+      }
+      ParameterSetting& p = c.parameters[position];
+      if (!p.free || p.tied()) continue;
+      p.value = e.value;
+      p.auto_start = false;
+    }
+    c.SettleTies();
+    return c;
+  }
   FitResult shared = best;
   std::vector<ParameterEstimate>& terms = shared.parameters;
   terms.erase(std::remove_if(terms.begin(),

@@ -892,6 +892,8 @@ const ParameterEstimate* SharedEstimate(const FitResult& result,
 }
 
 Case CaseAtSolution(const Case& c, const FitResult& r) {
+  // Positions index the program's own table (parameters.h).
+  CHECK(r.model == c.model) << "a solution of the other program";
   Case at = c;
   for (const ParameterEstimate& e : r.parameters) {
     if (e.segment.empty() && !IsInitialCondition(c.model, e.position)) {
