@@ -3305,6 +3305,20 @@ TEST(Diagnose, AMagnusMomentThatTookTheAsymmetrysSignalIsNotClaimed) {
   ExpectStiffnessAlternativeCovers(d, 1.02e-3, -3.57e-4, text);
 }
 
+// Draw 29's record below, whose tie has a side in each program (the body
+// asymmetry's complete models fit the asymmetric one): refitting one side
+// from another (AlignedSides, FromOtherSide) had written the asymmetric
+// solution's values by position into a symmetric case, past its table, a
+// heap overflow that aborted diagnose_test now and then. Run in the
+// sanitized build too, where AddressSanitizer watches that path.
+TEST(Diagnose, ATieSideStartedFromTheOtherProgramStaysInItsTable) {
+  const Diagnosis d =
+      DiagnoseRecord("short_stiffness_damping_asymmetry_vary29.csv");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
+}
+
 // The same case on draw 29 (t1 8.1e-4, t3 -2.8e-4, Cm_q_delta2 983, body
 // yaw +0.25%), kept as tests/data/short_stiffness_damping_asymmetry_vary29
 // .csv. A roll torque (Eq. 39's roll part of the stiffness) is taken

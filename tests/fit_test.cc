@@ -45,6 +45,18 @@ double Truth(const std::string& name) {
       .get<double>();
 }
 
+// A solution carries its values by the positions of its own program's
+// table: one of the other program (72 asymmetric parameters against 30
+// and the extensions' symmetric ones) would be written past the case's
+// table, and CaseAtSolution refuses it.
+TEST(FitDeathTest, ASolutionOfTheOtherProgramIsRefused) {
+  const Case c = Load("table6_sigma0.01.yaml");
+  ASSERT_EQ(c.model, ModelKind::kSymmetric);
+  FitResult other;
+  other.model = ModelKind::kAsymmetric;
+  EXPECT_DEATH(CaseAtSolution(c, other), "other program");
+}
+
 // Table 6, repeated: every fit converges, every coefficient lies within 3
 // RMS errors of the truth, and the RMS errors grow linearly with the noise.
 TEST(Fit, ReproducesTheTable6NoiseStudy) {
