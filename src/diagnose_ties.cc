@@ -1349,11 +1349,12 @@ void OwnFormsBeforeTie(const std::vector<TimeHistory>& data,
   if (check->at_noise_level || d->partial_fit >= d->fits.size()) return;
   const FitResult& complete = d->fits[d->partial_fit];
   if (!CheckResiduals(complete, options).at_noise_level) return;
+  // The steps whose effect the complete model holds in its own form;
+  // BackToOwnFormsInModel takes those the final model holds in the other.
   std::vector<DiagnosisStep> steps;
   for (const DiagnosisStep& s : d->steps) {
     const Effect* effect = FindEffect(s.effect);
     if (effect != nullptr && OtherForm(*effect) != nullptr &&
-        InOtherFormIn(*effect, d->FinalFit()) &&
         !InOtherFormIn(*effect, complete)) {
       steps.push_back(s);
     }
