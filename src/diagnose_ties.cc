@@ -1625,11 +1625,13 @@ void CompanionsWithinTie(const std::vector<TimeHistory>& data,
 // fit of another side of the tie: its own solution with every parameter free
 // in both, and the initial conditions, at best's values (CaseAtSolution of
 // best with only those parameters). A side in the other program (a body
-// asymmetry's side fits the asymmetric one) gives its shared terms by name
-// and not its initial conditions, whose coordinates differ: read by
-// position, its parameters had been written past the end of the case's
-// table (draw 29's 3-s stiffness + damping + asymmetry, a heap overflow
-// AddressSanitizer found; diagnose_test aborted now and then).
+// asymmetry's side fits the asymmetric one) gives its shared terms
+// through their images (ImagesIn: a symmetric Cm_q gives the asymmetric
+// Cm_q and Cn_r, Cm_p_beta gives the symmetric Cm_p_alpha) and not its
+// initial conditions, whose coordinates differ: read by position, its
+// parameters had been written past the end of the case's table (draw 29's
+// 3-s stiffness + damping + asymmetry, a heap overflow AddressSanitizer
+// found; diagnose_test aborted now and then).
 Case FromOtherSide(const AlternativeModel& a,
                    const FitResult& own,
                    const FitResult& best) {
@@ -1637,15 +1639,13 @@ Case FromOtherSide(const AlternativeModel& a,
   if (best.model != at.model) {
     Case c = at;
     for (const ParameterEstimate& e : best.parameters) {
-      const int position = FindParameter(c.model, e.name);
-      if (!e.free || !e.segment.empty() || position < 0 ||
-          IsInitialCondition(c.model, position)) {
-        continue;
+      if (!e.free || !e.segment.empty()) continue;
+      for (const ImagePosition& image : ImagesIn(c.model, best.model, e.name)) {
+        ParameterSetting& p = c.parameters[image.position];
+        if (!p.free || p.tied()) continue;
+        p.value = image.factor * e.value;
+        p.auto_start = false;
       }
-      ParameterSetting& p = c.parameters[position];
-      if (!p.free || p.tied()) continue;
-      p.value = e.value;
-      p.auto_start = false;
     }
     c.SettleTies();
     return c;

@@ -166,6 +166,27 @@ const CoefficientImage* FirstImage(const std::string& symmetric) {
   return nullptr;
 }
 
+std::vector<ImagePosition> ImagesIn(ModelKind to,
+                                    ModelKind from,
+                                    const std::string& name) {
+  // By position: a name may be an alias (t1 for tunnel_Cm_theta).
+  const int position = FindParameter(from, name);
+  if (position < 0) return {};
+  if (to == from) return {{position, 1.0}};
+  const bool symmetric = from == ModelKind::kSymmetric;
+  std::vector<ImagePosition> images;
+  for (const CoefficientImage& image : SymmetricImages()) {
+    if (symmetric && FindParameter(from, image.symmetric) == position) {
+      images.push_back({FindParameter(to, image.asymmetric), image.sign});
+    } else if (!symmetric &&
+               FindParameter(from, image.asymmetric) == position &&
+               FirstImage(image.symmetric) == &image) {
+      images.push_back({FindParameter(to, image.symmetric), 1.0 / image.sign});
+    }
+  }
+  return images;
+}
+
 bool SymmetricTie(const std::string& name, ParameterTie* tie) {
   for (const CoefficientImage& image : SymmetricImages()) {
     if (name != image.asymmetric) continue;

@@ -113,22 +113,22 @@ std::vector<std::string> EstimateStartValues(
     const int i = position(name);
     return i >= 0 && auto_start[i];
   };
-  auto set = [&](const char* name, double internal, const std::string& why) {
-    const int i = position(name);
+  auto set_at = [&](int i, double internal, const std::string& why) {
     if (i < 0 || !auto_start[i]) return;
     (*values)[i] = internal / scale[i];
     log.push_back(Line("%s = %.6g (%s)", table[i].name, (*values)[i], why));
+  };
+  auto set = [&](const char* name, double internal, const std::string& why) {
+    set_at(position(name), internal, why);
   };
   const bool symmetric = c.model == ModelKind::kSymmetric;
   // A symmetric-form constant, or its images in the asymmetric program
   // (Cm_alpha -> Cm_alpha and -Cn_beta, ...; model_conversion.h).
   auto set_symmetric =
       [&](const char* name, double internal, const std::string& why) {
-        if (symmetric) return set(name, internal, why);
-        for (const CoefficientImage& image : SymmetricImages()) {
-          if (std::string(image.symmetric) == name) {
-            set(image.asymmetric, image.sign * internal, why);
-          }
+        for (const ImagePosition& image :
+             ImagesIn(c.model, ModelKind::kSymmetric, name)) {
+          set_at(image.position, image.factor * internal, why);
         }
       };
   // Internal constants of the symmetric form, mapped to both programs.

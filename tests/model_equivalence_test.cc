@@ -222,6 +222,59 @@ TEST(ModelEquivalence, ToSymmetricUndoesToAsymmetric) {
   }
 }
 
+// ImagesIn carries a term between the programs as ToAsymmetric and
+// ToSymmetric do: each term of a case through its images gives the other
+// program's case value for value.
+TEST(ModelEquivalence, ImagesInCarryEachTermAsTheConversionsDo) {
+  Case c = SymmetricCase(Incidence::kVelocityRatio, 0.001);
+  const auto& sym = ParameterTable(ModelKind::kSymmetric);
+  for (int i = 0; i < NumParameters(ModelKind::kSymmetric); ++i) {
+    if (IsInitialCondition(ModelKind::kSymmetric, i)) continue;
+    if (sym[i].scaling == Scaling::kUnused) continue;
+    c.parameters[i].value = 0.01 * (i + 1);
+  }
+  for (const char* name : SymmetricWithoutImage()) {
+    c.parameters[FindParameter(ModelKind::kSymmetric, name)].value = 0.0;
+  }
+  const Case a = ToAsymmetric(c);
+  std::vector<double> carried(a.parameters.size(), 0.0);
+  std::vector<double> back(c.parameters.size(), 0.0);
+  for (int i = 0; i < NumParameters(ModelKind::kSymmetric); ++i) {
+    if (IsInitialCondition(ModelKind::kSymmetric, i)) continue;
+    for (const ImagePosition& image :
+         ImagesIn(ModelKind::kAsymmetric, ModelKind::kSymmetric, sym[i].name)) {
+      carried[image.position] = image.factor * c.parameters[i].value;
+    }
+  }
+  const auto& asym = ParameterTable(ModelKind::kAsymmetric);
+  for (int i = 0; i < NumParameters(ModelKind::kAsymmetric); ++i) {
+    if (IsInitialCondition(ModelKind::kAsymmetric, i)) continue;
+    EXPECT_NEAR(carried[i], a.parameters[i].value, 1e-12) << asym[i].name;
+    for (const ImagePosition& image : ImagesIn(
+             ModelKind::kSymmetric, ModelKind::kAsymmetric, asym[i].name)) {
+      back[image.position] += image.factor * a.parameters[i].value;
+    }
+  }
+  for (int i = 0; i < NumParameters(ModelKind::kSymmetric); ++i) {
+    if (IsInitialCondition(ModelKind::kSymmetric, i)) continue;
+    EXPECT_NEAR(back[i], c.parameters[i].value, 1e-12) << sym[i].name;
+  }
+  const std::vector<ImagePosition> same =
+      ImagesIn(ModelKind::kSymmetric, ModelKind::kSymmetric, "Cm_q");
+  ASSERT_EQ(same.size(), 1u);
+  EXPECT_EQ(same[0].position, FindParameter(ModelKind::kSymmetric, "Cm_q"));
+  EXPECT_TRUE(
+      ImagesIn(ModelKind::kSymmetric, ModelKind::kAsymmetric, "Izx").empty());
+  EXPECT_TRUE(ImagesIn(ModelKind::kSymmetric, ModelKind::kAsymmetric, "Cn_beta")
+                  .empty());
+  EXPECT_TRUE(
+      ImagesIn(ModelKind::kAsymmetric, ModelKind::kSymmetric, "Cm_q_beta2")
+          .empty());
+  EXPECT_TRUE(
+      ImagesIn(ModelKind::kAsymmetric, ModelKind::kSymmetric, "nonsense")
+          .empty());
+}
+
 // A body asymmetry, a product of inertia or I_z apart from I_y has no
 // place in the symmetric program: refused, each naming what it found.
 TEST(ModelEquivalence, ToSymmetricRefusesAnAsymmetricBody) {

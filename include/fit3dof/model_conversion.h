@@ -44,6 +44,25 @@ const std::vector<const char*>& SymmetricWithoutImage();
 // nullptr for a name with no image.
 const CoefficientImage* FirstImage(const std::string& symmetric);
 
+// A place a coefficient takes in a program: its position in the program's
+// table and the factor its value is multiplied by there.
+struct ImagePosition {
+  int position;
+  double factor;
+};
+
+// Where coefficient `name` of program `from` goes in program `to`: itself
+// in the same program; every image of a symmetric term in the asymmetric
+// program (Cm_alpha -> Cm_alpha x 1 and Cn_beta x -1); an asymmetric term
+// that is a symmetric term's first image back to that term (Cm_p_beta ->
+// Cm_p_alpha), and nothing for the other images (the symmetric program
+// reads an axisymmetric body off its first images, as ToSymmetric does).
+// Empty for a name the table of `from` does not hold, or that has no
+// place in `to`.
+std::vector<ImagePosition> ImagesIn(ModelKind to,
+                                    ModelKind from,
+                                    const std::string& name);
+
 // The tie ToAsymmetric gives the asymmetric coefficient `name` (to the
 // first image of the same symmetric term, e.g. Cn_beta: -1 x Cm_alpha);
 // false for a first image and for a name no symmetric term maps to.
