@@ -36,7 +36,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // is out) and neither search weighs the drift beside it: the bound must
 // still cost no fit.
 TEST(SearchedWithout, WeighsNoProbeBesideACatalogAnswerItCannotTake) {
-  if (testing::kSanitized) GTEST_SKIP() << "three searches; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three searches; plain build";
   Case c = LoadConfig(testing::SourcePath(
       "tests/data/pair_stiffness_roll_error_angularity_varied105.yaml"));
   c.sigma = {0.00879098829701715, 0.010205512085900093, 0.007703205932662748};
@@ -149,7 +149,7 @@ TEST(PartnerTied, NotWhereThePartnerTiedWithItsTwinsAlone) {
 // not hold (a roll torque, or the tie's roll damping out of a step) its
 // own model is in the union, at the noise.
 TEST(CatalogMayExplainWithout, AgreesWithTheSearchItStandsFor) {
-  if (testing::kSanitized) GTEST_SKIP() << "a diagnosis and a search; plain";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "a diagnosis and a search; plain";
   const Case c = LoadConfig(testing::SourcePath(
       "tests/data/table6_damping_magnus_angularity_draw131.yaml"));
   const DiagnoseOptions options;

@@ -116,7 +116,7 @@ TEST_P(DiagnoseHidden, NamesTheEffectRecoversItAndReachesTheNoise) {
   // (the asymmetric program's equations run there in
   // NamesABodyFixedYawAsymmetry..., which switches a symmetric config to
   // body axes; the plain build checks the whole catalog, in both).
-  if (testing::kSanitized && hidden.effect != "flow_angularity") {
+  if (testing::PlainBuildOnly() && hidden.effect != "flow_angularity") {
     GTEST_SKIP() << "the plain build diagnoses every effect";
   }
   const std::string dir =
@@ -256,7 +256,7 @@ TEST(Diagnose, RunsInABatchAndOnTheCommandLine) {
   // The batch half runs in the plain build only: under the sanitizers it
   // would be the command line's diagnosis below again, in another process
   // (batch_test runs the batch's own code sanitized).
-  if (!testing::kSanitized) ExpectBatchDiagnoses(dir);
+  if (!testing::PlainBuildOnly()) ExpectBatchDiagnoses(dir);
 
   const auto cli = testing::RunFit3dof(
       "diagnose " + dir + "/config.yaml --out_dir=" + dir + "/cli");
@@ -291,7 +291,7 @@ TEST(Diagnose, RunsInABatchAndOnTheCommandLine) {
 }
 
 TEST(Diagnose, FindsTwoHiddenEffects) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "two steps of the paths the catalog runs; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_two");
@@ -317,7 +317,7 @@ TEST(Diagnose, FindsTwoHiddenEffects) {
 // what the others make redundant: the final model holds the two, with the
 // truth within 3 standard errors.
 TEST(Diagnose, DropsAnEffectTheOthersMakeRedundant) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "three steps and a pruning round; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_prune");
@@ -620,7 +620,7 @@ TEST(Diagnose, AmbiguityIsAVerdictAndTwoSpinRatesSeparate) {
             outside)
       << j.dump();
 
-  if (testing::kSanitized) return;  // the second half: plain build
+  if (testing::PlainBuildOnly()) return;  // the second half: plain build
   const std::string fast =
       SimulateShort(ShortTruth(400.0), dir + "/fast.csv", 4);
   const Diagnosis two = Diagnose(ShortConfig({slow, fast}), DiagnoseOptions());
@@ -785,7 +785,7 @@ TEST(Diagnose, AnExactTwinNotOnTheTunnelRidgeIsTriedBesideTheFinalModel) {
 // the tie the answer names (a roll torque, a roll damping or a trim
 // moment), and the true model came 28.6 lower in BIC than that answer.
 TEST(Diagnose, ACandidateScoredAtTheCutIsRefittedToo) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_damping_magnus_angularity_vary113.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -894,7 +894,7 @@ void ExpectOutsideCatalog(const Diagnosis& d,
 // outside the catalog (theta_drift, psi_drift) can. Nothing is adopted,
 // the verdict is not_explained and names the drift with its fitted rate.
 TEST(Diagnose, TwoRunsNameADriftOfTheReadingsOutsideTheCatalog) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_two_drifts");
@@ -923,7 +923,7 @@ TEST(Diagnose, TwoRunsNameADriftOfTheReadingsOutsideTheCatalog) {
 // outside the catalog (q_drift) explains it better: nothing is adopted,
 // the verdict is not_explained and names the drift with its rate.
 TEST(Diagnose, ADriftingDynamicPressureIsNotExplainedByTheCatalog) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_q_drift");
@@ -947,7 +947,7 @@ TEST(Diagnose, ADriftingDynamicPressureIsNotExplainedByTheCatalog) {
 // yaw either way). The third probe outside the catalog explains it:
 // nothing is adopted, the verdict is not_explained with its value.
 TEST(Diagnose, AFlowStifferInOnePlaneIsNotAMagnusMoment) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_flow_planes");
@@ -984,7 +984,7 @@ TEST(Diagnose, ALaggingPitchReadingIsNotATunnelDamping) {
 // a bearing moment between them had been adopted for it. The fifth probe
 // fits the gain: not_explained, the gain within 3 errors.
 TEST(Diagnose, APitchReadingsGainIsNotACalibrationNonlinearity) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_reading_gain");
@@ -1005,7 +1005,7 @@ TEST(Diagnose, APitchReadingsGainIsNotACalibrationNonlinearity) {
 // lower): not_explained, its value within 3 errors. (At 2e-4 the two tie:
 // `ambiguous`, neither added.)
 TEST(Diagnose, DryFrictionInTheBearingIsNotANonlinearDamping) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_friction");
@@ -1064,7 +1064,7 @@ TEST(Diagnose, AProbeTermPastItsSignIsHeldAtZero) {
 // The seventh probe fits it: not_explained, its values within 3 errors.
 // (At 5e-5 it ties with the tunnel damping: `ambiguous`, neither added.)
 TEST(Diagnose, DryFrictionAboutEachAxisIsNotATunnelDamping) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const std::string dir = testing::ScratchDirectory("diagnose_axis_friction");
@@ -1091,7 +1091,7 @@ TEST(Diagnose, DryFrictionAboutEachAxisIsNotATunnelDamping) {
 // beside it as well: with a tunnel damping or a body asymmetry beside it
 // the record is explained 38 below them. Not explained; nothing added.
 TEST(Diagnose, AProbeIsWeighedWithWhatTheCatalogAddsBesideIt) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Case c = ShortConfig(
@@ -1119,7 +1119,7 @@ TEST(Diagnose, AProbeIsWeighedWithWhatTheCatalogAddsBesideIt) {
 // and what would separate them (outside_catalog_alike): it had said
 // nothing of it.
 TEST(Diagnose, AProbesModelThatExplainsTheRecordAlikeIsNamed) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Case c = ShortConfig(
@@ -1151,7 +1151,7 @@ TEST(Diagnose, AProbesModelThatExplainsTheRecordAlikeIsNamed) {
 // what would separate them; it now says the probe is not needed beside
 // them, nor excluded, and names nothing alike.
 TEST(Diagnose, AProbeBesideTheWholeCatalogAnswerIsNoAlikeModel) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_damping_magnus_angularity_vary125.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -1186,7 +1186,7 @@ TEST(Diagnose, AProbeBesideTheWholeCatalogAnswerIsNoAlikeModel) {
 // explained, nothing added, the friction within 3 errors of the truth;
 // with that probe declared absent the tunnel damping is named again.
 TEST(Diagnose, AFrictionAboutThePitchAxisAloneIsNamed) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Diagnosis d = DiagnoseConfig("coning_pitch_friction_draw23.yaml");
@@ -1311,7 +1311,7 @@ TEST(Diagnose, AProbeAlikeNeverNarrowsTheProfilesErrorBars) {
 // right sign by more than ambiguity_bic sends the search on to the next
 // two: the pitch axis' friction, 6.0 ahead of the damping, ties with it.
 TEST(Diagnose, AProbeOfTheWrongSignThatFitsBestSendsTheSearchOn) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Case config = LoadConfig(
@@ -1341,7 +1341,7 @@ TEST(Diagnose, AProbeOfTheWrongSignThatFitsBestSendsTheSearchOn) {
 // runs, on every draw). The probe (four terms) fits it: not explained,
 // nothing added, each term within 3 errors of the truth.
 TEST(Diagnose, AReadingErrorAtTheSecondRollHarmonicIsNamed) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Diagnosis d = DiagnoseRecord("short_second_roll_harmonic_draw22.csv");
@@ -1368,7 +1368,7 @@ TEST(Diagnose, AReadingErrorAtTheSecondRollHarmonicIsNamed) {
 // asymmetry in a tie, the stiffness not excluded) and its error bars
 // cover the truth.
 TEST(Diagnose, ACatalogAnswerBelowAProbeAtTheNoiseIsTaken) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Diagnosis d =
@@ -1397,7 +1397,7 @@ TEST(Diagnose, ACatalogAnswerBelowAProbeAtTheNoiseIsTaken) {
 // (-5.14 +- 0.64). Its error bars now cover that model at its Akaike
 // weight against the probe's (0.035): Cm_q +- 0.35.
 TEST(Diagnose, ACatalogEffectAProbeOutdidWidensTheFinalErrorBars) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Diagnosis d = DiagnoseConfig("pair_tunnel_damping_draw22.yaml");
@@ -1425,7 +1425,7 @@ TEST(Diagnose, ACatalogEffectAProbeOutdidWidensTheFinalErrorBars) {
 // cube leaves the signed square open too (OpenForms): fitted beside the
 // final model, it is not excluded, and the final error bars cover it.
 TEST(Diagnose, ACalibrationErrorsSignedSquareIsLeftOpenBesideTheCube) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Diagnosis d =
@@ -1456,7 +1456,7 @@ TEST(Diagnose, ACalibrationErrorsSignedSquareIsLeftOpenBesideTheCube) {
 // favors it by 10 in BIC; its range held at the readings' largest angle)
 // names each: `explained`, the square within 3 of its errors.
 TEST(Diagnose, ACalibrationErrorsSignedSquareIsNamedInItsOtherForm) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const std::vector<std::pair<Diagnosis, double>> records = {
       {DiagnoseRecord("coning_calibration_signed_square_draw53.csv"), -0.0822},
       {DiagnoseConfig("pair_calibration_signed_square_draw24.yaml"), -0.125},
@@ -1493,7 +1493,7 @@ TEST(Diagnose, ACalibrationErrorsSignedSquareIsNamedInItsOtherForm) {
 // while the cube lies outside its bounds there: it had, and the pitch
 // noise was held again with the cube's residual in it (0.0131 deg).
 TEST(Diagnose, AnOtherFormLowerInBicStandsInForAnOwnFormOutOfItsBounds) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_calibration_signed_square_vary142.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -1519,7 +1519,7 @@ TEST(Diagnose, AnOtherFormLowerInBicStandsInForAnOwnFormOutOfItsBounds) {
 // other by the round's margin (BackToOwnForms): the cube is named, within
 // 3 of its errors.
 TEST(Diagnose, AnEffectInItsOtherFormGoesBackWhenLaterStepsFavorItsOwn) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_magnus_damping_calibration_draw52.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -1545,7 +1545,7 @@ TEST(Diagnose, AnEffectInItsOtherFormGoesBackWhenLaterStepsFavorItsOwn) {
 // forms only: the effect's other form names these records
 // (ACalibrationErrorsSignedSquareIsNamedInItsOtherForm).
 TEST(Diagnose, AnOpenFormThatMovesTheNamedOneAlongItsRidgeIsWeighed) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   for (const char* file : {"pair_calibration_signed_square_draw27.yaml",
@@ -1857,7 +1857,7 @@ TEST(Diagnose, FollowsTheOtherBranchOfATieThatLeavesTheRecordUnexplained) {
   EXPECT_TRUE(d.outside_catalog.effect.empty()) << text;
   // The joint answer (AdoptsEffectsThatEarnTheirPlaceOnlyTogether covers
   // joint sets in the sanitized build): plain build only, for time.
-  if (testing::kSanitized) return;
+  if (testing::PlainBuildOnly()) return;
   ExpectTruthAddedOrTied(
       Diagnose(ShortConfig({data}), DiagnoseOptions()),
       {"magnus", "nonlinear_damping", "calibration_nonlinearity"});
@@ -1873,7 +1873,7 @@ TEST(Diagnose, FollowsTheOtherBranchOfATieThatLeavesTheRecordUnexplained) {
 // ties with the roll damping and a tunnel damping (one spin rate), and
 // the probe is reported as outdone.
 TEST(Diagnose, TheCatalogsEffectsTogetherOutdoAProbeThatLedARound) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
   }
   const Diagnosis d =
@@ -1990,7 +1990,7 @@ TEST(Diagnose, ReportsEveryTieTheRecordLeavesOpen) {
 // noise seeds of 8 in the suite's generator, its rival refused at the
 // first step while the damping was still missing).
 TEST(Diagnose, SlowRunsNeverNameOneOfTheRollLockedTwins) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "the roll-locked tie's path as in "
                     "ARollLockedEffectTiesWithADrift...; plain build";
   }
@@ -2033,7 +2033,7 @@ TEST(Diagnose, SlowRunsNeverNameOneOfTheRollLockedTwins) {
 // added: that is the answer (it had been not_explained), the trim moment
 // among the rejected.
 TEST(Diagnose, TakesTheOtherBranchOfATieWhenItEndsAmbiguous) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "FollowsTheOtherBranchOfATie...'s path; plain build";
   }
   Case c = ShortConfig({testing::SourcePath(
@@ -2134,7 +2134,7 @@ TEST(Diagnose, SwapsInARivalThatLostWhileAnEffectWasMissing) {
 // toward zero (Shrunk): it is named, not left `not_explained` with the
 // nominal Cm_alpha 12 of its errors off.
 TEST(Diagnose, ABearingAngleOnTheRidgeIsJudgedWithinItsErrors) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d = DiagnoseConfig("pair_bearing_half_degree_seed11.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ExpectNamedExactly(d,
@@ -2156,7 +2156,7 @@ TEST(Diagnose, ABearingAngleOnTheRidgeIsJudgedWithinItsErrors) {
 // `ambiguous`, not `not_explained` with the nominal Cm_alpha 9.7 of its errors
 // off.
 TEST(Diagnose, AProbeIsWeighedAgainstWhatTheRecordDeterminesOfAnEffect) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d = DiagnoseConfig("pair_bearing_half_degree_vary128.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
@@ -2304,7 +2304,7 @@ TEST(Diagnose, AdoptsEffectsThatEarnTheirPlaceOnlyTogether) {
 // +- 0.01 (truth -5.5). The Magnus moment beside that model is neither
 // needed nor excluded, so the final error bars must cover the truth.
 TEST(Diagnose, ErrorBarsCoverAnEffectTheRecordCannotExclude) {
-  if (testing::kSanitized) GTEST_SKIP() << "plain build only (time)";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "plain build only (time)";
   const std::string dir = testing::ScratchDirectory("diagnose_not_excluded");
   Case truth = UntrimmedShortTruth(30.0);
   const std::map<std::string, double> hidden = {{"psidot0", 78.0},
@@ -2344,7 +2344,7 @@ TEST(Diagnose, ErrorBarsCoverAnEffectTheRecordCannotExclude) {
 // gave Cm_p_alpha = 81 +- 6 (truth 53.5): its error bars must cover the
 // damping the record cannot exclude, as the final model's do.
 TEST(Diagnose, AlternativesErrorBarsCoverAnEffectTheRecordCannotExclude) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("coning_magnus_damping_calibration_seed3.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2388,7 +2388,7 @@ TEST(Diagnose, AlternativesErrorBarsCoverAnEffectTheRecordCannotExclude) {
 // probe's complete model is widened too, with the probe's bounds (a first
 // build of that dereferenced the catalog entry a probe does not have).
 TEST(Diagnose, AProbesAlternativeIsWidenedWithTheProbesBounds) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d = DiagnoseConfig("pair_roll_error_magnus.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ASSERT_EQ(d.verdict, Verdict::kAmbiguous) << text;
@@ -2426,7 +2426,7 @@ TEST(Diagnose, AProbesAlternativeIsWidenedWithTheProbesBounds) {
 // ends `ambiguous` with the Magnus moment tied with the body asymmetry
 // (the three true effects added or tied). Not mended.
 TEST(Diagnose, TriesAJointSetBehindABetterContenderRefusedOtherwise) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   DiagnoseOptions own_forms;
   own_forms.other_forms = false;
   const Diagnosis d =
@@ -2457,7 +2457,7 @@ TEST(Diagnose, TriesAJointSetBehindABetterContenderRefusedOtherwise) {
 // and the final values cover the truth. Before, nothing was added: the
 // final model was the nominal one.
 TEST(Diagnose, KeepsATiedEffectTheOthersNeedAsTheTiesStandIn) {
-  if (testing::kSanitized) GTEST_SKIP() << "800 samples; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "800 samples; plain build";
   const Case c = LoadConfig(testing::SourcePath(
       "tests/data/table6_bearing_calibration_roll_torque.yaml"));
   const Diagnosis d = Diagnose(c, DiagnoseOptions());
@@ -2503,7 +2503,7 @@ TEST(Diagnose, KeepsATiedEffectTheOthersNeedAsTheTiesStandIn) {
 // rise 9.3 in the stiffness's place, and the stiffness stands in a tie with
 // them, the damping and the asymmetry added.
 TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d = DiagnoseConfig("pair_stiffness_damping_asymmetry.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(EffectIds(d.steps),
@@ -2534,7 +2534,7 @@ TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
 // UnionPool) standing in for a Magnus moment with a roll damping, which
 // the search without the damping found to explain the record as well.
 TEST(Diagnose, AContenderBehindTheRivalsIsStillTriedBesideTheFinalModel) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d = DiagnoseRecord("coning_damping_magnus_angularity.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_TRUE(EffectIds(d.steps).count("tunnel_damping") +
@@ -2557,7 +2557,7 @@ TEST(Diagnose, AContenderBehindTheRivalsIsStillTriedBesideTheFinalModel) {
 // over the record's 90 deg of roll the two fit alike, and they tie, the
 // damping added.
 TEST(Diagnose, ARivalThatFailedOutOfSampleBesideACompleteModelHoldsNoTie) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Case c = ShortConfig({testing::SourcePath(
       "tests/data/coning_damping_magnus_angularity_draw38.csv")});
   DiagnoseOptions odd_runs;
@@ -2589,7 +2589,7 @@ TEST(Diagnose, ARivalThatFailedOutOfSampleBesideACompleteModelHoldsNoTie) {
 // +- 0.47, 4.6 of its errors off the truth (-5.5); at its Akaike weight
 // (0.28), -3.31 +- 0.88, within 3.
 TEST(Diagnose, AnEffectTheRecordCannotSeeWeighsByItsLikelihood) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("coning_damping_magnus_angularity_seed5.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2610,7 +2610,7 @@ TEST(Diagnose, AnEffectTheRecordCannotSeeWeighsByItsLikelihood) {
 // bars cover it. So widened, Cm_alpha's error bar is printed beside the
 // final model's own.
 TEST(Diagnose, AnEffectOnARidgeIsJudgedWithinItsErrors) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d = DiagnoseRecord("coning_stiffness_damping_asymmetry.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_TRUE(EffectIds(d.not_excluded).count("tunnel_stiffness")) << text;
@@ -2634,7 +2634,7 @@ TEST(Diagnose, AnEffectOnARidgeIsJudgedWithinItsErrors) {
 // stiffness's roll part) it stands in for the tunnel damping within 10 of
 // BIC (+0.4), and the two tie.
 TEST(Diagnose, ANearTwinStandsInForAStepInASet) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_stiffness_damping_asymmetry_vary130.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2658,7 +2658,7 @@ TEST(Diagnose, ANearTwinStandsInForAStepInASet) {
 // lower BIC by 16 more: the search without the body asymmetry is the
 // answer, and it adds them. Before, the body asymmetry was added.
 TEST(Diagnose, AStepTheEffectsNotExcludedBeatTogetherIsReplaced) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_seed1.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2678,7 +2678,7 @@ TEST(Diagnose, AStepTheEffectsNotExcludedBeatTogetherIsReplaced) {
 // of their errors, as the effects not excluded are: the asymmetry is
 // pruned.
 TEST(Diagnose, AStepThatOnlyHeldARidgeEffectInsideItsBoundsIsPruned) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_damping_magnus_angularity_vary143.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2707,7 +2707,7 @@ TEST(Diagnose, AStepThatOnlyHeldARidgeEffectInsideItsBoundsIsPruned) {
 // roll-locked effects leave the same motion: within ambiguity_bic they
 // stand in a tie.
 TEST(Diagnose, ARollLockedStepSwappedForItsTwinStandsInATie) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_roll_reading_angularity_vary142.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2735,7 +2735,7 @@ TEST(Diagnose, ARollLockedStepSwappedForItsTwinStandsInATie) {
 // of it is refitted (Refitted): the angularity ties with the trim moment
 // and the roll reading error.
 TEST(Diagnose, TheOffsetFamilyIsRefittedTogether) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_draw73.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2757,7 +2757,7 @@ TEST(Diagnose, TheOffsetFamilyIsRefittedTogether) {
 // than its complete model's. The search without the asymmetry is the
 // answer (NearTieBranch).
 TEST(Diagnose, ANearTieAtAStepIsSearchedWithoutItsLead) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_seed8.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2777,7 +2777,7 @@ TEST(Diagnose, ANearTieAtAStepIsSearchedWithoutItsLead) {
 // of a tie so outdone is the answer (OutdoneTieBranch): the three effects
 // are named, or the angularity tied with a roll reading error (TieGap).
 TEST(Diagnose, ATieOutdoneOnItsOtherSideIsSearchedWithoutItsLead) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_vary16.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2807,7 +2807,7 @@ TEST(Diagnose, ATieOutdoneOnItsOtherSideIsSearchedWithoutItsLead) {
 // the searches' paths weigh it (with the calibration's other form tried,
 // they no longer do).
 TEST(Diagnose, ATieFollowedWhereItsOtherSideIsBetterIsSearchedWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("coning_magnus_nonlinear_damping_calibration_vary16.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2844,7 +2844,7 @@ TEST(Diagnose, ATieFollowedWhereItsOtherSideIsBetterIsSearchedWithout) {
 // the 4.9 the diagnosis had taken alone, is not run (tools/bench times
 // this record).
 TEST(Diagnose, APairsTieOutdoneOnItsOtherSideNamesTheThree) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_roll_angularity_draw120.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2900,7 +2900,7 @@ void ExpectPrunedWithinTie(const Diagnosis& d, const std::string& effect) {
 // asymmetry's terms without claiming it, its error bars covering the other
 // model.
 TEST(Diagnose, AStepTwoEffectsReplaceAlikeIsATieNotAClaim) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d = DiagnoseRecord("coning_stiffness_damping_asymmetry.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
@@ -2922,7 +2922,7 @@ TEST(Diagnose, AStepTwoEffectsReplaceAlikeIsATieNotAClaim) {
 // the roll torque was claimed, a false effect. The swap now judges the
 // rival within two of its errors of its bounds: the two tie.
 TEST(Diagnose, ASwapOnTheRidgeIsJudgedWithinItsErrors) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_stiffness_damping_asymmetry_seed3.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2941,7 +2941,7 @@ TEST(Diagnose, ASwapOnTheRidgeIsJudgedWithinItsErrors) {
 // (one more parameter counted): the roll torque is not claimed, the two
 // tie.
 TEST(Diagnose, AnEffectNotExcludedHeldOnItsRidgeTiesWithAStep) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_stiffness_damping_asymmetry_vary23.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2985,7 +2985,7 @@ TEST(Diagnose, AContenderFarPastItsBoundLeavesAProbeToCount) {
 // BIC, and its search names the three, the Magnus moment dropped again as
 // redundant and the roll torque's tie resolved without it.
 TEST(Diagnose, AFalseMagnusStepIsDroppedAndTheThreeNamed) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_stiffness_damping_asymmetry_vary24.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3005,7 +3005,7 @@ TEST(Diagnose, AFalseMagnusStepIsDroppedAndTheThreeNamed) {
 // false Magnus moment; pruned within the tie, it is gone, and the
 // stiffness (t1 1e-3) stays not excluded beside the answer.
 TEST(Diagnose, AStepPrunedWithinATieNeedsNoSearchWithoutIt) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_stiffness_damping_asymmetry_draw39.csv");
   ExpectPrunedWithinTie(d, "magnus");
@@ -3026,7 +3026,7 @@ TEST(Diagnose, AStepPrunedWithinATieNeedsNoSearchWithoutIt) {
 // (WithoutTiedPartner): without it the asymmetry and the nonlinear damping
 // are named, 13.9 lower, the stiffness tied with a roll effect.
 TEST(Diagnose, AStepWhoseJointPartnerTiedIsSearchedWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_stiffness_damping_asymmetry_draw70.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3047,7 +3047,7 @@ TEST(Diagnose, AStepWhoseJointPartnerTiedIsSearchedWithout) {
 // named, 9.6 lower in BIC (the true model's own fit is 16 below every
 // model of the first answer).
 TEST(Diagnose, AStepWhosePartnerWentIntoALaterTieIsSearchedWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_draw74.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3064,7 +3064,7 @@ TEST(Diagnose, AStepWhosePartnerWentIntoALaterTieIsSearchedWithout) {
 // had been taken. By less than partner_search_bic (2) the record holds no
 // evidence either way: the first answer stands.
 TEST(Diagnose, ASearchWithoutAPartnerNeedsEvidenceToReplaceTheAnswer) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_damping_magnus_angularity_draw124.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3152,7 +3152,7 @@ TEST(Diagnose, ATieModelHoldsTheTrueEffectOfASecondTie) {
 // bar and is followed, and the stiffness in the roll torque's place is
 // the true model, a single swap.
 TEST(Diagnose, ACrossModelHoldsTheTrueEffectsOfTwoTies) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const std::string file = "short_stiffness_damping_asymmetry_vary128.yaml";
   const Case c = LoadConfig(testing::SourcePath("tests/data/" + file));
   const auto holds_truth = [](const Diagnosis::TieModel& m) {
@@ -3217,7 +3217,7 @@ TEST(Diagnose, ACrossModelHoldsTheTrueEffectsOfTwoTies) {
 // lower (FindSingleReplacement, open to ambiguous answers and near twins
 // since session 25): the two tie, and neither is claimed.
 TEST(Diagnose, ASwapRunningAlongTheRidgeIsHeldAtZeroInTurn) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_stiffness_damping_asymmetry_vary27.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3292,7 +3292,7 @@ void ExpectAsymmetryAndDampingBesideAStiffnessTie(const Diagnosis& d,
 // step's place afresh at the end had tied the asymmetry with the Magnus
 // moment here; it was removed when no record needed it.)
 TEST(Diagnose, AMagnusMomentThatTookTheAsymmetrysSignalIsNotClaimed) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_stiffness_damping_asymmetry_draw40.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3329,7 +3329,7 @@ TEST(Diagnose, ATieSideStartedFromTheOtherProgramStaysInItsTable) {
 // had been named. A step one effect beats in its place stands in a tie
 // with it when the search without it explains nothing.
 TEST(Diagnose, AStepOutdoneByOneEffectTiesWithItWhenTheSearchWithoutItFails) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_stiffness_damping_asymmetry_vary29.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3357,7 +3357,7 @@ TEST(Diagnose, AStepOutdoneByOneEffectTiesWithItWhenTheSearchWithoutItFails) {
 // is held at zero in turn, as a swap's is, and a set's members are
 // dropped one at a time.
 TEST(Diagnose, ASetsTunnelTermOnTheRidgeIsHeldAtZeroInTurn) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw53.yaml");
   ExpectAsymmetryAndDampingBesideAStiffnessTie(d, 518.6, 6.22e-4, -2.18e-4);
@@ -3374,7 +3374,7 @@ TEST(Diagnose, ASetsTunnelTermOnTheRidgeIsHeldAtZeroInTurn) {
 // (CompanionsWithinTie); then the torque explains the record worse than
 // the effects found without it, and the three true effects are named.
 TEST(Diagnose, AStepOnlyTheFollowedTiedEffectNeedsGoesWithIt) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs, three effects; plain";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs, three effects; plain";
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_damping_asymmetry_draw56.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3398,7 +3398,7 @@ TEST(Diagnose, AStepOnlyTheFollowedTiedEffectNeedsGoesWithIt) {
 // asymmetry and the damping with the same tie, 24 lower in BIC, and the
 // lag's model comes 4.3 above (alike).
 TEST(Diagnose, TheCatalogIsSearchedWithoutWhatTheProbesAnswerDoesWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw56.yaml");
   ExpectAsymmetryAndDampingBesideAStiffnessTie(d, 660.8, 6.56e-4, -2.30e-4);
@@ -3420,7 +3420,7 @@ TEST(Diagnose, TheCatalogIsSearchedWithoutWhatTheProbesAnswerDoesWithout) {
 // angularity tied with a roll reading error: the asymmetry is named as
 // what stood in for them, rejected.
 TEST(Diagnose, ANearTiesFirstStepMatchedWithoutItTiesWithWhatWasFound) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_vary31.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3448,7 +3448,7 @@ TEST(Diagnose, ANearTiesFirstStepMatchedWithoutItTiesWithWhatWasFound) {
 // complete model below the lag's (the angularity named, or tied with a roll
 // reading error: TieGap).
 TEST(Diagnose, AProbeAfterANearTiesFirstStepLosesToTheSearchWithoutIt) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_draw29.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3475,7 +3475,7 @@ TEST(Diagnose, AProbeAfterANearTiesFirstStepLosesToTheSearchWithoutIt) {
 // model, where the record cannot exclude it: it is listed there now, and
 // the final error bars cover it.
 TEST(Diagnose, AnEffectASecondSearchLeftOutIsTriedBesideItsModel) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_stiffness_roll_error_angularity_draw33.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3494,7 +3494,7 @@ TEST(Diagnose, AnEffectASecondSearchLeftOutIsTriedBesideItsModel) {
 // one the final model is had kept its own (theta_cos_phi 0.0257 +- 0.0023
 // deg, truth 0.0394: 6 of those errors).
 TEST(Diagnose, TheFinalModelsAlternativeCoversWhatIsNotExcludedBesideIt) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("short_stiffness_roll_error_angularity_vary27.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3656,7 +3656,7 @@ TEST(Diagnose, AnEffectOnItsRidgeIsJudgedWithinItsErrorsWhenNothingExplains) {
 // Cm_bearing's error bar is its profile's (CheckRidges) and covers the
 // truth.
 TEST(Diagnose, AnEffectOutOfItsBoundsLeadsAJointSetWhenNothingElseExplains) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_bearing_calibration_roll_torque.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3695,7 +3695,7 @@ TEST(Diagnose, AnEffectOutOfItsBoundsLeadsAJointSetWhenNothingElseExplains) {
 // of its errors off. A third judges every effect so: the record is
 // explained or tied, and the final error bars cover the truth.
 TEST(Diagnose, AThirdSearchJudgesEveryBoundWithinItsErrors) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_bearing_calibration_roll_torque_draw28.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3721,7 +3721,7 @@ TEST(Diagnose, AThirdSearchJudgesEveryBoundWithinItsErrors) {
 // by score the record ended `not_explained`, the nominal Cm_alpha 97 of
 // its errors off.
 TEST(Diagnose, ALesserRefitInAJointSetTiesWithItsTwins) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_bearing_calibration_roll_torque_draw29.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3747,7 +3747,7 @@ TEST(Diagnose, ALesserRefitInAJointSetTiesWithItsTwins) {
 // effect in its own form where the complete model does
 // (OwnFormsBeforeTie).
 TEST(Diagnose, AFinalModelWithoutATiedEffectHoldsTheCompleteModelsForm) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_bearing_calibration_roll_torque_draw155.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3798,7 +3798,7 @@ void ExpectBearingAndCalibrationBesideTheRollTie(
 // and named (BIC 962 lower) and the roll torque never was. Score twins
 // are refitted together: the two lower BIC alike, and they tie.
 TEST(Diagnose, ScoreTwinsAreRefittedTogether) {
-  if (testing::kSanitized) GTEST_SKIP() << "48-s record; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "48-s record; plain build";
   const Diagnosis d =
       DiagnoseConfig("table6_bearing_calibration_roll_torque_draw30.yaml");
   ExpectBearingAndCalibrationBesideTheRollTie(
@@ -3815,7 +3815,7 @@ TEST(Diagnose, ScoreTwinsAreRefittedTogether) {
 // calibration, 1.5 higher in BIC alone but fourth by score, is in the pool
 // by score, whose union reaches 0.98: the three are named.
 TEST(Diagnose, AJointPoolDrawsOnTheScoresWhenItsBicPoolCannotReachTheNoise) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_magnus_damping_calibration_draw29.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3839,7 +3839,7 @@ TEST(Diagnose, AJointPoolDrawsOnTheScoresWhenItsBicPoolCannotReachTheNoise) {
 // lead's pool (LeadPool) names the three. On draw 35's record (_draw35)
 // the calibration came third there, after a tunnel damping: three drawn.
 TEST(Diagnose, AJointSetsLeadDrawsAPoolFromTheScoresAtItsOwnFit) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const struct {
     const char* config;
     double magnus, damping, calibration;
@@ -3872,7 +3872,7 @@ TEST(Diagnose, AJointSetsLeadDrawsAPoolFromTheScoresAtItsOwnFit) {
 // errors off. At the union's own fit the calibration scores highest: the
 // pool widened by it (UnionPool) reaches 0.94 and names the three.
 TEST(Diagnose, AJointSetsLeadWidensItsPoolByTheScoresAtItsUnion) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_magnus_damping_calibration_draw52.yaml");
   ExpectNamedExactly(
@@ -3899,7 +3899,7 @@ TEST(Diagnose, AJointSetsLeadWidensItsPoolByTheScoresAtItsUnion) {
 // are named, the Magnus moment tied with a tunnel damping (on a circular
 // cone their signatures are alike).
 TEST(Diagnose, ALeadPoolWhoseTriplesWereNotTriedIsDrawnAgain) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_magnus_damping_calibration_draw56.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3925,7 +3925,7 @@ TEST(Diagnose, ALeadPoolWhoseTriplesWereNotTriedIsDrawnAgain) {
 // +- 6.3 deg, and both were named. The record stays `not_explained` (with
 // the catalog's own forms only: the effect's other form names it).
 TEST(Diagnose, ALeadPoolsMemberThatDoesNotShowIsNotAdopted) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
       DiagnoseConfigOwnForms("pair_calibration_signed_square_draw28.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3946,7 +3946,7 @@ TEST(Diagnose, ALeadPoolsMemberThatDoesNotShowIsNotAdopted) {
 // above the damping's, its bearing angle stuck where the stiffness had left
 // it (0.28 +- 437 deg); fitted from the damping's side it reaches it.
 TEST(Diagnose, ARedundantStepDoesNotEndWhatIsAdoptedAfterATie) {
-  if (testing::kSanitized) GTEST_SKIP() << "48-s record; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "48-s record; plain build";
   const Diagnosis d =
       DiagnoseConfig("table6_bearing_calibration_roll_torque_draw58.yaml");
   ExpectBearingAndCalibrationBesideTheRollTie(
@@ -3976,7 +3976,7 @@ TEST(Diagnose, ARedundantStepDoesNotEndWhatIsAdoptedAfterATie) {
 // (14.6, -0.9 in BIC alone) fourth: `not_explained`. The pool by score
 // draws one of twins: the three are named.
 TEST(Diagnose, AJointPoolByScoreDrawsOneOfScoreTwins) {
-  if (testing::kSanitized) GTEST_SKIP() << "48-s record; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "48-s record; plain build";
   const Diagnosis d =
       DiagnoseConfig("table6_magnus_damping_calibration_draw33.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4001,7 +4001,7 @@ TEST(Diagnose, AJointPoolByScoreDrawsOneOfScoreTwins) {
 // contender's model at its Akaike weight (refused_for_drag). With the
 // catalog's own forms only: the effect's other form names the record.
 TEST(Diagnose, AContenderRefusedForItsDragWidensAnUnexplainedRecordsErrorBars) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const std::string config = "pair_calibration_signed_square_draw24.yaml";
   const Diagnosis d = DiagnoseConfigOwnForms(config);
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4033,7 +4033,7 @@ TEST(Diagnose, AContenderRefusedForItsDragWidensAnUnexplainedRecordsErrorBars) {
 // 6.8 of its errors off; the contenders refused for their drag widen its
 // error bars where a probe outdoes the catalog too.
 TEST(Diagnose, AContenderRefusedForItsDragWidensTheErrorBarsBesideAProbe) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   DiagnoseOptions once;
   once.joint_sets = false;
   const Diagnosis d = Diagnose(
@@ -4062,7 +4062,7 @@ TEST(Diagnose, AContenderRefusedForItsDragWidensTheErrorBarsBesideAProbe) {
 // named, or tied where the roll torque's look-alike (Eq. 39's roll part
 // of a tunnel damping) ties with it.
 TEST(Diagnose, AJointSetsOtherMembersLeadInTurnWhereBoundsLead) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_bearing_calibration_roll_torque_vary126.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4092,7 +4092,7 @@ TEST(Diagnose, AJointSetsOtherMembersLeadInTurnWhereBoundsLead) {
 // now judged so beside others (ImplausibleAmongAsJudged): the three are
 // named.
 TEST(Diagnose, AnEffectAdmittedWithinItsErrorsIsJudgedSoBesideOthers) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_bearing_calibration_roll_torque_draw32.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4115,7 +4115,7 @@ TEST(Diagnose, AnEffectAdmittedWithinItsErrorsIsJudgedSoBesideOthers) {
 // (-0.24 +- 0.009 own against a truth of -5.5). The answer lists it among
 // the effects not seen apart from the coefficients, in the text too.
 TEST(Diagnose, AnEffectTheCoefficientsAbsorbIsListedAsUnseen) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_magnus_damping_calibration_draw42.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4213,7 +4213,7 @@ TEST(Diagnose, ANoiseLevelAnswerSaysWhatItsCoefficientsCarry) {
 // a roll torque and a tunnel damping: the answer of this class on every
 // suite draw whose nominal fit starts below 3 times the noise.
 TEST(Diagnose, AStiffnessAtItsRidgesMinimumTiesWithRollEffects) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw35.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4244,7 +4244,7 @@ TEST(Diagnose, AStiffnessAtItsRidgesMinimumTiesWithRollEffects) {
 // replace an explained first. Now a tie can, by the ambiguous answer's
 // rule (its complete model lower, counting what lowers BIC beside each).
 TEST(Diagnose, AnExplainedAnswerGivesWayToATiePastTheNoise) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw60.yaml");
   ExpectAsymmetryAndDampingBesideAStiffnessTie(d, 386.8, 1.03e-3, -3.61e-4);
@@ -4280,7 +4280,7 @@ TEST(Diagnose, AnExplainedAnswerGivesWayToATiePastTheNoise) {
 // of the fit at 2 ms) the asymmetry ties with a Magnus moment again, as it
 // had before the 70th session: named or tied, never left out.
 TEST(Diagnose, AnEffectOutdoneInASwapIsSearchedWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw62.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4302,7 +4302,7 @@ TEST(Diagnose, AnEffectOutdoneInASwapIsSearchedWithout) {
 // nonlinear damping's bound, 4 times |Cm_q|, refused it there. The bound
 // weighs against Cm_q plus the tunnel term when that is larger.
 TEST(Diagnose, ANonlinearTermsBoundFollowsTheTunnelRidge) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw64.yaml");
   ExpectAsymmetryAndDampingBesideAStiffnessTie(d, -640.6, -9.69e-4, 3.39e-4);
@@ -4318,7 +4318,7 @@ TEST(Diagnose, ANonlinearTermsBoundFollowsTheTunnelRidge) {
 // aside, so the verdict stands, but it names them and the final error
 // bars cover their model.
 TEST(Diagnose, ACatalogAnswerAlikeWithAProbeWidensTheUnexplainedAnswer) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_stiffness_damping_asymmetry_draw43.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4350,7 +4350,7 @@ TEST(Diagnose, ACatalogAnswerAlikeWithAProbeWidensTheUnexplainedAnswer) {
 // whose swap is far worse (structured residuals, BIC 10 or more above)
 // no longer holds the tie (FarWorse): the three are named.
 TEST(Diagnose, ATwinWhoseSwapIsFarWorseHoldsNoTie) {
-  if (testing::kSanitized) GTEST_SKIP() << "two runs; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_roll_error_angularity_draw41.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4398,7 +4398,7 @@ TEST(Diagnose, EachDraggedContenderLeadsJointSetsInTurn) {
 // errors off. The pool is drawn in the order of BIC (JointPool): the three
 // are named.
 TEST(Diagnose, AJointSetDrawsOnItsPoolInTheOrderOfBic) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_damping_magnus_angularity_vary18.yaml");
   ExpectNamedExactly(d,
@@ -4422,7 +4422,7 @@ TEST(Diagnose, AJointSetDrawsOnItsPoolInTheOrderOfBic) {
 // member to draw on, and nothing was adopted (Cm_q 62 of its errors off).
 // A joint set draws on the round's lesser refits too: the three are named.
 TEST(Diagnose, AJointSetDrawsOnTheRoundsLesserRefits) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("coning_stiffness_damping_asymmetry_vary18.csv");
   ExpectNamedExactly(
@@ -4447,7 +4447,7 @@ TEST(Diagnose, AJointSetDrawsOnTheRoundsLesserRefits) {
 // above the true model. The lesser refits are tried beside the complete
 // model too: the false pair is not named.
 TEST(Diagnose, ALesserRefitIsTriedBesideTheCompleteModel) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("coning_stiffness_damping_asymmetry_vary25.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4521,7 +4521,7 @@ void ExpectDampingMagnusAngularityNamed(const std::string& file,
 }
 
 TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   ExpectDampingMagnusAngularityNamed(
       "short_damping_magnus_angularity_vary18.csv",
       -2.558,
@@ -4540,7 +4540,7 @@ TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
 // (DiagnoseOptions::near_tie_bic): searched without the asymmetry, the
 // three are named.
 TEST(Diagnose, AFirstStepLeadingBy34IsSearchedWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   ExpectDampingMagnusAngularityNamed(
       "short_damping_magnus_angularity_vary23.csv",
       -2.0901,
@@ -4560,7 +4560,7 @@ TEST(Diagnose, AFirstStepLeadingBy34IsSearchedWithout) {
 // (the plain search there named a trim moment or a roll reading error, the
 // angularity only not excluded).
 TEST(Diagnose, AFirstStepLeadingNowhereBeforeALaterTieIsSearchedWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   ExpectDampingMagnusAngularityNamed(
       "short_damping_magnus_angularity_vary125.csv",
       1.3815517,
@@ -4580,7 +4580,7 @@ TEST(Diagnose, AFirstStepLeadingNowhereBeforeALaterTieIsSearchedWithout) {
 // searched without wherever an effect not excluded still lowers BIC
 // beside an ambiguous answer: the three are named.
 TEST(Diagnose, AFirstStepLeadingBy42IsSearchedWithoutBesideWhatItLeftOut) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   ExpectDampingMagnusAngularityNamed(
       "short_damping_magnus_angularity_draw37.csv",
       2.0061,
@@ -4600,7 +4600,7 @@ TEST(Diagnose, AFirstStepLeadingBy42IsSearchedWithoutBesideWhatItLeftOut) {
 // past the noise (PastNoise), and the asymmetry is pruned: the three
 // named, BIC 45 lower.
 TEST(Diagnose, AnEffectNoRoundRefittedIsTriedBesideTheFinalModel) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   ExpectDampingMagnusAngularityNamed(
       "short_damping_magnus_angularity_vary24.csv",
       2.6863,
@@ -4620,7 +4620,7 @@ TEST(Diagnose, AnEffectNoRoundRefittedIsTriedBesideTheFinalModel) {
 // errors off. The search goes one round past the noise for the
 // angularity (PastNoise), which earns its place there: the three named.
 TEST(Diagnose, AnEffectBesideAnExplainedModelIsSearchedPastTheNoise) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_roll_angularity_vary20.yaml");
   ExpectNamedExactly(
@@ -4646,7 +4646,7 @@ TEST(Diagnose, AnEffectBesideAnExplainedModelIsSearchedPastTheNoise) {
 // reach the noise; the stiffness, 22.8 lower beside them, was only not
 // excluded. Past the noise it earns its place: the three named.
 TEST(Diagnose, AStiffnessBesideAnExplainedModelIsSearchedPastTheNoise) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("coning_stiffness_damping_asymmetry_vary20.csv");
   ExpectNamedExactly(
@@ -4671,7 +4671,7 @@ TEST(Diagnose, AStiffnessBesideAnExplainedModelIsSearchedPastTheNoise) {
 // damping added. A pair that earns comes first (JointlyLedBy): the
 // damping and the asymmetry, the stiffness not excluded beside them.
 TEST(Diagnose, AJointPairThatEarnsComesBeforeTheTriples) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseRecord("coning_stiffness_damping_asymmetry_vary22.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4724,7 +4724,7 @@ TEST(Diagnose, SigmaAutoHoldsTheNoiseTheDataShow) {
       nlohmann::json::parse(DiagnosisJson(d, magnus_config));
   EXPECT_EQ(j["noise_sigma_deg"]["psi"].get<double>(), held.psi);
 
-  if (testing::kSanitized) return;  // one record there
+  if (testing::PlainBuildOnly()) return;  // one record there
   const std::string dir = testing::ScratchDirectory("diagnose_sigma_auto");
   Case clean = ShortConfig(
       {SimulateShort(UntrimmedShortTruth(30.0), dir + "/clean.csv", 17)});
@@ -4748,7 +4748,7 @@ TEST(Diagnose, SigmaAutoHoldsTheNoiseTheDataShow) {
 // `not_explained`. Together they explain it: the Magnus moment is named,
 // the reading error tied with a drift in time (121 deg of roll).
 TEST(Diagnose, EffectsThatPredictNothingAloneMayLeadASet) {
-  if (testing::kSanitized) GTEST_SKIP() << "joint sets; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "joint sets; plain build";
   const Diagnosis d = DiagnoseConfig("short_roll_error_magnus_varied79.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
@@ -4833,7 +4833,7 @@ TEST(Diagnose, SaysWhatItDidWithTheWildPoints) {
 // fitted together left 0.0097, and at 0.0140 a flow stiffer in yaw tied
 // with the Magnus moment. Held again, the three are named.
 TEST(Diagnose, SigmaAutoHoldsTheNoiseAgainAtAFitsLevel) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_magnus_damping_calibration_varied90.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5015,7 +5015,7 @@ TEST(Diagnose, SaysWhenAStepNotAdoptedLeavesWhiteResiduals) {
             std::string::npos)
       << d.verdict_text;
 
-  if (testing::kSanitized) return;  // a second diagnosis; plain build
+  if (testing::PlainBuildOnly()) return;  // a second diagnosis; plain build
   Case c = LoadConfig(
       testing::SourcePath("tests/data/short_body_asymmetry_varied115.yaml"));
   c.sigma_auto = {true, true, true};
@@ -5039,7 +5039,7 @@ TEST(Diagnose, SaysWhenAStepNotAdoptedLeavesWhiteResiduals) {
 // the first level already; with the bearing moment known absent the
 // drift outdoes the catalog there, and the level is held again.
 TEST(Diagnose, SigmaAutoHoldsAgainALevelAProbesModelShowsTooLow) {
-  if (testing::kSanitized) GTEST_SKIP() << "sigma: auto rounds; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "sigma: auto rounds; plain build";
   const Case c = LoadConfig(testing::SourcePath(
       "tests/data/coning_bearing_two_degrees_vary116.yaml"));
   const Diagnosis d = Diagnose(c, DiagnoseOptions());
@@ -5068,7 +5068,7 @@ TEST(Diagnose, SigmaAutoHoldsAgainALevelAProbesModelShowsTooLow) {
 // of its errors off. Held again at what the effects together leave, the
 // calibration and the bearing moment are named, the torque tied.
 TEST(Diagnose, SigmaAutoHoldsAgainALevelTheEffectsTogetherShowTooHigh) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_bearing_calibration_torque_varied105.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5091,7 +5091,7 @@ TEST(Diagnose, SigmaAutoHoldsAgainALevelTheEffectsTogetherShowTooHigh) {
 // beside it (out of its bounds on the ridge). With t1 held at zero in the
 // torque's place it is 4 lower: the two tie.
 TEST(Diagnose, ATunnelTermIsTriedInEveryStepsPlace) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_varied103.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5112,7 +5112,7 @@ TEST(Diagnose, ATunnelTermIsTriedInEveryStepsPlace) {
 // damping taken first stayed, t2 = 0.058 +- 0.062 and t4 = 0.033 +- 0.068,
 // each complete model 9 lower in BIC without it.
 TEST(Diagnose, AStepTheCompleteModelPrunesLeavesTheFinalModel) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_bearing_calibration_torque_varied105.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5132,7 +5132,7 @@ TEST(Diagnose, AStepTheCompleteModelPrunesLeavesTheFinalModel) {
 // t1 0.93 +- 1.63; pruned of both it was back at 4.15 +- 0.40, and named
 // alone, Cm_alpha -4.4 +- 0.4 against -0.28.
 TEST(Diagnose, APruningLeavesNoEffectOutOfItsBounds) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_bearing_calibration_torque_varied107.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5173,7 +5173,7 @@ TEST(Diagnose, TheFinalErrorBarsCoverTheStiffnessOnTheBearingRidge) {
 // ties with a roll reading error, which less than a revolution of roll
 // cannot tell apart.
 TEST(Diagnose, AJointSetShowsItsTunnelDamping) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a tie among joint sets; plain build";
   }
   const Diagnosis d =
@@ -5203,7 +5203,7 @@ TEST(Diagnose, AJointSetShowsItsTunnelDamping) {
 // a step a swap outdid took half the diagnosis's 6.6 s (tools/bench), and
 // changed no answer over draws 99-110.
 TEST(Diagnose, AProbeWeighedBesideTheCatalogLeavesTheThreeNamed) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "a probe searched beside the catalog; plain build";
   }
   const Diagnosis d =
@@ -5285,7 +5285,7 @@ TEST(Diagnose, TheFinalErrorBarsCoverTheModelOfAProbeThatOutdidTheCatalog) {
 // the search's model beside the bearing moment as the cube. The answer had
 // read "theta_cal3 = 0 deg (held)".
 TEST(Diagnose, SaysWhereAFormFollowsTheEffectsNotAdopted) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Case c = LoadConfig(testing::SourcePath(
       "tests/data/pair_bearing_calibration_torque_varied95.yaml"));
   const Diagnosis d = Diagnose(c, DiagnoseOptions());
@@ -5335,7 +5335,7 @@ TEST(Diagnose, SigmaAutoHoldsTheNoiseWhereTheMotionIsGone) {
 // search's model (BIC +6.7 there): the answer did not say the record
 // allows it, nor did the final error bars cover it.
 TEST(Diagnose, ALesserRefitTheRecordCannotExcludeIsListed) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_roll_error_angularity_varied95.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5354,7 +5354,7 @@ TEST(Diagnose, ALesserRefitTheRecordCannotExcludeIsListed) {
 // for the damping's yaw part, was named. Without the calibration error
 // the damping and the Magnus moment are named, 31.7 lower.
 TEST(Diagnose, AnEarlyStepThatRefusedABetterOneIsSearchedWithout) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_damping_magnus_angularity_varied94.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5384,7 +5384,7 @@ TEST(Diagnose, AnEarlyStepThatRefusedABetterOneIsSearchedWithout) {
 // added at 4.8 of its errors, the damping only not excluded. With the
 // tied effects weighed there too, the damping is named, no roll torque.
 TEST(Diagnose, TiedEffectsAreWeighedPastTheNoise) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_damping_magnus_angularity_varied80.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5419,7 +5419,7 @@ TEST(Diagnose, ProbesAreFittedPastThoseOfTheWrongSign) {
 // bearing's angle along its ridge and stopped 30.8 worse: the roll damping
 // was named. From its own terms first the swap is as good: a tie.
 TEST(Diagnose, ASwapFarWorseIsRefittedFromTheRivalsOwnTerms) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_bearing_calibration_roll_torque_varied85.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5440,7 +5440,7 @@ TEST(Diagnose, ASwapFarWorseIsRefittedFromTheRivalsOwnTerms) {
 // Cm_q, 22.6 of its errors off the truth, was said to carry nothing. Now
 // the answer says what it carries, and holds that.
 TEST(Diagnose, AFinalModelShortOfTheTieSaysWhatItsCoefficientsCarry) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_damping_magnus_angularity_varied81.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5457,7 +5457,7 @@ TEST(Diagnose, AFinalModelShortOfTheTieSaysWhatItsCoefficientsCarry) {
 // model beside it and never tried in the damping's place. In its place it
 // explains the record alike: the two tie, neither claimed.
 TEST(Diagnose, ATunnelTermNotExcludedStandsInForTheOther) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_damping_asymmetry_varied84.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5480,7 +5480,7 @@ TEST(Diagnose, ATunnelTermNotExcludedStandsInForTheOther) {
 // errors off. In the torque's place the stiffness is 5.6 higher in BIC:
 // the two tie, and the final error bars cover the truth.
 TEST(Diagnose, ARollMomentStepIsTriedWithAnUntriedTunnelTermInItsPlace) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_auto127.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5513,7 +5513,7 @@ TEST(Diagnose, ARollMomentStepIsTriedWithAnUntriedTunnelTermInItsPlace) {
 // two at 0.0046 and 0.033 +- 0.050. In its place a roll moment (the torque
 // and the damping are twins at a constant spin) lowers BIC: the two tie.
 TEST(Diagnose, ATunnelTermStepIsTriedWithARollMomentInItsPlace) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_bearing_calibration_roll_torque_vary144.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5536,7 +5536,7 @@ TEST(Diagnose, ATunnelTermStepIsTriedWithARollMomentInItsPlace) {
 // was `explained` with the false damping, and the Magnus moment, +2.7
 // beside it, is 6.9 lower in its place. The two now tie.
 TEST(Diagnose, ATunnelTermStepIsTriedWithAnyEffectNotExcludedInItsPlace) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_magnus_damping_calibration_vary148.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5558,7 +5558,7 @@ TEST(Diagnose, ATunnelTermStepIsTriedWithAnyEffectNotExcludedInItsPlace) {
 // The final Cm_alpha covers the truth: the stiffness's t1 + t3 is its twin
 // (Eq. 43), and the tie's model leaves them free.
 TEST(Diagnose, AnUntriedTunnelTermJoinsTheSetInAStepsPlace) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_stiffness_damping_asymmetry_vary150.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5579,7 +5579,7 @@ TEST(Diagnose, AnUntriedTunnelTermJoinsTheSetInAStepsPlace) {
 // with an untried tunnel stiffness among it rose 12.0 and the asymmetry
 // was added.
 TEST(Diagnose, AnUntriedTunnelTermJoinsTheSetLast) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_damping_magnus_angularity_vary147.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5599,7 +5599,7 @@ TEST(Diagnose, AnUntriedTunnelTermJoinsTheSetLast) {
 // stiffness added, and the angularity (a BIC drop of -7.4 as its score
 // reads) was never tried; beside the answer it rises 5.8, and is listed.
 TEST(Diagnose, AnOffsetBesideAnOffsetsTwinIsTriedBesideTheModel) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_roll_error_angularity_vary151.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5617,7 +5617,7 @@ TEST(Diagnose, AnOffsetBesideAnOffsetsTwinIsTriedBesideTheModel) {
 // beside the answer, is 6.5 lower in the asymmetry's place with t4 1.64,
 // past its bound of 1.59 at the point fit by a fifth of its error.
 TEST(Diagnose, ALesserRefitLowerBesideTheModelStandsInAlone) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_damping_magnus_angularity_vary150.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5688,7 +5688,7 @@ TEST(Diagnose, ResidualsThatDependOnTheAngleExplainNothing) {
 // determined and refused it, and the record ended `not_explained` with
 // nothing named.
 TEST(Diagnose, TheTwinWithinItsBoundsAtThePointFitLeads) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("table6_bearing_calibration_roll_torque_vary145.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5717,7 +5717,7 @@ TEST(Diagnose, TheTwinWithinItsBoundsAtThePointFitLeads) {
 // `explained` with the torque and the asymmetry; the damping is now named,
 // and the torque ties with the stiffness.
 TEST(Diagnose, AnEffectNamedPastTheNoiseIsRefittedWhateverItsScore) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_vary130.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5738,7 +5738,7 @@ TEST(Diagnose, AnEffectNamedPastTheNoiseIsRefittedWhateverItsScore) {
 // calibration alone, 4.1 lower in BIC, and that answer is taken
 // (FromBounds).
 TEST(Diagnose, BoundsWithinErrorsTakesTheAnswerOfLowerBic) {
-  if (testing::kSanitized) GTEST_SKIP() << "three searches; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three searches; plain build";
   const Diagnosis d = DiagnoseConfig("pair_calibration_vary117.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ExpectNamedExactly(d,
@@ -5761,7 +5761,7 @@ TEST(Diagnose, BoundsWithinErrorsTakesTheAnswerOfLowerBic) {
 // calibration alone, as the third search's). Of two answers alike in
 // BIC the one that claims fewer effects is taken (ExplainsBetter).
 TEST(Diagnose, BoundsWithinErrorsTakesTheAnswerOfFewerEffects) {
-  if (testing::kSanitized) GTEST_SKIP() << "three searches; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three searches; plain build";
   const Diagnosis d = DiagnoseConfig("pair_calibration_in_pitch_vary117.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   ExpectNamedExactly(d,
@@ -5782,7 +5782,7 @@ TEST(Diagnose, BoundsWithinErrorsTakesTheAnswerOfFewerEffects) {
 // stiffness held there (RidgeHeld) the stiffness earns its place past the
 // noise, and all three are named.
 TEST(Diagnose, ATunnelStiffnessIsJudgedOutOfSampleOffItsRidge) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_stiffness_damping_asymmetry_vary117.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -5811,7 +5811,7 @@ TEST(Diagnose, ATunnelStiffnessIsJudgedOutOfSampleOffItsRidge) {
 // score fail, one with those out of their bounds ahead of the lead is
 // tried (BoundedAheadPool): the first search names the three.
 TEST(Diagnose, AContenderOutOfItsBoundsJoinsThePoolsOfThoseBelowIt) {
-  if (testing::kSanitized) GTEST_SKIP() << "three effects; plain build";
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   DiagnoseOptions options;
   options.probes = false;  // no DeadEndBranch: the first search or FromBounds
   const Diagnosis d = Diagnose(

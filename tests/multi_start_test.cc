@@ -22,7 +22,7 @@ namespace {
 // matrix (below the multi-start's threshold of 3). Restarted with the
 // angle within the record's, the fit finds the moment and the noise.
 TEST(MultiStart, RestartsABearingMomentWhoseAngleLeftTheRecord) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "800 samples, four pipelines; the restarts run the "
                     "multi-start's code (fit_test's restarts): plain build";
   }
@@ -51,7 +51,7 @@ TEST(MultiStart, RestartsABearingMomentWhoseAngleLeftTheRecord) {
 // Started where the fit finds the moment, the angle stays within the
 // record and nothing restarts.
 TEST(MultiStart, NoBearingRestartWhereTheAngleStaysWithinTheRecord) {
-  if (testing::kSanitized) {
+  if (testing::PlainBuildOnly()) {
     GTEST_SKIP() << "800 samples (profile_error_bar_test fits this config "
                     "under the sanitizers)";
   }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -27,6 +28,12 @@ const nlohmann::json& PaperResults() {
     return nlohmann::json::parse(in);
   }();
   return results;
+}
+
+bool PlainBuildOnly() {
+  static const bool skips =
+      kSanitized && std::getenv("FIT3DOF_SANITIZE_ALL") == nullptr;
+  return skips;
 }
 
 std::string SourcePath(const std::string& relative) {

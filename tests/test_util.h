@@ -26,6 +26,14 @@ inline constexpr bool kSanitized = true;
 inline constexpr bool kSanitized = false;
 #endif
 
+// Whether a test the plain build runs alone (a costly diagnosis: three
+// effects, several searches, two runs) skips: in the sanitized build,
+// unless FIT3DOF_SANITIZE_ALL is set (tools/test --sanitize --all, about
+// an hour on 2 cores), which runs every one of them under the sanitizers.
+// A few such records run sanitized anyway, chosen by
+// tools/sanitized_coverage for the lines of src/ only they reach.
+bool PlainBuildOnly();
+
 // `full`, or a tenth of it (at least 2) in the sanitized build.
 inline int Repetitions(int full) {
   return kSanitized ? (full / 10 > 2 ? full / 10 : 2) : full;
