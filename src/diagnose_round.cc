@@ -279,6 +279,10 @@ void Judge(const FitResult& current,
         current, c->fit, c->record.bic_drop, options.min_bic_drop);
   }
   if (why.empty()) {
+    why = RestsOnRoundedReadings(
+        current, c->fit, c->record.bic_drop, options.min_bic_drop);
+  }
+  if (why.empty()) {
     c->unpredicted =
         !PredictsHeldOut(RidgeHeld(*k.effect, FromSolution(k.c, c->fit)),
                          static_cast<int>(k.added.size()),

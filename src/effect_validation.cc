@@ -20,6 +20,7 @@
 #include "fit3dof/angles.h"
 #include "fit3dof/motion_model.h"
 #include "fit3dof/parameters.h"
+#include "fit3dof/wild_points.h"
 #include "format.h"
 
 namespace fit3dof {
@@ -484,6 +485,71 @@ std::string Drags(const FitResult& before,
     }
   }
   return worst;
+}
+
+namespace {
+
+// The weighted sum of squares channel `ch` of segment `s` loses from
+// `before` to `after`; roll's residuals within a turn.
+double ChannelDrop(const FitResult& before,
+                   const FitResult& after,
+                   size_t s,
+                   int ch) {
+  const SegmentFit& b = before.segments[s];
+  const SegmentFit& a = after.segments[s];
+  const std::vector<double> rb = ChannelResidual(b, ch);
+  const std::vector<double> ra = ChannelResidual(a, ch);
+  CHECK_EQ(rb.size(), ra.size());
+  double drop = 0.0;
+  for (size_t i = 0; i < rb.size(); ++i) {
+    double x = rb[i], y = ra[i];
+    if (ch == 0) {
+      x -= WholeTurns(x);
+      y -= WholeTurns(y);
+    }
+    drop += (x / b.sigma_deg[ch]) * (x / b.sigma_deg[ch]) -
+            (y / a.sigma_deg[ch]) * (y / a.sigma_deg[ch]);
+  }
+  return drop;
+}
+
+// How far above the RMS its rounding alone leaves (the step over
+// sqrt(12)) a channel read in counts may leave its residual and still be
+// at its rounding (RestsOnRoundedReadings).
+constexpr double kAtRounding = 1.25;
+
+}  // namespace
+
+std::string RestsOnRoundedReadings(const FitResult& before,
+                                   const FitResult& after,
+                                   double bic_drop,
+                                   double min_bic_drop) {
+  CHECK_EQ(before.segments.size(), after.segments.size());
+  static const char* const kChannels[] = {"phi", "theta", "psi"};
+  double rounded = 0.0;
+  std::string which;
+  for (size_t s = 0; s < before.segments.size(); ++s) {
+    const SegmentFit& b = before.segments[s];
+    for (int ch = 0; ch < 3; ++ch) {
+      const double step = ReadingStepDeg(b.data, ch);
+      if (!(step > 0.0) ||
+          !(b.rms_residual_deg[ch] <= kAtRounding * step / std::sqrt(12.0))) {
+        continue;
+      }
+      const double drop = ChannelDrop(before, after, s, ch);
+      if (!(drop > 0.0)) continue;
+      rounded += drop;
+      which += std::string(which.empty() ? "" : ", ") + kChannels[ch] +
+               " (counts of " + FormatNumber("%.3g", step) + " deg, " +
+               FormatNumber("%.3g", drop) + ")";
+    }
+  }
+  if (!(rounded > 0.0) || bic_drop - rounded >= min_bic_drop) return "";
+  return "its BIC drop (" + FormatNumber("%.3g", bic_drop) +
+         ") rests on readings in counts whose residual is their rounding's "
+         "sawtooth: " +
+         which + "; without them the record would lower BIC by " +
+         FormatNumber("%.3g", bic_drop - rounded);
 }
 
 std::string RestsOnOneReading(const FitResult& before,

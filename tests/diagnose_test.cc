@@ -3374,7 +3374,8 @@ TEST(Diagnose, ASetsTunnelTermOnTheRidgeIsHeldAtZeroInTurn) {
 // (CompanionsWithinTie); then the torque explains the record worse than
 // the effects found without it, and the three true effects are named.
 TEST(Diagnose, AStepOnlyTheFollowedTiedEffectNeedsGoesWithIt) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs, three effects; plain";
+  if (testing::PlainBuildOnly())
+    GTEST_SKIP() << "two runs, three effects; plain";
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_damping_asymmetry_draw56.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4895,6 +4896,30 @@ TEST(Diagnose, SigmaAutoHoldsAQuantizedChannelAtLeastAtItsRounding) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.2197}, {"Cm_q", -6.305}}, text);
 }
 
+// Held at its rounding's level, a channel read in counts still has the
+// rounding's sawtooth in its residual, and a fall in its sum of squares is
+// no evidence of an effect (RestsOnRoundedReadings): on draw 157's 3-s run
+// with no effect and roll read in 2-deg counts
+// (tests/data/short_quantized_roll_draw157.yaml; 2.24 deg a sample) a
+// product of inertia lowered BIC by 11.2, all of it in roll (pitch 6.0,
+// yaw -2.0), with Izx -0.0023 +- 0.00046 slug ft^2, and was named.
+TEST(Diagnose, AnEffectWhoseDropRestsOnReadingsInCountsIsNotAdded) {
+  const Diagnosis d = DiagnoseConfig("short_quantized_roll_draw157.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_EQ(d.verdict, Verdict::kNoiseLevel) << text;
+  EXPECT_NEAR(DiagnosedNoise(d, {}).phi, 2.0 / std::sqrt(12.0), 0.01) << text;
+  const auto inertia = std::find_if(
+      d.rejected.begin(), d.rejected.end(), [](const CandidateFit& r) {
+        return r.effect == "product_of_inertia";
+      });
+  ASSERT_NE(inertia, d.rejected.end()) << text;
+  EXPECT_NE(inertia->rejected.find("rests on readings in counts"),
+            std::string::npos)
+      << inertia->rejected;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.2925}, {"Cm_q", -3.121}}, text);
+}
+
 // A catalog effect whose fit whitens the record just past the noise
 // level's limit shows the level held too low, as a fit at the noise
 // level does (HeldLowByWhiteSteps): on draw 147's 3-s run with a roll
@@ -5039,7 +5064,8 @@ TEST(Diagnose, SaysWhenAStepNotAdoptedLeavesWhiteResiduals) {
 // the first level already; with the bearing moment known absent the
 // drift outdoes the catalog there, and the level is held again.
 TEST(Diagnose, SigmaAutoHoldsAgainALevelAProbesModelShowsTooLow) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "sigma: auto rounds; plain build";
+  if (testing::PlainBuildOnly())
+    GTEST_SKIP() << "sigma: auto rounds; plain build";
   const Case c = LoadConfig(testing::SourcePath(
       "tests/data/coning_bearing_two_degrees_vary116.yaml"));
   const Diagnosis d = Diagnose(c, DiagnoseOptions());

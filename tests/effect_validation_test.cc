@@ -458,5 +458,55 @@ TEST(HoldOut, TheTwoHalvesHoldOutEverySampleButTheFirstOnce) {
   EXPECT_EQ(second.train[0].t[1], d.t[7]);
 }
 
+// A fit of a roll read in 2-deg counts (the motion 2.24 deg a sample, the
+// grid's zero at 0.6 deg): `before` leaves the rounding's sawtooth, `after`
+// takes `share` of it out of roll and lowers pitch's squares by
+// `pitch_drop`.
+std::pair<FitResult, FitResult> RoundedRollFits(double share,
+                                                double pitch_drop) {
+  SegmentFit before;
+  const int n = 44;
+  for (int i = 0; i < n; ++i) {
+    const double phi = 2.24 * i + 0.3;
+    const double read = 2.0 * std::round((phi - 0.6) / 2.0) + 0.6;
+    before.data.Append(0.069 * i, read, 5.0, 0.0);
+    before.computed.insert(before.computed.end(), {phi, 5.0, 0.0});
+  }
+  before.sigma_deg = {2.0 / std::sqrt(12.0), 0.01, 0.01};
+  before.rms_residual_deg = {0.577, 0.01, 0.01};
+  SegmentFit after = before;
+  for (int i = 0; i < n; ++i) {
+    after.computed[3 * i] +=
+        share * (before.data.phi[i] - before.computed[3 * i]);
+  }
+  // One pitch reading off by 1 sigma before, on it after: a drop of 1 per
+  // such reading.
+  for (int i = 0; i < static_cast<int>(pitch_drop); ++i) {
+    before.computed[3 * i + 1] += 0.01;
+  }
+  FitResult b, a;
+  b.segments = {before};
+  a.segments = {after};
+  return {b, a};
+}
+
+// RestsOnRoundedReadings: a drop that only the roll counts' sawtooth pays
+// for is refused, naming the channel; one the other channels earn alone
+// stands.
+TEST(RestsOnRoundedReadings, RefusesADropOnlyTheCountsSawtoothPaysFor) {
+  const auto [before, after] = RoundedRollFits(0.5, 2.0);
+  // Roll's squares fall by 3/4 of ~44 (half the sawtooth taken out).
+  const std::string why = RestsOnRoundedReadings(before, after, 20.0, 10.0);
+  EXPECT_NE(why.find("phi (counts of 2 deg"), std::string::npos) << why;
+  // The same fall in roll beside a drop that leaves more than 10 without
+  // it.
+  EXPECT_EQ(RestsOnRoundedReadings(before, after, 50.0, 10.0), "");
+  // A roll residual well above its rounding is the record's, not the
+  // counts': its fall counts.
+  auto [b3, a3] = RoundedRollFits(0.5, 2.0);
+  b3.segments[0].rms_residual_deg.phi = 1.0;
+  EXPECT_EQ(RestsOnRoundedReadings(b3, a3, 20.0, 10.0), "");
+}
+
 }  // namespace
 }  // namespace fit3dof
