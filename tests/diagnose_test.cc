@@ -1091,9 +1091,8 @@ TEST(Diagnose, DryFrictionAboutEachAxisIsNotATunnelDamping) {
 // beside it as well: with a tunnel damping or a body asymmetry beside it
 // the record is explained 38 below them. Not explained; nothing added.
 TEST(Diagnose, AProbeIsWeighedWithWhatTheCatalogAddsBesideIt) {
-  if (testing::PlainBuildOnly()) {
-    GTEST_SKIP() << "a probe's path as ALaggingPitchReading...'s; plain build";
-  }
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Case c = ShortConfig(
       {testing::SourcePath("tests/data/short_pitch_friction_seed4.csv")});
   DiagnoseOptions options;
@@ -2156,7 +2155,8 @@ TEST(Diagnose, ABearingAngleOnTheRidgeIsJudgedWithinItsErrors) {
 // `ambiguous`, not `not_explained` with the nominal Cm_alpha 9.7 of its errors
 // off.
 TEST(Diagnose, AProbeIsWeighedAgainstWhatTheRecordDeterminesOfAnEffect) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "two runs; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d = DiagnoseConfig("pair_bearing_half_degree_vary128.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
@@ -2304,7 +2304,8 @@ TEST(Diagnose, AdoptsEffectsThatEarnTheirPlaceOnlyTogether) {
 // +- 0.01 (truth -5.5). The Magnus moment beside that model is neither
 // needed nor excluded, so the final error bars must cover the truth.
 TEST(Diagnose, ErrorBarsCoverAnEffectTheRecordCannotExclude) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "plain build only (time)";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const std::string dir = testing::ScratchDirectory("diagnose_not_excluded");
   Case truth = UntrimmedShortTruth(30.0);
   const std::map<std::string, double> hidden = {{"psidot0", 78.0},
@@ -2503,7 +2504,8 @@ TEST(Diagnose, KeepsATiedEffectTheOthersNeedAsTheTiesStandIn) {
 // rise 9.3 in the stiffness's place, and the stiffness stands in a tie with
 // them, the damping and the asymmetry added.
 TEST(Diagnose, AStepThatGoesWithTheTiedEffectLeavesWithIt) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d = DiagnoseConfig("pair_stiffness_damping_asymmetry.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
   EXPECT_EQ(EffectIds(d.steps),
@@ -2658,7 +2660,8 @@ TEST(Diagnose, ANearTwinStandsInForAStepInASet) {
 // lower BIC by 16 more: the search without the body asymmetry is the
 // answer, and it adds them. Before, the body asymmetry was added.
 TEST(Diagnose, AStepTheEffectsNotExcludedBeatTogetherIsReplaced) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_seed1.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -2707,7 +2710,8 @@ TEST(Diagnose, AStepThatOnlyHeldARidgeEffectInsideItsBoundsIsPruned) {
 // roll-locked effects leave the same motion: within ambiguity_bic they
 // stand in a tie.
 TEST(Diagnose, ARollLockedStepSwappedForItsTwinStandsInATie) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d =
       DiagnoseConfig("pair_stiffness_roll_reading_angularity_vary142.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -3748,7 +3752,8 @@ TEST(Diagnose, ALesserRefitInAJointSetTiesWithItsTwins) {
 // effect in its own form where the complete model does
 // (OwnFormsBeforeTie).
 TEST(Diagnose, AFinalModelWithoutATiedEffectHoldsTheCompleteModelsForm) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d =
       DiagnoseConfig("short_bearing_calibration_roll_torque_draw155.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4319,7 +4324,8 @@ TEST(Diagnose, ANonlinearTermsBoundFollowsTheTunnelRidge) {
 // aside, so the verdict stands, but it names them and the final error
 // bars cover their model.
 TEST(Diagnose, ACatalogAnswerAlikeWithAProbeWidensTheUnexplainedAnswer) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d =
       DiagnoseConfig("coning_stiffness_damping_asymmetry_draw43.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4522,7 +4528,8 @@ void ExpectDampingMagnusAngularityNamed(const std::string& file,
 }
 
 TEST(Diagnose, AFirstStepThatLeadsNowhereIsSearchedWithout) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   ExpectDampingMagnusAngularityNamed(
       "short_damping_magnus_angularity_vary18.csv",
       -2.558,
@@ -5064,8 +5071,8 @@ TEST(Diagnose, SaysWhenAStepNotAdoptedLeavesWhiteResiduals) {
 // the first level already; with the bearing moment known absent the
 // drift outdoes the catalog there, and the level is held again.
 TEST(Diagnose, SigmaAutoHoldsAgainALevelAProbesModelShowsTooLow) {
-  if (testing::PlainBuildOnly())
-    GTEST_SKIP() << "sigma: auto rounds; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Case c = LoadConfig(testing::SourcePath(
       "tests/data/coning_bearing_two_degrees_vary116.yaml"));
   const Diagnosis d = Diagnose(c, DiagnoseOptions());
@@ -5380,7 +5387,8 @@ TEST(Diagnose, ALesserRefitTheRecordCannotExcludeIsListed) {
 // for the damping's yaw part, was named. Without the calibration error
 // the damping and the Magnus moment are named, 31.7 lower.
 TEST(Diagnose, AnEarlyStepThatRefusedABetterOneIsSearchedWithout) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d =
       DiagnoseConfig("short_damping_magnus_angularity_varied94.yaml");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});

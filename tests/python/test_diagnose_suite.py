@@ -6,26 +6,13 @@ Environment as test_fit3dof.py: FIT3DOF_BINARY the fit3dof command,
 FIT3DOF_SOURCE_DIR the checkout.
 """
 
-import importlib.machinery
-import importlib.util
 import math
-import os
 
 import pytest
 
-SOURCE = os.environ["FIT3DOF_SOURCE_DIR"]
+from tool_module import load_tool
 
-
-def load_suite():
-    path = os.path.join(SOURCE, "tools", "diagnose_suite")
-    loader = importlib.machinery.SourceFileLoader("diagnose_suite", path)
-    spec = importlib.util.spec_from_loader("diagnose_suite", loader)
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
-
-
-suite = load_suite()
+suite = load_tool("diagnose_suite")
 # A nonlinear damping of the sign that undamps the short run (Cm_q -5.5):
 # Cm_q + Cm_q_delta2 delta^2 > 0 past 1.3 deg, and the motion runs away
 # within half a second.

@@ -4,23 +4,9 @@ tests (pytest, run by ctest; the coverage build itself is the tool's run).
 Environment as test_fit3dof.py: FIT3DOF_SOURCE_DIR the checkout.
 """
 
-import importlib.machinery
-import importlib.util
-import os
+from tool_module import load_tool
 
-SOURCE = os.environ["FIT3DOF_SOURCE_DIR"]
-
-
-def load_tool():
-    path = os.path.join(SOURCE, "tools", "sanitized_coverage")
-    loader = importlib.machinery.SourceFileLoader("sanitized_coverage", path)
-    spec = importlib.util.spec_from_loader("sanitized_coverage", loader)
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
-
-
-tool = load_tool()
+tool = load_tool("sanitized_coverage")
 
 
 def test_the_skipped_tests_are_read_off_gtests_summary():
