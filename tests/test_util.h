@@ -18,8 +18,8 @@ namespace fit3dof::testing {
 
 // True in the ASan/UBSan build (tools/test --sanitize), which runs 10-100x
 // slower: loops over noise seeds run a tenth of their repetitions there
-// (every code path still runs under the sanitizers; the statistics are
-// checked by the plain build).
+// (the statistics are checked by the plain build), and the costliest
+// records run in the plain build only (PlainBuildOnly).
 #ifdef FIT3DOF_SANITIZED
 inline constexpr bool kSanitized = true;
 #else
@@ -28,8 +28,9 @@ inline constexpr bool kSanitized = false;
 
 // Whether a test the plain build runs alone (a costly diagnosis: three
 // effects, several searches, two runs) skips: in the sanitized build,
-// unless FIT3DOF_SANITIZE_ALL is set (tools/test --sanitize --all, about
-// an hour on 2 cores), which runs every one of them under the sanitizers.
+// unless FIT3DOF_SANITIZE_ALL is set (tools/test --sanitize --all, 13
+// minutes of tests on 2 cores), which runs every one of them under the
+// sanitizers.
 // A few such records run sanitized anyway, chosen by
 // tools/sanitized_coverage for the lines of src/ only they reach.
 bool PlainBuildOnly();
