@@ -3403,7 +3403,8 @@ TEST(Diagnose, AStepOnlyTheFollowedTiedEffectNeedsGoesWithIt) {
 // asymmetry and the damping with the same tie, 24 lower in BIC, and the
 // lag's model comes 4.3 above (alike).
 TEST(Diagnose, TheCatalogIsSearchedWithoutWhatTheProbesAnswerDoesWithout) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d =
       DiagnoseConfig("short_stiffness_damping_asymmetry_draw56.yaml");
   ExpectAsymmetryAndDampingBesideAStiffnessTie(d, 660.8, 6.56e-4, -2.30e-4);
@@ -3453,7 +3454,8 @@ TEST(Diagnose, ANearTiesFirstStepMatchedWithoutItTiesWithWhatWasFound) {
 // complete model below the lag's (the angularity named, or tied with a roll
 // reading error: TieGap).
 TEST(Diagnose, AProbeAfterANearTiesFirstStepLosesToTheSearchWithoutIt) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d =
       DiagnoseRecord("short_damping_magnus_angularity_draw29.csv");
   const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
@@ -4568,7 +4570,8 @@ TEST(Diagnose, AFirstStepLeadingBy34IsSearchedWithout) {
 // (the plain search there named a trim moment or a roll reading error, the
 // angularity only not excluded).
 TEST(Diagnose, AFirstStepLeadingNowhereBeforeALaterTieIsSearchedWithout) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   ExpectDampingMagnusAngularityNamed(
       "short_damping_magnus_angularity_vary125.csv",
       1.3815517,
@@ -4756,7 +4759,8 @@ TEST(Diagnose, SigmaAutoHoldsTheNoiseTheDataShow) {
 // `not_explained`. Together they explain it: the Magnus moment is named,
 // the reading error tied with a drift in time (121 deg of roll).
 TEST(Diagnose, EffectsThatPredictNothingAloneMayLeadASet) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "joint sets; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d = DiagnoseConfig("short_roll_error_magnus_varied79.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
@@ -5570,7 +5574,8 @@ TEST(Diagnose, ATunnelTermStepIsTriedWithARollMomentInItsPlace) {
 // was `explained` with the false damping, and the Magnus moment, +2.7
 // beside it, is 6.9 lower in its place. The two now tie.
 TEST(Diagnose, ATunnelTermStepIsTriedWithAnyEffectNotExcludedInItsPlace) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  // Runs sanitized too: it reaches diagnose code no other sanitized test
+  // does (tools/sanitized_coverage).
   const Diagnosis d =
       DiagnoseConfig("coning_magnus_damping_calibration_vary148.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
