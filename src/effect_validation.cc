@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <set>
 #include <string>
 #include <tuple>
@@ -20,6 +21,7 @@
 #include "fit3dof/angles.h"
 #include "fit3dof/motion_model.h"
 #include "fit3dof/parameters.h"
+#include "fit3dof/time_history.h"
 #include "fit3dof/wild_points.h"
 #include "format.h"
 
@@ -489,28 +491,28 @@ std::string Drags(const FitResult& before,
 
 namespace {
 
-// The weighted sum of squares channel `ch` of segment `s` loses from
-// `before` to `after`; roll's residuals within a turn.
-double ChannelDrop(const FitResult& before,
-                   const FitResult& after,
-                   size_t s,
-                   int ch) {
+// What each reading of channel `ch` of segment `s` loses in its weighted
+// square residual from `before` to `after`; roll's residuals within a turn.
+std::vector<double> ReadingDrops(const FitResult& before,
+                                 const FitResult& after,
+                                 size_t s,
+                                 int ch) {
   const SegmentFit& b = before.segments[s];
   const SegmentFit& a = after.segments[s];
   const std::vector<double> rb = ChannelResidual(b, ch);
   const std::vector<double> ra = ChannelResidual(a, ch);
   CHECK_EQ(rb.size(), ra.size());
-  double drop = 0.0;
+  std::vector<double> drops(rb.size());
   for (size_t i = 0; i < rb.size(); ++i) {
     double x = rb[i], y = ra[i];
     if (ch == 0) {
       x -= WholeTurns(x);
       y -= WholeTurns(y);
     }
-    drop += (x / b.sigma_deg[ch]) * (x / b.sigma_deg[ch]) -
-            (y / a.sigma_deg[ch]) * (y / a.sigma_deg[ch]);
+    drops[i] = (x / b.sigma_deg[ch]) * (x / b.sigma_deg[ch]) -
+               (y / a.sigma_deg[ch]) * (y / a.sigma_deg[ch]);
   }
-  return drop;
+  return drops;
 }
 
 // How far above the RMS its rounding alone leaves (the step over
@@ -525,7 +527,6 @@ std::string RestsOnRoundedReadings(const FitResult& before,
                                    double bic_drop,
                                    double min_bic_drop) {
   CHECK_EQ(before.segments.size(), after.segments.size());
-  static const char* const kChannels[] = {"phi", "theta", "psi"};
   double rounded = 0.0;
   std::string which;
   for (size_t s = 0; s < before.segments.size(); ++s) {
@@ -536,10 +537,11 @@ std::string RestsOnRoundedReadings(const FitResult& before,
           !(b.rms_residual_deg[ch] <= kAtRounding * step / std::sqrt(12.0))) {
         continue;
       }
-      const double drop = ChannelDrop(before, after, s, ch);
+      const std::vector<double> drops = ReadingDrops(before, after, s, ch);
+      const double drop = std::accumulate(drops.begin(), drops.end(), 0.0);
       if (!(drop > 0.0)) continue;
       rounded += drop;
-      which += std::string(which.empty() ? "" : ", ") + kChannels[ch] +
+      which += std::string(which.empty() ? "" : ", ") + ChannelName(ch) +
                " (counts of " + FormatNumber("%.3g", step) + " deg, " +
                FormatNumber("%.3g", drop) + ")";
     }
@@ -560,33 +562,21 @@ std::string RestsOnOneReading(const FitResult& before,
   double total = 0.0, top = 0.0, at_t = 0.0;
   int top_channel = 0;
   for (size_t s = 0; s < before.segments.size(); ++s) {
-    const SegmentFit& b = before.segments[s];
-    const SegmentFit& a = after.segments[s];
-    CHECK_EQ(b.data.size(), a.data.size());
     for (int ch = 0; ch < 3; ++ch) {
-      const std::vector<double> rb = ChannelResidual(b, ch);
-      const std::vector<double> ra = ChannelResidual(a, ch);
-      for (size_t i = 0; i < rb.size(); ++i) {
-        double x = rb[i], y = ra[i];
-        if (ch == 0) {
-          x -= WholeTurns(x);
-          y -= WholeTurns(y);
-        }
-        const double drop = (x / b.sigma_deg[ch]) * (x / b.sigma_deg[ch]) -
-                            (y / a.sigma_deg[ch]) * (y / a.sigma_deg[ch]);
-        total += drop;
-        if (drop > top) {
-          top = drop;
-          at_t = b.data.t[i];
+      const std::vector<double> drops = ReadingDrops(before, after, s, ch);
+      for (size_t i = 0; i < drops.size(); ++i) {
+        total += drops[i];
+        if (drops[i] > top) {
+          top = drops[i];
+          at_t = before.segments[s].data.t[i];
           top_channel = ch;
         }
       }
     }
   }
   if (!(top > 0.5 * total) || bic_drop - top >= min_bic_drop) return "";
-  static const char* const kChannels[] = {"phi", "theta", "psi"};
   return "its BIC drop (" + FormatNumber("%.3g", bic_drop) +
-         ") rests on one reading, " + kChannels[top_channel] +
+         ") rests on one reading, " + ChannelName(top_channel) +
          " at t = " + FormatNumber("%.4g", at_t) + " s (" +
          FormatNumber("%.3g", top) + " of the sum of squares' " +
          FormatNumber("%.3g", total) +

@@ -149,7 +149,8 @@ TEST(PartnerTied, NotWhereThePartnerTiedWithItsTwinsAlone) {
 // not hold (a roll torque, or the tie's roll damping out of a step) its
 // own model is in the union, at the noise.
 TEST(CatalogMayExplainWithout, AgreesWithTheSearchItStandsFor) {
-  if (testing::PlainBuildOnly()) GTEST_SKIP() << "a diagnosis and a search; plain";
+  if (testing::PlainBuildOnly())
+    GTEST_SKIP() << "a diagnosis and a search; plain";
   const Case c = LoadConfig(testing::SourcePath(
       "tests/data/table6_damping_magnus_angularity_draw131.yaml"));
   const DiagnoseOptions options;
