@@ -1191,10 +1191,11 @@ std::vector<CandidateFit> Rivals(const std::vector<Contender>& contenders,
   }
   // A probe behind the lead is named beside its step, not tied
   // (WeighProbes, TakeBest).
-  if (probe != nullptr && probe->bic < lead.bic) {
-    rivals.push_back(probe->record);
-  }
-  if (lead.candidate->effect->roll_locked && !roll_separates) {
+  const bool probe_ahead = probe != nullptr && probe->bic < lead.bic;
+  if (probe_ahead) rivals.push_back(probe->record);
+  // A fitted drift probe is the drift in time itself, with its values.
+  if (lead.candidate->effect->roll_locked && !roll_separates &&
+      !(probe_ahead && probe->candidate->effect->drifts_in_time)) {
     rivals.push_back(DriftInTime());
   }
   return rivals;

@@ -221,10 +221,12 @@
 // two runs a roll-synchronous reading error and a zero offset had been adopted
 // for a drifting pitch reading. When the best is roll-locked and the records
 // sweep less than a revolution of roll (it is then a drift in time itself), a
-// drift probe needs only `drift_bic` (2): better by that, the verdict is
-// `not_explained` (a pitch reading drift on one 3-s run had ended `ambiguous`
-// with a roll reading error of twice its parameters); closer, the two tie (a
-// trim moment had been left unexplained for a drift better by 0.4). Otherwise,
+// drift probe with fewer parameters than it needs only `drift_bic` (2): better
+// by that, the verdict is `not_explained` (a pitch reading drift on one 3-s run
+// had ended `ambiguous` with a roll reading error of twice its parameters);
+// closer, the two tie (a trim moment had been left unexplained for a drift
+// better by 0.4). With as many (a trim moment's two against the readings'
+// drift's two) the margin is `ambiguity_bic`, as for any probe. Otherwise,
 // within `ambiguity_bic` of the best, it ties with it (`ambiguous`): on one 3-s
 // run a bearing moment (a stiffness that grows as the amplitude decays) and a
 // drifting dynamic pressure do; a drifting pressure had been named a bearing
@@ -386,9 +388,9 @@ struct DiagnoseOptions {
   // 14.6, 17.4, 26 and 33.6 on four noise draws.
   double near_tie_bic = 40.0;
   // How much lower a drift probe's BIC must be than a roll-locked effect's
-  // on records that sweep less than a revolution of roll, for the record to
-  // be not explained: a difference under 2 is no evidence either way (Kass
-  // and Raftery's scale), and the two tie.
+  // with more parameters on records that sweep less than a revolution of
+  // roll, for the record to be not explained: a difference under 2 is no
+  // evidence either way (Kass and Raftery's scale), and the two tie.
   double drift_bic = 2.0;
   // How far behind the effect a step takes a probe may come and still be
   // named beside it (DiagnosisStep::outside_alike): by less than 2 the
