@@ -695,8 +695,15 @@ void TakeBest(const std::vector<Contender>& contenders,
   if (s->d.steps.empty() && step_rivals.empty()) {
     notes->first_alone = best.record.effect;
   }
-  s->rivals.push_back(
-      WiderRivals(std::move(step_rivals), contenders, earned[0], options));
+  s->rivals.push_back(RollPartRivals(
+      WiderRivals(std::move(step_rivals), contenders, earned[0], options),
+      contenders,
+      earned[0],
+      candidates,
+      s->fit,
+      s->data,
+      s->d.steps,
+      s->rivals));
   s->current = best.candidate->c;
   s->fit = best.fit;
   s->models.push_back(s->current);

@@ -1537,6 +1537,10 @@ bool OnTunnelRidge(const Effect& e) {
   return e.id == "tunnel_stiffness" || e.id == "tunnel_damping";
 }
 
+bool IsRollMoment(const std::string& id) {
+  return id == "roll_torque" || id == "roll_damping";
+}
+
 bool HoldAtZero(const std::string& name, Case* c) {
   const int position = FindParameter(c->model, name);
   if (position < 0) return false;
@@ -1570,10 +1574,6 @@ std::vector<const Effect*> UntriedRidge(const Diagnosis& d,
     }
   }
   return untried;
-}
-
-bool IsRollMoment(const std::string& id) {
-  return id == "roll_torque" || id == "roll_damping";
 }
 
 // A trial of `e` alone in step `step`'s place, into *to.

@@ -50,8 +50,8 @@ void RankByScore(const Case& at,
   }
 }
 
-// Candidate k refitted in full from the solution `fit` into *c; false
-// when the fit fails.
+}  // namespace
+
 bool Refit(const Candidate& k,
            const FitResult& fit,
            const std::vector<TimeHistory>& data,
@@ -65,6 +65,8 @@ bool Refit(const Candidate& k,
   c->record.prediction_gain = std::numeric_limits<double>::quiet_NaN();
   return true;
 }
+
+namespace {
 
 // A probe `k` fitted into *c with some of its terms, not all, past zero
 // against their physical sign (WrongSignTerms) refitted with those held

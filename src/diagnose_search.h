@@ -71,6 +71,13 @@ struct Contender {
   std::string blocked_by;
 };
 
+// Candidate k refitted in full from the solution `fit` into *c (its
+// record's BIC drop against `fit`); false when the fit fails.
+bool Refit(const Candidate& k,
+           const FitResult& fit,
+           const std::vector<TimeHistory>& data,
+           Contender* c);
+
 // Whether the engineer declared the effect or probe `id` absent
 // (DiagnoseOptions::absent).
 bool KnownAbsent(const DiagnoseOptions& options, const std::string& id);
@@ -453,6 +460,33 @@ std::vector<CandidateFit> WiderRivals(std::vector<CandidateFit> rivals,
                                       int best,
                                       const DiagnoseOptions& options);
 
+// `rivals` (WiderRivals) of contenders[best], a roll moment (IsRollMoment),
+// with Eq. 39's tunnel stiffness whatever its BIC, refitted from `fit` when
+// the round did not (the final swap, Unresolved, decides). Its pitch and
+// yaw moments projected on the body's roll axis give a roll torque of
+// (t1 - t3) theta psi times Iy / Ix, and a body yaw asymmetry (Cn_beta
+// apart from -Cm_alpha) takes up its pitch and yaw parts over a short span
+// of roll: until the asymmetry is in, the roll torque takes the roll part
+// alone and the stiffness falls far behind it. The tunnel damping's roll
+// part on a steady cone is a steady torque, the roll torque's twin, which
+// comes within the round's rivals by its own BIC (refitted here it had
+// tied at +9.9 on a pair of runs whose adoption it then broke). Not where
+// the model's `steps` or their rivals (`earlier`, a step's each) hold a
+// roll moment or a tunnel term already: the roll part is taken. On draw 159's
+// 3-s run with a tunnel stiffness, a nonlinear damping and a body yaw asymmetry
+// (sigma: auto) a roll torque came 48.6 ahead of the stiffness at the first
+// round and a Magnus moment was added after the damping and the asymmetry; with
+// them in, the stiffness in the torque's place is 2.2 above it.
+std::vector<CandidateFit> RollPartRivals(
+    std::vector<CandidateFit> rivals,
+    const std::vector<Contender>& contenders,
+    int best,
+    const std::vector<Candidate>& candidates,
+    const FitResult& fit,
+    const std::vector<TimeHistory>& data,
+    const std::vector<DiagnosisStep>& steps,
+    const std::vector<std::vector<CandidateFit>>& earlier);
+
 // The case `at` without the effect that `step` added: the terms it added
 // fixed at zero (a companion keeps its value, inert without them); an
 // image it had untied (an asymmetric body) tied again.
@@ -565,6 +599,12 @@ std::string ImplausibleAmongAsJudged(const std::vector<const Effect*>& effects,
 // ridge with a body coefficient (Cm_alpha + t1, Cm_q + t2), so that with
 // one held at zero the other carries what the record sees of them.
 bool OnTunnelRidge(const Effect& e);
+
+// Whether `id` is a roll moment of the catalog (a roll torque, a roll
+// damping): at a steady spin each is the other's twin, and each takes up
+// the roll part of Eq. 39's tunnel moments (their pitch and yaw moments
+// projected on the body's roll axis).
+bool IsRollMoment(const std::string& id);
 
 // `c` with its parameter `name` held at zero (not free); false when its
 // model has no such parameter.

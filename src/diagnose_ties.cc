@@ -1216,6 +1216,57 @@ std::vector<CandidateFit> WiderRivals(std::vector<CandidateFit> rivals,
   return rivals;
 }
 
+std::vector<CandidateFit> RollPartRivals(
+    std::vector<CandidateFit> rivals,
+    const std::vector<Contender>& contenders,
+    int best,
+    const std::vector<Candidate>& candidates,
+    const FitResult& fit,
+    const std::vector<TimeHistory>& data,
+    const std::vector<DiagnosisStep>& steps,
+    const std::vector<std::vector<CandidateFit>>& earlier) {
+  const auto roll_part = [](const std::string& id) {
+    const Effect* e = FindEffect(id);
+    return IsRollMoment(id) || (e != nullptr && OnTunnelRidge(*e));
+  };
+  const bool taken =
+      std::any_of(
+          steps.begin(),
+          steps.end(),
+          [&](const DiagnosisStep& s) { return roll_part(s.effect); }) ||
+      std::any_of(earlier.begin(), earlier.end(), [&](const auto& r) {
+        return std::any_of(r.begin(), r.end(), [&](const CandidateFit& k) {
+          return roll_part(k.effect);
+        });
+      });
+  if (taken || !IsRollMoment(contenders[best].record.effect)) return rivals;
+  std::vector<const Candidate*> unfitted;
+  for (const Candidate& k : candidates) {
+    if (k.effect->id != "tunnel_stiffness" ||
+        FindFit(rivals, k.effect->id) != nullptr) {
+      continue;
+    }
+    const auto refitted = std::find_if(
+        contenders.begin(), contenders.end(), [&](const Contender& c) {
+          return c.candidate == &k;
+        });
+    if (refitted != contenders.end()) {
+      rivals.push_back(refitted->record);
+    } else {
+      unfitted.push_back(&k);
+    }
+  }
+  std::vector<Contender> refits(unfitted.size());
+  std::vector<char> fitted(unfitted.size(), false);  // written in parallel
+  ParallelFor(static_cast<int>(unfitted.size()), [&](int i) {
+    fitted[i] = Refit(*unfitted[i], fit, data, &refits[i]);
+  });
+  for (size_t i = 0; i < refits.size(); ++i) {
+    if (fitted[i]) rivals.push_back(std::move(refits[i].record));
+  }
+  return rivals;
+}
+
 Case WithoutStep(const Case& at, const DiagnosisStep& step) {
   Case without = at;
   const Effect* effect = FindEffect(step.effect);

@@ -3420,6 +3420,31 @@ TEST(Diagnose, AStepOnlyTheFollowedTiedEffectNeedsGoesWithIt) {
   ExpectFinalCovers(d, kShortCoefficients, text);
 }
 
+// A roll moment's step has Eq. 39's tunnel terms among its rivals whatever
+// the round's gap (RollPartRivals): their pitch and yaw moments projected
+// on the body's roll axis are a roll torque. On draw 159's 3-s run of
+// another body with a tunnel stiffness, a nonlinear damping and a body yaw
+// asymmetry (tests/data/short_stiffness_damping_asymmetry_draw159.yaml,
+// sigma: auto) a roll torque tied with a roll damping and a tunnel damping
+// came 48.6 ahead of the stiffness at the first round (the stiffness's
+// pitch and yaw parts want the asymmetry beside them), and a Magnus
+// moment was added after the damping and the asymmetry. With those in,
+// the stiffness in the torque's place is 3.0 above it: it joins the tie,
+// and the Magnus moment, needed beside the torque and not beside the
+// stiffness (+6.9 without it), goes with the torque.
+TEST(Diagnose, ARollMomentsStepTiesWithTheTunnelTermsWhoseRollPartItIs) {
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
+  const Diagnosis d =
+      DiagnoseConfig("short_stiffness_damping_asymmetry_draw159.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{"nonlinear_damping", "asymmetric_body"}))
+      << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("tunnel_stiffness")) << text;
+  EXPECT_TRUE(EffectIds(d.ambiguous).count("roll_torque")) << text;
+}
+
 // The same case on draw 56 (t1 6.56e-4, t3 -2.30e-4, Cm_q_delta2 661,
 // body yaw -0.22%; tests/data/short_stiffness_damping_asymmetry_draw56
 // .yaml). A lag of the readings outdid every catalog effect at the first

@@ -136,8 +136,10 @@
 // the contenders within `rival_bic` (30) of a step's best, tied or not:
 // while effects are missing, a round's BIC gaps hold their signatures too
 // (a roll torque adopted 21 below a tunnel stiffness that, with the
-// others in, explained the record 3 better). Ties at later
-// steps are judged alike and reported beside the first
+// others in, explained the record 3 better), and for a roll moment Eq.
+// 39's tunnel stiffness whatever the gap (its roll part is the moment's
+// signature; one 48.6 behind came within 3 once the others were in). Ties
+// at later steps are judged alike and reported beside the first
 // (Diagnosis::later_ties). A tie that leaves the residuals
 // structured is only part of the story: the search goes on with the
 // best of them in the model, and if the record then reaches the noise
