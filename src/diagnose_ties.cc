@@ -1216,6 +1216,31 @@ std::vector<CandidateFit> WiderRivals(std::vector<CandidateFit> rivals,
   return rivals;
 }
 
+namespace {
+
+// Whether `id` takes up a roll part of Eq. 39's tunnel moments: a roll
+// moment, or a tunnel term itself.
+bool TakesRollPart(const std::string& id) {
+  const Effect* e = FindEffect(id);
+  return IsRollMoment(id) || (e != nullptr && OnTunnelRidge(*e));
+}
+
+// Whether `steps` or the rivals of any (`earlier`) take up the roll part.
+bool RollPartTaken(const std::vector<DiagnosisStep>& steps,
+                   const std::vector<std::vector<CandidateFit>>& earlier) {
+  for (const DiagnosisStep& s : steps) {
+    if (TakesRollPart(s.effect)) return true;
+  }
+  for (const std::vector<CandidateFit>& rivals : earlier) {
+    for (const CandidateFit& k : rivals) {
+      if (TakesRollPart(k.effect)) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<CandidateFit> RollPartRivals(
     std::vector<CandidateFit> rivals,
     const std::vector<Contender>& contenders,
@@ -1225,44 +1250,25 @@ std::vector<CandidateFit> RollPartRivals(
     const std::vector<TimeHistory>& data,
     const std::vector<DiagnosisStep>& steps,
     const std::vector<std::vector<CandidateFit>>& earlier) {
-  const auto roll_part = [](const std::string& id) {
-    const Effect* e = FindEffect(id);
-    return IsRollMoment(id) || (e != nullptr && OnTunnelRidge(*e));
-  };
-  const bool taken =
-      std::any_of(
-          steps.begin(),
-          steps.end(),
-          [&](const DiagnosisStep& s) { return roll_part(s.effect); }) ||
-      std::any_of(earlier.begin(), earlier.end(), [&](const auto& r) {
-        return std::any_of(r.begin(), r.end(), [&](const CandidateFit& k) {
-          return roll_part(k.effect);
-        });
-      });
-  if (taken || !IsRollMoment(contenders[best].record.effect)) return rivals;
-  std::vector<const Candidate*> unfitted;
-  for (const Candidate& k : candidates) {
-    if (k.effect->id != "tunnel_stiffness" ||
-        FindFit(rivals, k.effect->id) != nullptr) {
-      continue;
-    }
-    const auto refitted = std::find_if(
-        contenders.begin(), contenders.end(), [&](const Contender& c) {
-          return c.candidate == &k;
-        });
-    if (refitted != contenders.end()) {
-      rivals.push_back(refitted->record);
-    } else {
-      unfitted.push_back(&k);
-    }
+  if (!IsRollMoment(contenders[best].record.effect) ||
+      RollPartTaken(steps, earlier) ||
+      FindFit(rivals, "tunnel_stiffness") != nullptr) {
+    return rivals;
   }
-  std::vector<Contender> refits(unfitted.size());
-  std::vector<char> fitted(unfitted.size(), false);  // written in parallel
-  ParallelFor(static_cast<int>(unfitted.size()), [&](int i) {
-    fitted[i] = Refit(*unfitted[i], fit, data, &refits[i]);
-  });
-  for (size_t i = 0; i < refits.size(); ++i) {
-    if (fitted[i]) rivals.push_back(std::move(refits[i].record));
+  const auto stiffness = std::find_if(
+      candidates.begin(), candidates.end(), [](const Candidate& k) {
+        return k.effect->id == "tunnel_stiffness";
+      });
+  if (stiffness == candidates.end()) return rivals;
+  const auto refitted = std::find_if(
+      contenders.begin(), contenders.end(), [&](const Contender& c) {
+        return c.candidate == &*stiffness;
+      });
+  Contender refit;
+  if (refitted != contenders.end()) {
+    rivals.push_back(refitted->record);
+  } else if (Refit(*stiffness, fit, data, &refit)) {
+    rivals.push_back(std::move(refit.record));
   }
   return rivals;
 }
