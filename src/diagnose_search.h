@@ -476,7 +476,7 @@ std::vector<CandidateFit> WiderRivals(std::vector<CandidateFit> rivals,
 // 3-s run with a tunnel stiffness, a nonlinear damping and a body yaw asymmetry
 // (sigma: auto) a roll torque came 48.6 ahead of the stiffness at the first
 // round and a Magnus moment was added after the damping and the asymmetry; with
-// them in, the stiffness in the torque's place is 2.2 above it.
+// them in, the stiffness in the torque's place is 3.0 above it.
 std::vector<CandidateFit> RollPartRivals(
     std::vector<CandidateFit> rivals,
     const std::vector<Contender>& contenders,
