@@ -491,9 +491,7 @@ Diagnosis Concluded(const Case& c,
                     Diagnosis d) {
   WidenForNotExcluded(&d);
   WidenAlternatives(data, options, &d);
-  if (!d.ambiguous.empty()) {
-    d.separated_by = SeparatedBy(d.ambiguous, quiet, d.FinalFit(), data);
-  }
+  SeparateTies(quiet, data, &d);
   d.final_case = FinalCase(c, current, d.FinalFit());
   FinalValues(&d);
   Conclude(&d);

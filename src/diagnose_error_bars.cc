@@ -1393,8 +1393,7 @@ bool StandInForSearch(const Diagnosis& other,
                  &d->model_standard_errors);
   TieInPlace(static_cast<int>(step - d->steps.begin()), tie, ids, d);
   // What would separate the tie (Concluded's words for the search's own).
-  d->separated_by = SeparatedBy(
-      d->ambiguous, d->final_case, d->FinalFit(), FittedData(d->FinalFit()));
+  SeparateTies(d->final_case, FittedData(d->FinalFit()), d);
   FinalValues(d);
   Conclude(d);
   return true;

@@ -523,6 +523,12 @@ std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
                         const FitResult& fit,
                         const std::vector<TimeHistory>& data);
 
+// Diagnosis::separated_by for d->ambiguous and later_separated_by for
+// each of d->later_ties (SeparatedBy, at d's final fit of `c` to `data`).
+void SeparateTies(const Case& c,
+                  const std::vector<TimeHistory>& data,
+                  Diagnosis* d);
+
 // The fit of the complete model of `d`'s tie (Diagnosis::alternatives) with
 // the least BIC, or null when none was fitted.
 const FitResult* LowestCompleteFit(const Diagnosis& d);

@@ -1330,7 +1330,12 @@ std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
   const Effect* a = FindEffect(ambiguous[0].effect);
   const Effect* b = FindEffect(ambiguous[1].effect);
   if (a != nullptr && b != nullptr) return Separation(*a, *b, c, fit);
-  if (ambiguous[1].effect == kDriftInTime) {
+  // A fitted drift is the drift in time a roll-locked effect is over less
+  // than a revolution of roll.
+  const Effect* drift = FindProbe(ambiguous[1].effect);
+  if (ambiguous[1].effect == kDriftInTime ||
+      (a != nullptr && a->roll_locked && drift != nullptr &&
+       drift->drifts_in_time)) {
     return "a record spanning a revolution of roll (this one: " +
            FormatNumber("%.0f", RollSpan(data)) +
            " deg) or a run at another spin rate";
@@ -1344,6 +1349,18 @@ std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
   return "a second run at another spin rate or amplitude (a drift grows "
          "with the time of each run, a catalog effect follows what the runs "
          "differ in)";
+}
+
+void SeparateTies(const Case& c,
+                  const std::vector<TimeHistory>& data,
+                  Diagnosis* d) {
+  if (!d->ambiguous.empty()) {
+    d->separated_by = SeparatedBy(d->ambiguous, c, d->FinalFit(), data);
+  }
+  d->later_separated_by.clear();
+  for (const std::vector<CandidateFit>& tie : d->later_ties) {
+    d->later_separated_by.push_back(SeparatedBy(tie, c, d->FinalFit(), data));
+  }
 }
 
 namespace {

@@ -324,6 +324,13 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   if (!d.ambiguous.empty()) {
     out["ambiguous"] = Contenders(tied);
     out["separated_by"] = d.separated_by;
+    // What would separate each group of ambiguous_groups, in its order.
+    json each = json::array({d.separated_by});
+    for (size_t i = 0; i < d.later_ties.size(); ++i) {
+      each.push_back(i < d.later_separated_by.size() ? d.later_separated_by[i]
+                                                     : std::string());
+    }
+    out["groups_separated_by"] = each;
   }
   out["alternatives"] = json::array();
   for (const AlternativeModel& a : d.alternatives) {

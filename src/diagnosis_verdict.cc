@@ -113,10 +113,13 @@ std::string AmbiguousText(const Diagnosis& d) {
   std::string effects, drops;
   TieWords(d, d.ambiguous, &effects, &drops);
   std::string later;
-  for (const std::vector<CandidateFit>& tie : d.later_ties) {
+  for (size_t i = 0; i < d.later_ties.size(); ++i) {
     std::string words, bic;
-    TieWords(d, tie, &words, &bic);
+    TieWords(d, d.later_ties[i], &words, &bic);
     later += "; also ambiguous: " + words + " (BIC lower by " + bic + ")";
+    if (i < d.later_separated_by.size()) {
+      later += ", " + d.later_separated_by[i] + " would separate them";
+    }
   }
   return "ambiguous: " + effects +
          (b.effect == kDriftInTime

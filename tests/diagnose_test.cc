@@ -242,6 +242,14 @@ TEST(Diagnose, ListsAnEffectTiedTwiceOnce) {
             nlohmann::json({"magnus", "axis_friction", "nonlinear_damping"}));
   EXPECT_EQ(j["ambiguous_outside_catalog"], nlohmann::json({"axis_friction"}));
   EXPECT_EQ(j["ambiguous_groups"].size(), 2u);
+  // What separates each group, in their order (none set here: empty).
+  EXPECT_EQ(j["groups_separated_by"], nlohmann::json({"", ""}));
+  d.separated_by = "a run at another spin rate";
+  d.later_separated_by = {"a run at another amplitude"};
+  const nlohmann::json k = nlohmann::json::parse(DiagnosisJson(d, Truth()));
+  EXPECT_EQ(k["groups_separated_by"],
+            nlohmann::json(
+                {"a run at another spin rate", "a run at another amplitude"}));
 }
 
 // The workflow in a batch (diagnose: true) and on the command line.
@@ -716,6 +724,18 @@ TEST(Diagnose, ADriftAheadOfATrimMomentByLessThanTheMarginTiesWithIt) {
   EXPECT_TRUE(tied.count("reading_drift")) << text;
   // The fitted drift is the drift in time: not listed twice.
   EXPECT_FALSE(tied.count("drift_in_time")) << text;
+  // Each tie says what would separate it, the later ones too.
+  ASSERT_EQ(d.later_separated_by.size(), d.later_ties.size()) << text;
+  for (size_t i = 0; i < d.later_ties.size(); ++i) {
+    if (!FindFit(d.later_ties[i], "reading_drift")) continue;
+    EXPECT_NE(d.later_separated_by[i].find("a revolution of roll"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(
+        d.verdict_text.find(d.later_separated_by[i] + " would separate them"),
+        std::string::npos)
+        << text;
+  }
 }
 
 // tools/diagnose_suite --vary-conditions' `short` roll reading error at

@@ -667,6 +667,9 @@ struct Diagnosis {
   // Ties at later steps of the search that the record leaves open as well
   // (each: the effect followed, then its rivals); none of them is added.
   std::vector<std::vector<CandidateFit>> later_ties;
+  // What would separate each of later_ties, as separated_by says it of
+  // the first (set with the verdict; empty before).
+  std::vector<std::string> later_separated_by;
   // When effects were adopted after the tie (they are needed whichever of
   // the tied effects is in the model): the complete model with each of
   // them, the tied effect in `effect`, the first as the search followed
