@@ -224,6 +224,13 @@ double RollSpan(const std::vector<TimeHistory>& data);
 // final fit's samples.
 bool RollSeparates(const std::vector<TimeHistory>& data);
 
+// Whether the probe `drift`, a drift in time, is what the roll-locked
+// effect `roll_locked` is on `data`: records that do not separate a first
+// harmonic of roll from a slow change in time (RollSeparates).
+bool DriftTwin(const Effect& roll_locked,
+               const Effect& drift,
+               const std::vector<TimeHistory>& data);
+
 // An offset of the tunnel's planes and the roll-locked effects (a
 // body-fixed trim, a roll-synchronous reading error): over less than a
 // revolution of roll a first harmonic of roll is an offset and a slow

@@ -526,8 +526,7 @@ double ProbeMargin(const Contender& best,
                    const Contender& probe,
                    const std::vector<TimeHistory>& data,
                    const DiagnoseOptions& options) {
-  return probe.candidate->effect->drifts_in_time &&
-                 best.candidate->effect->roll_locked && !RollSeparates(data) &&
+  return DriftTwin(*best.candidate->effect, *probe.candidate->effect, data) &&
                  best.fit.free_parameters > probe.fit.free_parameters
              ? options.drift_bic
              : options.ambiguity_bic;
@@ -1782,6 +1781,13 @@ bool RollSeparates(const std::vector<TimeHistory>& data) {
   if (rates.size() < 2) return false;
   const auto [lo, hi] = std::minmax_element(rates.begin(), rates.end());
   return *hi > 1.2 * *lo;
+}
+
+bool DriftTwin(const Effect& roll_locked,
+               const Effect& drift,
+               const std::vector<TimeHistory>& data) {
+  return roll_locked.roll_locked && drift.drifts_in_time &&
+         !RollSeparates(data);
 }
 
 bool WeighProbes(const Case& current,

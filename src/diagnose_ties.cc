@@ -1334,8 +1334,7 @@ std::string SeparatedBy(const std::vector<CandidateFit>& ambiguous,
   // than a revolution of roll.
   const Effect* drift = FindProbe(ambiguous[1].effect);
   if (ambiguous[1].effect == kDriftInTime ||
-      (a != nullptr && a->roll_locked && drift != nullptr &&
-       drift->drifts_in_time)) {
+      (a != nullptr && drift != nullptr && DriftTwin(*a, *drift, data))) {
     return "a record spanning a revolution of roll (this one: " +
            FormatNumber("%.0f", RollSpan(data)) +
            " deg) or a run at another spin rate";

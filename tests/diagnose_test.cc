@@ -714,11 +714,7 @@ TEST(Diagnose, ADriftAheadOfATrimMomentByLessThanTheMarginTiesWithIt) {
       DiagnoseConfig("coning_stiffness_roll_error_angularity_draw159.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
   EXPECT_EQ(d.verdict, Verdict::kAmbiguous) << text;
-  std::set<std::string> tied = EffectIds(d.ambiguous);
-  for (const auto& tie : d.later_ties) {
-    const std::set<std::string> ids = EffectIds(tie);
-    tied.insert(ids.begin(), ids.end());
-  }
+  const std::set<std::string> tied = TiedIds(d);
   EXPECT_TRUE(tied.count("tunnel_stiffness")) << text;
   EXPECT_TRUE(tied.count("trim_moment")) << text;
   EXPECT_TRUE(tied.count("reading_drift")) << text;
