@@ -1111,11 +1111,25 @@ bool AtTheNoiseWithNothing(const Diagnosis& d) {
          d.outside_catalog.effect.empty() && d.final.at_noise_level;
 }
 
+// Whether the search `d` found the record at the noise level with effects
+// named or tied (explained or ambiguous): a level held low there weighs
+// the channel's fall past what its errors warrant, and the effects' BIC
+// with it. On draw 162's 3-s run with no effect and reading errors that
+// are not white (an AR(1) error of lag-1 autocorrelation 0.6 beside white
+// noise, 0.014 deg in all; the model-free level reads their fast part)
+// yaw was held at 0.0079 deg and every fit left it above 0.0118, white; a
+// tunnel damping whose BIC drop of 21.7 lay in roll and yaw was named.
+bool AtTheNoiseWithEffects(const Diagnosis& d) {
+  return (!d.steps.empty() || !d.ambiguous.empty()) &&
+         d.outside_catalog.effect.empty() && d.final.at_noise_level;
+}
+
 // Whether some fit of the search `d` (held at held->sigma) left an auto
 // channel's residual (LeastResidual; where `d` leaves the record
 // unexplained, the effects it found fitted together too, FittedTogether)
 // below the held level by kHeldTooHigh or more, or, where `d` found the record
-// at the noise level, every fit left it above by kHeldTooLow or more, white
+// at the noise level (with nothing added, or with effects named,
+// AtTheNoiseWithEffects), every fit left it above by kHeldTooLow or more, white
 // (its lag-1 autocorrelation within what noise reaches); if so, held->sigma
 // holds that channel at the least level. Too high: the model-free level takes
 // structure near the Nyquist frequency for noise: a calibration error's cube
@@ -1131,11 +1145,13 @@ bool AtTheNoiseWithNothing(const Diagnosis& d) {
 // (tests/data/short_calibration_in_pitch_varied101.yaml) yaw was held at
 // 0.0053 deg (true 0.01; its residual 0.0108, lag-1 0.29), E was 1.48,
 // and the calibration's score, 14.5 at 2 terms, missed the 10 of BIC it
-// needed: `noise_level`, Cm_alpha 10.8 of its errors off. Only at the
-// noise level: a channel a missed effect holds above its level is the
-// record's structure, and a level raised to it would hide it; or where
-// the search leaves the record unexplained, its partial steps whiten it
-// just past the limit (HeldLowByWhiteSteps).
+// needed: `noise_level`, Cm_alpha 10.8 of its errors off. A colored error's
+// slow part escapes the differences too, and a level held under it puts a
+// false effect past the BIC margin (AtTheNoiseWithEffects). Only at the noise
+// level: a channel a missed effect holds above its level is the record's
+// structure, and a level raised to it would hide it; or where the search
+// leaves the record unexplained, its partial steps whiten it just past the
+// limit (HeldLowByWhiteSteps).
 bool HeldAgain(const Case& c,
                const Diagnosis& d,
                const DiagnoseOptions& options,
@@ -1155,8 +1171,9 @@ bool HeldAgain(const Case& c,
     }
     least = std::max(least, RoundingLevelDeg(*at, ch));
     const bool too_high = least * kHeldTooHigh <= level;
-    const bool too_low = AtTheNoiseWithNothing(d) &&
-                         ShowsHeldTooLow(*at, ch, least, level, options);
+    const bool too_low =
+        (AtTheNoiseWithNothing(d) || AtTheNoiseWithEffects(d)) &&
+        ShowsHeldTooLow(*at, ch, least, level, options);
     if (too_high || too_low) {
       HoldAgainAt(c, ch, least, "", held);
       again = true;

@@ -956,13 +956,14 @@ bool FitFrom(const Case& c,
 }
 
 void HoldCalibrationRange(const std::vector<TimeHistory>& data, Case* c) {
+  ParameterSetting& range = c->parameters[Layout(c->model).cal_range];
+  if (range.value > 0.0 && !range.free) return;  // the bench's own range
   double largest = 0.0;
   for (const TimeHistory& h : data) {
     for (int i = 0; i < h.size(); ++i) {
       largest = std::max({largest, std::abs(h.theta[i]), std::abs(h.psi[i])});
     }
   }
-  ParameterSetting& range = c->parameters[Layout(c->model).cal_range];
   range.value = largest;
   range.free = false;
 }

@@ -199,6 +199,13 @@ bool FitFrom(const Case& c,
 // The calibration's range held at the readings' largest angle (pitch or
 // yaw, over every segment): the other form's straight line is the one a
 // linear calibration over the range the model flew took of the square.
+// A range the config gives (cal_range > 0, held) is the bench's own
+// calibration and is kept: taken at the largest angle instead, a signed
+// square calibrated over +-8 deg on readings reaching 9.6 deg left the
+// difference of the two lines, a gain error of the pitch reading opposite
+// to the yaw reading's (0.005 deg per deg), which a tunnel stiffness and a
+// bearing moment tied with after the calibration was named (suite draw
+// 161's `pair`).
 void HoldCalibrationRange(const std::vector<TimeHistory>& data, Case* c);
 
 // The probable error of `union_fit` counted with the degrees of freedom of

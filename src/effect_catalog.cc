@@ -176,11 +176,11 @@ const std::vector<Effect>& OpenForms() {
       // The report's calibration factors come from a linear least-squares
       // fit, which takes a straight line's worth of any error into each
       // reading's gain: what is left of a signed square is the square less
-      // its line over the calibration's range (Effect::other_form), taken
-      // as the range the readings span (ScoredCandidates sets cal_range,
-      // held). Freed, the range made the line a gain of any size, which
-      // stood in for a bearing moment's stiffness on a pair of runs (suite
-      // draw 59: a range of 17.5 +- 106 deg, Cm_alpha 34 of its errors
+      // its line over the calibration's range (Effect::other_form), the
+      // config's or else the range the readings span (HoldCalibrationRange
+      // sets cal_range, held). Freed, the range made the line a gain of any
+      // size, which stood in for a bearing moment's stiffness on a pair of runs
+      // (suite draw 59: a range of 17.5 +- 106 deg, Cm_alpha 34 of its errors
       // off).
       {"calibration_signed_square",
        "the calibration nonlinearity as the angle's signed square less the "

@@ -28,10 +28,12 @@
 // the segments; held again, and searched once more (twice at most), at a
 // fit of the search's level when that leaves a channel 1.3 times or more
 // below it (structure near the Nyquist frequency passes for noise
-// model-free), or, where the search found the record at the noise level,
-// when every fit leaves a channel 1.3 times or more above it, white (a
-// noise draw short of high frequencies holds it low model-free, and the
-// probable error it inflates blurs the other channels' evidence).
+// model-free), or, where the search found the record at the noise level
+// (with effects named or not), when every fit leaves a channel 1.3 times
+// or more above it, white (a noise draw short of high frequencies, or
+// reading errors whose slow part the differences miss, hold it low
+// model-free, and the probable error it inflates blurs the other channels'
+// evidence or puts a false effect past the BIC margin).
 // The level limit widens by that estimate's own spread,
 // E^2 <= 1 + 3.09 sqrt(2 / dof + 7.3 / n) (1.51 on 47 samples, 1.14 on 800),
 // and the search goes on past the noise level while an effect earns its
@@ -347,7 +349,8 @@ struct Effect {
   // than the effect's own (and sent back where later steps no longer
   // do): a calibration error growing as the angle's signed square, less
   // the straight line a linear calibration over the readings' range took
-  // of it (theta_cal2, psi_cal2; cal_range held at the largest angle). On
+  // of it (theta_cal2, psi_cal2; cal_range held where the config gives it, else
+  // at the largest angle). On
   // a coning run, the cube in its place left a difference of the two
   // readings' gains: an elliptical look that a tunnel stiffness, a flow
   // stiffer in one plane or a body asymmetry gives a circular cone, and
