@@ -189,6 +189,23 @@ std::string RestsOnRoundedReadings(const FitResult& before,
                                    double bic_drop,
                                    double min_bic_drop);
 
+// Why the BIC drop `bic_drop` from `before` to `after` (the same samples
+// and weights) rests on reading errors that are not white: weighed as the
+// first-order autoregressive errors `after` leaves (their lag-1
+// autocorrelation rho pooled over every segment and channel, when
+// positive), e_i - rho e_(i-1) over sqrt(1 - rho^2), the record would
+// lower BIC by less than `min_bic_drop`; or empty. Correlated errors hold
+// more power at the motion's low frequencies than their level says, and a
+// term whose signature is slow (a steady roll part, a growth over the
+// record) buys a fall in the sum of squares from them. The rho of the model
+// with the effect: an effect that is there whitens the residual it leaves,
+// and keeps its drop. Read where `after` is at the noise level (Judge): a
+// model still short of it leaves the missing effects' structure in rho.
+std::string RestsOnSlowResiduals(const FitResult& before,
+                                 const FitResult& after,
+                                 double bic_drop,
+                                 double min_bic_drop);
+
 // Each segment cut into `blocks` runs of samples, alternately kept for
 // training and held out: the held-out samples span the record's amplitudes
 // and spin rates, and the motion is integrated through them. Half 0 holds

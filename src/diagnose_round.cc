@@ -284,6 +284,10 @@ void Judge(const FitResult& current,
     why = RestsOnRoundedReadings(
         current, c->fit, c->record.bic_drop, options.min_bic_drop);
   }
+  if (why.empty() && CheckResiduals(c->fit, options).at_noise_level) {
+    why = RestsOnSlowResiduals(
+        current, c->fit, c->record.bic_drop, options.min_bic_drop);
+  }
   if (why.empty()) {
     c->unpredicted =
         !PredictsHeldOut(RidgeHeld(*k.effect, FromSolution(k.c, c->fit)),

@@ -554,6 +554,79 @@ std::string RestsOnRoundedReadings(const FitResult& before,
          FormatNumber("%.3g", bic_drop - rounded);
 }
 
+namespace {
+
+// Channel `ch` of segment `s` of `fit`: its residuals over the noise (roll's
+// within a turn).
+std::vector<double> WeightedResidual(const SegmentFit& s, int ch) {
+  std::vector<double> r = ChannelResidual(s, ch);
+  for (double& x : r) {
+    if (ch == 0) x -= WholeTurns(x);
+    x /= s.sigma_deg[ch];
+  }
+  return r;
+}
+
+// The lag-1 autocorrelation of `fit`'s weighted residuals pooled over its
+// segments and channels (each series about its own mean).
+double PooledLag1(const FitResult& fit) {
+  double num = 0.0, den = 0.0;
+  for (const SegmentFit& s : fit.segments) {
+    for (int ch = 0; ch < 3; ++ch) {
+      const std::vector<double> r = WeightedResidual(s, ch);
+      if (r.empty()) continue;
+      const double mean = std::accumulate(r.begin(), r.end(), 0.0) / r.size();
+      for (size_t i = 0; i < r.size(); ++i) {
+        den += (r[i] - mean) * (r[i] - mean);
+        if (i > 0) num += (r[i] - mean) * (r[i - 1] - mean);
+      }
+    }
+  }
+  return den > 0.0 ? num / den : 0.0;
+}
+
+// The sum of squares of `fit`'s weighted residuals whitened as AR(1)
+// errors of lag-1 autocorrelation `rho` (the first of each series as it
+// is): the quadratic form of their inverse covariance.
+double WhitenedSum(const FitResult& fit, double rho) {
+  double sum = 0.0;
+  for (const SegmentFit& s : fit.segments) {
+    for (int ch = 0; ch < 3; ++ch) {
+      const std::vector<double> r = WeightedResidual(s, ch);
+      for (size_t i = 0; i < r.size(); ++i) {
+        const double e = i == 0 ? r[i] : r[i] - rho * r[i - 1];
+        sum += i == 0 ? e * e : e * e / (1.0 - rho * rho);
+      }
+    }
+  }
+  return sum;
+}
+
+}  // namespace
+
+std::string RestsOnSlowResiduals(const FitResult& before,
+                                 const FitResult& after,
+                                 double bic_drop,
+                                 double min_bic_drop) {
+  CHECK_EQ(before.segments.size(), after.segments.size());
+  const double rho = PooledLag1(after);
+  if (!(rho > 0.0) || !(rho < 1.0)) return "";
+  // BIC's n ln(RSS) (Bic): the drop's white part out, its whitened in.
+  const double n = 3.0 * after.points;
+  const double white =
+      n * std::log(WhitenedSum(before, 0.0) / WhitenedSum(after, 0.0));
+  const double colored =
+      n * std::log(WhitenedSum(before, rho) / WhitenedSum(after, rho));
+  const double whitened = bic_drop - (white - colored);
+  if (!std::isfinite(whitened)) return "";
+  if (whitened >= min_bic_drop) return "";
+  return "its BIC drop (" + FormatNumber("%.3g", bic_drop) +
+         ") rests on residuals that are not white: weighed as errors with "
+         "the lag-1 autocorrelation it leaves (" +
+         FormatNumber("%.2f", rho) + "), the record would lower BIC by " +
+         FormatNumber("%.3g", whitened);
+}
+
 std::string RestsOnOneReading(const FitResult& before,
                               const FitResult& after,
                               double bic_drop,

@@ -4997,6 +4997,25 @@ TEST(Diagnose, SigmaAutoHoldsTheNoiseAgainAboveALevelHeldLowBesideAnEffect) {
   ExpectFinalCovers(d, {{"Cm_alpha", -0.3566}, {"Cm_q", -9.093}}, text);
 }
 
+// An effect whose BIC drop rests on reading errors that are not white is
+// not added (RestsOnSlowResiduals): weighed as the AR(1) errors the model
+// with it leaves, the record must still favor it by min_bic_drop. On draw
+// 172's 3.6-s run with no effect and correlated reading errors
+// (tests/data/short_correlated_errors_draw172.yaml: an AR(1) error of lag-1
+// autocorrelation 0.6 beside white noise) the levels were held near the
+// errors' 0.014 deg (0.0129-0.0152), and a tunnel damping lowered BIC by
+// 14.1 (in roll and yaw), predicted the held-out runs better (9.9) and was
+// named, its terms 0.93 +- 8.8 and 2.8 +- 8.8 on Eq. 43's ridge; it left
+// a pooled lag-1 autocorrelation of 0.16, and weighed so its drop is 8.5.
+TEST(Diagnose, AnEffectWhoseDropRestsOnCorrelatedErrorsIsNotAdded) {
+  const Diagnosis d = DiagnoseConfig("short_correlated_errors_draw172.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_NE(d.verdict, Verdict::kExplained) << text;
+  EXPECT_TRUE(ListedWith(d.rejected, "tunnel_damping", "not white")) << text;
+  ExpectFinalCovers(d, {{"Cm_alpha", -0.365}, {"Cm_q", -7.79}}, text);
+}
+
 // sigma: auto holds a channel whose readings lie on a grid at least at
 // the rounding's own level, the step over sqrt(12) (RoundingLevelDeg): on
 // draw 146's 4-s run with no effect and its roll read in 2-deg counts at

@@ -93,7 +93,13 @@
 //     lowering BIC by less than `min_bic_drop` without it, refuses the
 //     effect (a lag filter starting at rest left the first pitch reading
 //     12 robust sigmas off; a nonlinear damping bent the motion there and
-//     lowered BIC by 19.8, every other reading fitting worse);
+//     lowered BIC by 19.8, every other reading fitting worse), nor by
+//     readings in counts at their rounding, nor, where the model with it
+//     reaches the noise level, by reading errors that are not white: its
+//     drop weighed again with the residuals whitened as the AR(1) errors
+//     that model leaves (their pooled lag-1 autocorrelation, when
+//     positive) must still reach `min_bic_drop` (correlated errors hold
+//     more power at the motion's low frequencies than their level says);
 //     Effects that only together explain the record may each drag alone
 //     (each moves the coefficients that the others biased): when a
 //     contender is refused for its drag and none with a lower BIC earned
