@@ -491,27 +491,29 @@ std::string Drags(const FitResult& before,
 
 namespace {
 
+// Channel `ch` of segment `s`: its residuals over the noise (roll's
+// within a turn).
+std::vector<double> WeightedResidual(const SegmentFit& s, int ch) {
+  std::vector<double> r = ChannelResidual(s, ch);
+  for (double& x : r) {
+    if (ch == 0) x -= WholeTurns(x);
+    x /= s.sigma_deg[ch];
+  }
+  return r;
+}
+
 // What each reading of channel `ch` of segment `s` loses in its weighted
-// square residual from `before` to `after`; roll's residuals within a turn.
+// square residual from `before` to `after`.
 std::vector<double> ReadingDrops(const FitResult& before,
                                  const FitResult& after,
                                  size_t s,
                                  int ch) {
-  const SegmentFit& b = before.segments[s];
-  const SegmentFit& a = after.segments[s];
-  const std::vector<double> rb = ChannelResidual(b, ch);
-  const std::vector<double> ra = ChannelResidual(a, ch);
+  const std::vector<double> rb = WeightedResidual(before.segments[s], ch);
+  const std::vector<double> ra = WeightedResidual(after.segments[s], ch);
   CHECK_EQ(rb.size(), ra.size());
   std::vector<double> drops(rb.size());
-  for (size_t i = 0; i < rb.size(); ++i) {
-    double x = rb[i], y = ra[i];
-    if (ch == 0) {
-      x -= WholeTurns(x);
-      y -= WholeTurns(y);
-    }
-    drops[i] = (x / b.sigma_deg[ch]) * (x / b.sigma_deg[ch]) -
-               (y / a.sigma_deg[ch]) * (y / a.sigma_deg[ch]);
-  }
+  for (size_t i = 0; i < rb.size(); ++i)
+    drops[i] = rb[i] * rb[i] - ra[i] * ra[i];
   return drops;
 }
 
@@ -555,17 +557,6 @@ std::string RestsOnRoundedReadings(const FitResult& before,
 }
 
 namespace {
-
-// Channel `ch` of segment `s` of `fit`: its residuals over the noise (roll's
-// within a turn).
-std::vector<double> WeightedResidual(const SegmentFit& s, int ch) {
-  std::vector<double> r = ChannelResidual(s, ch);
-  for (double& x : r) {
-    if (ch == 0) x -= WholeTurns(x);
-    x /= s.sigma_deg[ch];
-  }
-  return r;
-}
 
 // The lag-1 autocorrelation of `fit`'s weighted residuals pooled over its
 // segments and channels (each series about its own mean).
