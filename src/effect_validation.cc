@@ -512,8 +512,9 @@ std::vector<double> ReadingDrops(const FitResult& before,
   const std::vector<double> ra = WeightedResidual(after.segments[s], ch);
   CHECK_EQ(rb.size(), ra.size());
   std::vector<double> drops(rb.size());
-  for (size_t i = 0; i < rb.size(); ++i)
+  for (size_t i = 0; i < rb.size(); ++i) {
     drops[i] = rb[i] * rb[i] - ra[i] * ra[i];
+  }
   return drops;
 }
 
