@@ -667,6 +667,15 @@ void ConfigReader::CheckPhysics(const YAML::Node& root, const Case& c) const {
          "parameters.bearing_angle",
          "must be > 0 (deg), got " + ShortestNumber(angle.value));
   }
+  // The signed square's line is taken over +-cal_range (parameters.h):
+  // a negative range has no meaning, and diagnose would replace it.
+  const ParameterSetting& range = c.parameters[Layout(c.model).cal_range];
+  if (range.value < 0.0) {
+    Fail(root["parameters"],
+         "parameters.cal_range",
+         "must be >= 0 (deg; 0 takes no line), got " +
+             ShortestNumber(range.value));
+  }
   const int izx = Layout(c.model).product_of_inertia;
   if (izx >= 0) {
     const double v = c.parameters[izx].value;

@@ -242,6 +242,10 @@ INSTANTIATE_TEST_SUITE_P(
                 "Cl_p: {free: false}",
                 "a frozen parameter needs a value"},
         BadCase{"Cl_p: -0.0081", "spare16: 1.0", "spare slot"},
+        BadCase{"Cl_p: -0.0081",
+                "cal_range: -8",
+                "parameters.cal_range: must be >= 0 (deg; 0 takes no line), "
+                "got -8"},
         BadCase{"initial_conditions: from_data",
                 "initial_conditions: guess",
                 "initial_conditions: expected 'from_data'"},
