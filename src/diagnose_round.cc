@@ -284,9 +284,14 @@ void Judge(const FitResult& current,
     why = RestsOnRoundedReadings(
         current, c->fit, c->record.bic_drop, options.min_bic_drop);
   }
-  if (why.empty() && CheckResiduals(c->fit, options).at_noise_level) {
-    why = RestsOnSlowResiduals(
+  if (why.empty()) {
+    // Read only where the model with it reaches the noise (the residual
+    // check is the dearer test: asked only of a drop that would fall).
+    std::string slow = RestsOnSlowResiduals(
         current, c->fit, c->record.bic_drop, options.min_bic_drop);
+    if (!slow.empty() && CheckResiduals(c->fit, options).at_noise_level) {
+      why = std::move(slow);
+    }
   }
   if (why.empty()) {
     c->unpredicted =
