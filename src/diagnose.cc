@@ -1103,33 +1103,28 @@ void HoldAgainAt(
   held->sigma[ch] = level;
 }
 
-// Whether the search `d` found the record at the noise level with nothing
-// added, its residuals perhaps dependent (Explains): a level held low hides
-// what depends on it (a cube of the pitch reading in a yaw level held low).
-bool AtTheNoiseWithNothing(const Diagnosis& d) {
-  return d.steps.empty() && d.ambiguous.empty() &&
-         d.outside_catalog.effect.empty() && d.final.at_noise_level;
-}
-
-// Whether the search `d` found the record at the noise level with effects
-// named or tied (explained or ambiguous): a level held low there weighs
-// the channel's fall past what its errors warrant, and the effects' BIC
-// with it. On draw 162's 3-s run with no effect and reading errors that
-// are not white (an AR(1) error of lag-1 autocorrelation 0.6 beside white
-// noise, 0.014 deg in all; the model-free level reads their fast part)
-// yaw was held at 0.0079 deg and every fit left it above 0.0118, white; a
-// tunnel damping whose BIC drop of 21.7 lay in roll and yaw was named.
-bool AtTheNoiseWithEffects(const Diagnosis& d) {
-  return (!d.steps.empty() || !d.ambiguous.empty()) &&
-         d.outside_catalog.effect.empty() && d.final.at_noise_level;
+// Whether the search `d` found the record at the noise level, no model
+// outside the catalog standing for it. With nothing added, its residuals
+// perhaps dependent (Explains): a level held low hides what depends on it
+// (a cube of the pitch reading in a yaw level held low). With effects named
+// or tied (explained or ambiguous), since the 84th session: a level held
+// low there weighs the channel's fall past what its errors warrant, and the
+// effects' BIC with it. On draw 162's 3-s run with no effect and reading
+// errors that are not white (an AR(1) error of lag-1 autocorrelation 0.6
+// beside white noise, 0.014 deg in all; the model-free level reads their
+// fast part) yaw was held at 0.0079 deg and every fit left it above 0.0118,
+// white; a tunnel damping whose BIC drop of 21.7 lay in roll and yaw was
+// named.
+bool AtTheNoiseInTheCatalog(const Diagnosis& d) {
+  return d.outside_catalog.effect.empty() && d.final.at_noise_level;
 }
 
 // Whether some fit of the search `d` (held at held->sigma) left an auto
 // channel's residual (LeastResidual; where `d` leaves the record
 // unexplained, the effects it found fitted together too, FittedTogether)
 // below the held level by kHeldTooHigh or more, or, where `d` found the record
-// at the noise level (with nothing added, or with effects named,
-// AtTheNoiseWithEffects), every fit left it above by kHeldTooLow or more, white
+// at the noise level (with or without effects named, AtTheNoiseInTheCatalog),
+// every fit left it above by kHeldTooLow or more, white
 // (its lag-1 autocorrelation within what noise reaches); if so, held->sigma
 // holds that channel at the least level. Too high: the model-free level takes
 // structure near the Nyquist frequency for noise: a calibration error's cube
@@ -1147,7 +1142,7 @@ bool AtTheNoiseWithEffects(const Diagnosis& d) {
 // and the calibration's score, 14.5 at 2 terms, missed the 10 of BIC it
 // needed: `noise_level`, Cm_alpha 10.8 of its errors off. A colored error's
 // slow part escapes the differences too, and a level held under it puts a
-// false effect past the BIC margin (AtTheNoiseWithEffects). Only at the noise
+// false effect past the BIC margin (AtTheNoiseInTheCatalog). Only at the noise
 // level: a channel a missed effect holds above its level is the record's
 // structure, and a level raised to it would hide it; or where the search
 // leaves the record unexplained, its partial steps whiten it just past the
@@ -1171,9 +1166,8 @@ bool HeldAgain(const Case& c,
     }
     least = std::max(least, RoundingLevelDeg(*at, ch));
     const bool too_high = least * kHeldTooHigh <= level;
-    const bool too_low =
-        (AtTheNoiseWithNothing(d) || AtTheNoiseWithEffects(d)) &&
-        ShowsHeldTooLow(*at, ch, least, level, options);
+    const bool too_low = AtTheNoiseInTheCatalog(d) &&
+                         ShowsHeldTooLow(*at, ch, least, level, options);
     if (too_high || too_low) {
       HoldAgainAt(c, ch, least, "", held);
       again = true;
