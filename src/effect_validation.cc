@@ -577,21 +577,25 @@ double PooledLag1(const FitResult& fit) {
   return den > 0.0 ? num / den : 0.0;
 }
 
-// The sum of squares of `fit`'s weighted residuals whitened as AR(1)
-// errors of lag-1 autocorrelation `rho` (the first of each series as it
-// is): the quadratic form of their inverse covariance.
-double WhitenedSum(const FitResult& fit, double rho) {
-  double sum = 0.0;
+// The sums of squares of `fit`'s weighted residuals as they are (*white)
+// and whitened as AR(1) errors of lag-1 autocorrelation `rho` (*colored; the
+// first of each series as it is): the quadratic forms of the two noise
+// models' inverse covariances.
+void ResidualSums(const FitResult& fit,
+                  double rho,
+                  double* white,
+                  double* colored) {
+  *white = *colored = 0.0;
   for (const SegmentFit& s : fit.segments) {
     for (int ch = 0; ch < 3; ++ch) {
       const std::vector<double> r = WeightedResidual(s, ch);
       for (size_t i = 0; i < r.size(); ++i) {
+        *white += r[i] * r[i];
         const double e = i == 0 ? r[i] : r[i] - rho * r[i - 1];
-        sum += i == 0 ? e * e : e * e / (1.0 - rho * rho);
+        *colored += i == 0 ? e * e : e * e / (1.0 - rho * rho);
       }
     }
   }
-  return sum;
 }
 
 }  // namespace
@@ -605,10 +609,11 @@ std::string RestsOnSlowResiduals(const FitResult& before,
   if (!(rho > 0.0) || !(rho < 1.0)) return "";
   // BIC's n ln(RSS) (Bic): the drop's white part out, its whitened in.
   const double n = 3.0 * after.points;
-  const double white =
-      n * std::log(WhitenedSum(before, 0.0) / WhitenedSum(after, 0.0));
-  const double colored =
-      n * std::log(WhitenedSum(before, rho) / WhitenedSum(after, rho));
+  double white_before, colored_before, white_after, colored_after;
+  ResidualSums(before, rho, &white_before, &colored_before);
+  ResidualSums(after, rho, &white_after, &colored_after);
+  const double white = n * std::log(white_before / white_after);
+  const double colored = n * std::log(colored_before / colored_after);
   const double whitened = bic_drop - (white - colored);
   if (!std::isfinite(whitened)) return "";
   if (whitened >= min_bic_drop) return "";
