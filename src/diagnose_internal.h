@@ -206,6 +206,19 @@ std::string RestsOnSlowResiduals(const FitResult& before,
                                  double bic_drop,
                                  double min_bic_drop);
 
+// Why the BIC drop `bic_drop` from `before` to `after` rests on the
+// reading errors rather than the motion: on one reading
+// (RestsOnOneReading), on readings at their rounding
+// (RestsOnRoundedReadings), or, where `at_noise_level()` says `after`
+// reaches the noise, on errors that are not white (RestsOnSlowResiduals);
+// or empty. What a round asks of one effect (Judge) and of a joint set
+// (EarnedTogether) alike.
+std::string RestsOnReadingErrors(const FitResult& before,
+                                 const FitResult& after,
+                                 double bic_drop,
+                                 double min_bic_drop,
+                                 const std::function<bool()>& at_noise_level);
+
 // Each segment cut into `blocks` runs of samples, alternately kept for
 // training and held out: the held-out samples span the record's amplitudes
 // and spin rates, and the motion is integrated through them. Half 0 holds

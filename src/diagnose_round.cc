@@ -277,21 +277,10 @@ void Judge(const FitResult& current,
     c->dragged = !why.empty();
   }
   if (why.empty()) {
-    why = RestsOnOneReading(
-        current, c->fit, c->record.bic_drop, options.min_bic_drop);
-  }
-  if (why.empty()) {
-    why = RestsOnRoundedReadings(
-        current, c->fit, c->record.bic_drop, options.min_bic_drop);
-  }
-  if (why.empty()) {
-    // Read only where the model with it reaches the noise (the residual
-    // check is the dearer test: asked only of a drop that would fall).
-    std::string slow = RestsOnSlowResiduals(
-        current, c->fit, c->record.bic_drop, options.min_bic_drop);
-    if (!slow.empty() && CheckResiduals(c->fit, options).at_noise_level) {
-      why = std::move(slow);
-    }
+    why = RestsOnReadingErrors(
+        current, c->fit, c->record.bic_drop, options.min_bic_drop, [&] {
+          return CheckResiduals(c->fit, options).at_noise_level;
+        });
   }
   if (why.empty()) {
     c->unpredicted =

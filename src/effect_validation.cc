@@ -654,6 +654,24 @@ std::string RestsOnOneReading(const FitResult& before,
          FormatNumber("%.3g", bic_drop - top);
 }
 
+std::string RestsOnReadingErrors(const FitResult& before,
+                                 const FitResult& after,
+                                 double bic_drop,
+                                 double min_bic_drop,
+                                 const std::function<bool()>& at_noise_level) {
+  std::string why = RestsOnOneReading(before, after, bic_drop, min_bic_drop);
+  if (why.empty()) {
+    why = RestsOnRoundedReadings(before, after, bic_drop, min_bic_drop);
+  }
+  if (why.empty()) {
+    // The residual check is the dearer test: asked only of a drop that
+    // would fall.
+    why = RestsOnSlowResiduals(before, after, bic_drop, min_bic_drop);
+    if (!why.empty() && !at_noise_level()) why.clear();
+  }
+  return why;
+}
+
 HeldOut HoldOut(const std::vector<TimeHistory>& data, int blocks, int half) {
   CHECK(half == 0 || half == 1) << half;
   HeldOut h;
