@@ -438,11 +438,14 @@ bool WithEffects(const Case& at,
   return true;
 }
 
-// Whether the set `members` fitted as `fit` (model `c`) earns its place
-// together: residuals at the noise level, every effect in the model (its
-// members and those `added` before) within its bounds, and the held-out
+// Whether the set `members` fitted as `fit` (model `c`) from `current`
+// earns its place together: residuals at the noise level, every effect in
+// the model (its members and those `added` before) within its bounds, a
+// BIC drop that rests on the motion, not the reading errors
+// (RestsOnReadingErrors, as Judge asks of one effect), and the held-out
 // part predicted better (gain per parameter as for one effect) into *gain.
-bool EarnedTogether(const Case& c,
+bool EarnedTogether(const FitResult& current,
+                    const Case& c,
                     const FitResult& fit,
                     const std::vector<int>& members,
                     const std::vector<Contender>& contenders,
@@ -465,6 +468,18 @@ bool EarnedTogether(const Case& c,
     }
   }
   if (!ImplausibleAmongAsJudged(added, c, fit, options).empty()) {
+    return false;
+  }
+  // Asked only of a drop one effect would need (min_bic_drop): a set is
+  // not held to that, and below it these vetoes refuse whatever drop.
+  const double drop = Bic(current) - Bic(fit);
+  const std::string why =
+      drop < options.min_bic_drop
+          ? ""
+          : RestsOnReadingErrors(
+                current, fit, drop, options.min_bic_drop, [] { return true; });
+  if (!why.empty()) {
+    VLOG(1) << fit.name << ": a joint set refused: " << why;
     return false;
   }
   const double needed = GainNeeded(terms, options);
@@ -1351,7 +1366,8 @@ bool SetEarns(int lead,
         continue;
       }
       double gain = 0.0;
-      if (!EarnedTogether(f.models[i].c,
+      if (!EarnedTogether(fit,
+                          f.models[i].c,
                           f.fits[i],
                           sets[i],
                           contenders,
