@@ -896,7 +896,10 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options);
 // Whether a trend in time, a dependence on the pitch or yaw angle (its
 // powers 1-3) or on roll (harmonics 1-3) stands out of a residual of `fit`:
 // above a tenth of its variance and above what noise reaches with chance
-// 1e-5 (DescribeResiduals names them from 1e-3).
+// 1e-5 (DescribeResiduals names them from 1e-3), on the samples the
+// regression is worth where what it leaves is serially correlated (errors
+// correlated from one sample to the next follow slow regressors as an
+// effect would).
 bool ResidualsDepend(const FitResult& fit);
 
 // What structured residuals show, for an engineer to act on: the strongest
@@ -907,7 +910,10 @@ bool ResidualsDepend(const FitResult& fit);
 // with chance 1e-3; the readings far off the fitted motion
 // (ScreenResiduals, wild_points.h), with channel and time; and the channels
 // read in counts (ReadingStepDeg), with the RMS their rounding alone leaves
-// beside the residual's.
+// beside the residual's. A broadband residual (none of these stands out)
+// correlated from one sample to the next beyond what noise reaches (its
+// lag-1 autocorrelation pooled over the channels) is said to be what
+// reading errors that are not white or process noise leave.
 std::string DescribeResiduals(const FitResult& fit);
 
 // The noise level the diagnosis weighed the residuals by: the record's own
