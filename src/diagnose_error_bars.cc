@@ -1561,11 +1561,6 @@ std::string FindSetReplacements(const std::vector<Case>& models,
     }
   }
   for (const Effect* e : LesserRidge(*d)) untried.push_back(e);
-  if (d->not_excluded.size() + untried.size() < 2 || d->steps.empty()) {
-    return "";
-  }
-  const CompleteModel m = CompleteModels(*d, models, current).back();
-  if (!CheckResiduals(*m.fit, options).at_noise_level) return "";
   // The near twins (Diagnosis::near_twins) join only where the set without
   // them stands in for no step: fitted together, a near twin can take a
   // member out of its bounds (on the suite's first coning record with a
@@ -1599,6 +1594,11 @@ std::string FindSetReplacements(const std::vector<Case>& models,
       set.push_back(with_twins.back());
     }
   }
+  // A set has two members at least; a lesser refit of the ridge counts
+  // once (it is among those not excluded, but joins only last).
+  if (with_twins.size() + untried.size() < 2 || d->steps.empty()) return "";
+  const CompleteModel m = CompleteModels(*d, models, current).back();
+  if (!CheckResiduals(*m.fit, options).at_noise_level) return "";
   std::string outdone;
   if (SetStandsIn(m, set, data, options, d, &outdone)) return outdone;
   if (with_twins.size() > set.size() &&
