@@ -271,16 +271,23 @@ void Judge(const FitResult& current,
   // A coefficient may move far only when the new model explains the record
   // down to the noise: a missing effect's bias hides in the fit (the part
   // it absorbs leaves no residual), so no error bar of the fit without it
-  // covers the move (diagnose.h).
-  if (why.empty() && !CheckResiduals(c->fit, options).at_noise_level) {
+  // covers the move (diagnose.h). The residual check asked once, and only
+  // where needed.
+  std::optional<bool> at_noise;
+  const auto at_noise_level = [&] {
+    if (!at_noise) at_noise = CheckResiduals(c->fit, options).at_noise_level;
+    return *at_noise;
+  };
+  if (why.empty() && !at_noise_level()) {
     why = Drags(current, c->fit, k.added, options.max_drag);
     c->dragged = !why.empty();
   }
   if (why.empty()) {
-    why = RestsOnReadingErrors(
-        current, c->fit, c->record.bic_drop, options.min_bic_drop, [&] {
-          return CheckResiduals(c->fit, options).at_noise_level;
-        });
+    why = RestsOnReadingErrors(current,
+                               c->fit,
+                               c->record.bic_drop,
+                               options.min_bic_drop,
+                               at_noise_level);
   }
   if (why.empty()) {
     c->unpredicted =
