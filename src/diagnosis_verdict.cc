@@ -104,6 +104,24 @@ std::string OffsetTwinWords(const Diagnosis& d) {
   return "";
 }
 
+// The partial steps of `d`, an ambiguous answer, after its first, the
+// tie's followed effect; where steps before the tie that go with it came
+// first (WithoutPrunedBeforeTie), every one but the followed effect. On
+// draw 166's cone "with the first in the model, <the tied tunnel damping>
+// explains the rest" had come of a Magnus moment that goes with it.
+std::vector<DiagnosisStep> Beside(const Diagnosis& d) {
+  const auto followed =
+      std::find_if(d.partial.begin(), d.partial.end(), [&](const auto& s) {
+        return s.effect == d.ambiguous[0].effect;
+      });
+  if (followed == d.partial.begin() || followed == d.partial.end()) {
+    return {d.partial.begin() + 1, d.partial.end()};
+  }
+  std::vector<DiagnosisStep> beside(d.partial.begin(), followed);
+  beside.insert(beside.end(), followed + 1, d.partial.end());
+  return beside;
+}
+
 // The verdict text of an open tie (d->ambiguous): the tied effects, what
 // separates them, the later ties and what was added beside them.
 std::string AmbiguousText(const Diagnosis& d) {
@@ -145,8 +163,7 @@ std::string AmbiguousText(const Diagnosis& d) {
                                    "need one of them)") +
          StoodIn(d) +
          (d.partial.size() > 1
-              ? "; with the first in the model, " +
-                    Described({d.partial.begin() + 1, d.partial.end()}) +
+              ? "; with the first in the model, " + Described(Beside(d)) +
                     " explains the rest (not adopted either)"
               : "");
 }

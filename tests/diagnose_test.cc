@@ -5027,6 +5027,7 @@ TEST(Diagnose, AnEffectWhoseDropRestsOnCorrelatedErrorsIsNotAdded) {
 // (-29.9 +- 8.7 in the final model, a confident wrong answer); now it is
 // reported with the tied damping, not added.
 TEST(Diagnose, AStepTheTiesRivalDoesWithoutGoesWithTheTiedEffect) {
+  if (testing::PlainBuildOnly()) GTEST_SKIP() << "three effects; plain build";
   const Diagnosis d =
       DiagnoseConfig("coning_stiffness_damping_asymmetry_draw166.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
@@ -5044,6 +5045,12 @@ TEST(Diagnose, AStepTheTiesRivalDoesWithoutGoesWithTheTiedEffect) {
   ASSERT_NE(magnus, d.partial.end()) << text;
   EXPECT_NE(magnus->note.find("goes with tunnel_damping"), std::string::npos)
       << magnus->note;
+  // The verdict names it beside the tied damping (Beside), not the damping
+  // beside it.
+  EXPECT_NE(d.verdict_text.find(
+                "with the first in the model, a Magnus moment explains"),
+            std::string::npos)
+      << text;
   ExpectFinalCovers(d, {{"Cm_alpha", -0.2024}, {"Cm_q", -7.038}}, text);
 }
 
