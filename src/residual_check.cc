@@ -73,12 +73,8 @@ double HeldSpread(double spread, int points) {
 
 }  // namespace
 
-ResidualCheck CheckResiduals(const FitResult& fit,
-                             const DiagnoseOptions& options) {
-  ResidualCheck check;
-  check.probable_error = fit.probable_error;
-  check.rms_deg = fit.rms_residual_deg;
-  double lag[3] = {0, 0, 0};
+ChannelValues ResidualLag1(const FitResult& fit) {
+  ChannelValues lag;
   for (int ch = 0; ch < 3; ++ch) {
     double num = 0.0, den = 0.0;
     for (const SegmentFit& s : fit.segments) {
@@ -92,7 +88,16 @@ ResidualCheck CheckResiduals(const FitResult& fit,
     }
     lag[ch] = den > 0.0 ? num / den : 0.0;
   }
-  check.lag1 = {lag[0], lag[1], lag[2]};
+  return lag;
+}
+
+ResidualCheck CheckResiduals(const FitResult& fit,
+                             const DiagnoseOptions& options) {
+  ResidualCheck check;
+  check.probable_error = fit.probable_error;
+  check.rms_deg = fit.rms_residual_deg;
+  check.lag1 = ResidualLag1(fit);
+  const ChannelValues& lag = check.lag1;
   // Periodogram of theta + i psi residuals over the first segment.
   double spectral_limit = 1e300;
   double line_limit = 1e300;

@@ -290,42 +290,6 @@ void SegmentChannels(const SegmentFit& s,
 // samples for the regressions.
 constexpr int kLeastSamples = 16;
 
-// Each channel's lag-1 autocorrelation pooled over `fit`'s segments (each
-// series about its own mean; roll's residual within a turn), and the three
-// pooled, each channel's weighted by its samples: scale-free, as the
-// channels' noise levels differ.
-struct SerialCorrelation {
-  double channel[3] = {0.0, 0.0, 0.0};
-  double pooled = 0.0;
-  int samples = 0;  // over the three channels
-};
-
-SerialCorrelation Lag1(const FitResult& fit) {
-  SerialCorrelation c;
-  int counted[3] = {0, 0, 0};
-  for (int ch = 0; ch < 3; ++ch) {
-    double num = 0.0, den = 0.0;
-    for (const SegmentFit& s : fit.segments) {
-      std::vector<double> r = ChannelResidual(s, ch);
-      if (r.size() < 2) continue;
-      for (double& x : r) x -= ch == 0 ? WholeTurns(x) : 0.0;
-      double mean = 0.0;
-      for (double x : r) mean += x / r.size();
-      for (size_t i = 0; i < r.size(); ++i) {
-        den += (r[i] - mean) * (r[i] - mean);
-        if (i > 0) num += (r[i] - mean) * (r[i - 1] - mean);
-      }
-      counted[ch] += static_cast<int>(r.size());
-    }
-    c.channel[ch] = den > 0.0 ? num / den : 0.0;
-    c.samples += counted[ch];
-  }
-  for (int ch = 0; ch < 3; ++ch) {
-    if (c.samples > 0) c.pooled += c.channel[ch] * counted[ch] / c.samples;
-  }
-  return c;
-}
-
 // The least pooled lag-1 autocorrelation named: a tenth of each sample's
 // variance shared with the next.
 constexpr double kNamedLag1 = 0.1;
@@ -341,17 +305,23 @@ constexpr double kNamedLag1 = 0.1;
 // each under its own limit. The standard errors already count it (fit.h:
 // each channel's own autocorrelation, Morelli and Klein 1995).
 std::string CorrelatedNote(const FitResult& fit) {
-  const SerialCorrelation c = Lag1(fit);
-  if (c.samples < 3 * kLeastSamples) return "";
+  // Each channel's lag-1 as the residual check reads it; pooled over the
+  // three (scale-free: the channels' noise levels differ), each with the
+  // same samples.
+  int samples = 0;
+  for (const SegmentFit& s : fit.segments) samples += 3 * s.data.size();
+  if (samples < 3 * kLeastSamples) return "";
+  const ChannelValues lag = ResidualLag1(fit);
+  const double pooled = (lag.phi + lag.theta + lag.psi) / 3.0;
   const double limit =
-      std::max(kNamedLag1, kZ999 / std::sqrt(static_cast<double>(c.samples)));
-  if (!(c.pooled > limit)) return "";
+      std::max(kNamedLag1, kZ999 / std::sqrt(static_cast<double>(samples)));
+  if (!(pooled > limit)) return "";
   return ", yet correlated from one sample to the next (lag-1 "
          "autocorrelation " +
-         FormatNumber("%.2f", c.pooled) + " over the channels: phi " +
-         FormatNumber("%.2f", c.channel[0]) + " theta " +
-         FormatNumber("%.2f", c.channel[1]) + " psi " +
-         FormatNumber("%.2f", c.channel[2]) + "; noise stays under " +
+         FormatNumber("%.2f", pooled) + " over the channels: phi " +
+         FormatNumber("%.2f", lag.phi) + " theta " +
+         FormatNumber("%.2f", lag.theta) + " psi " +
+         FormatNumber("%.2f", lag.psi) + "; noise stays under " +
          FormatNumber("%.2f", limit) +
          "): slow structure of no shape named here, as reading errors "
          "that are not white (a filtered or wandering reading), process "

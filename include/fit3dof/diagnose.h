@@ -871,6 +871,11 @@ struct Diagnosis {
   }
 };
 
+// Each channel's residual lag-1 autocorrelation in `fit`, pooled over its
+// segments (each series about its own mean): ResidualCheck::lag1, and
+// DescribeResiduals' serial correlation.
+ChannelValues ResidualLag1(const FitResult& fit);
+
 ResidualCheck CheckResiduals(const FitResult& fit,
                              const DiagnoseOptions& options);
 
