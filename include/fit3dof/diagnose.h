@@ -917,8 +917,9 @@ bool ResidualsDepend(const FitResult& fit);
 // read in counts (ReadingStepDeg), with the RMS their rounding alone leaves
 // beside the residual's. A broadband residual (none of these stands out)
 // correlated from one sample to the next beyond what noise reaches (its
-// lag-1 autocorrelation pooled over the channels) is said to be what
-// reading errors that are not white or process noise leave.
+// lag-1 autocorrelation pooled over the channels, ResidualLag1) is said
+// to be so, with what leaves one: reading errors that are not white,
+// process noise, or an effect too weak on the record to show its shape.
 std::string DescribeResiduals(const FitResult& fit);
 
 // The noise level the diagnosis weighed the residuals by: the record's own
