@@ -5282,6 +5282,21 @@ TEST(Diagnose, SigmaAutoReadsAProbesLevelNoHigherThanTheMiddleChannel) {
   EXPECT_NE(d.verdict, Verdict::kExplained) << text;
 }
 
+// A line of one channel between two bins is structure
+// (MeanBesideLine, residual_check.cc): on draw 165's 3.4-s cone with a
+// tunnel buzz at 2.3 times the pitch frequency, outside the catalog
+// (tests/data/coning_tunnel_buzz_draw165.yaml), pitch was held at
+// 0.0171 deg; the nominal fit left 0.034 there, and the check, its line
+// measured against a mean that was mostly its own, called it white. Held
+// again at 0.0357 the buzz passed for noise: `noise_level`.
+TEST(Diagnose, ABuzzOfOneChannelIsNotTheNoiseLevel) {
+  const Diagnosis d = DiagnoseConfig("coning_tunnel_buzz_draw165.yaml");
+  const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
+  EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
+  EXPECT_TRUE(d.steps.empty()) << text;
+  EXPECT_LT(DiagnosedNoise(d, {}).theta, 0.02) << text;
+}
+
 // sigma: auto holds a channel again lower where the effects a search
 // left unexplained, fitted together, show it held too high (HeldAgain,
 // FittedTogether): on a 3-s run with a bearing moment, a cubic calibration
