@@ -75,7 +75,7 @@ double LocalLine(const std::vector<double>& power,
   // bins is no measure of the noise: on a 47-sample coning run the true
   // model's own residual had a peak 5.3 times the mean of all bins, 28
   // times that of neighbours the fit had emptied. The neighbourhood's mean
-  // is taken as at least half the mean of all bins.
+  // is taken as at least half the mean of the bins beside the line.
   const double local = std::max(bins > 0 ? sum / bins : 0.0, 0.5 * mean);
   *ratio = local > 0.0 ? power[peak_k] / local : 0.0;
   // An exponential ordinate over the mean of `bins` others exceeds x with
