@@ -163,7 +163,7 @@ TEST(CheckResiduals, ANeighbourhoodTheFitEmptiedRaisesNoLine) {
 
 // A 38-sample record of white noise in theta and psi plus a buzz of the
 // pitch reading alone, `amplitude` (deg) at `cycles` cycles over the
-// record (between bins: 4.3 samples a cycle).
+// record (8.5: halfway between two bins, 4.5 samples a cycle; 9: on one).
 FitResult Buzz(double amplitude, double cycles, int seed) {
   const int n = 38;
   std::mt19937 rng(seed);
