@@ -31,6 +31,88 @@ std::vector<double> CentredPower(const std::vector<T>& x, int bins) {
 
 }  // namespace
 
+// The mean ordinate of a periodogram `power` (k = 1 .. n - 1; k = 0, the
+// mean, unused) but the line's own at `peak_k`: that bin, the two next to
+// it, and the same three about its mirror, n - peak_k (a line in one
+// channel of theta + i psi shows at both +f and -f). A line's own power is
+// no measure of the noise beside it, and the floor LocalLine sets at half
+// the mean had been mostly the line's: on 38 samples a buzz of the pitch
+// reading 4.8 times the noise, halfway between two bins, passed for noise
+// in 1996 of 2000 records (now in about half; a line on a bin is found in
+// every one, and noise alone as rarely as before).
+double MeanBesideLine(const std::vector<double>& power, int peak_k) {
+  const int n = static_cast<int>(power.size());
+  double sum = 0.0;
+  int bins = 0;
+  for (int k = 1; k < n; ++k) {
+    const int from_peak = std::abs(k - peak_k);
+    const int from_mirror = std::abs(k - (n - peak_k));
+    if (std::min({from_peak, n - from_peak, from_mirror, n - from_mirror}) <=
+        1) {
+      continue;
+    }
+    sum += power[k];
+    ++bins;
+  }
+  return bins > 0 ? sum / bins : 0.0;
+}
+
+// The neighbourhood is up to n / 16 bins on each side, at least 4, the two
+// next to the line left out (a line between two bins spreads into them).
+// The global test (peak over the mean of all bins) must let colored noise
+// pass, whose spectrum rises threefold toward low frequencies at a lag-1
+// autocorrelation of 0.5; a line standing out of its own neighbourhood is
+// structure whatever the color around it (Coulomb friction left a line 20
+// times its surroundings that a Magnus moment and a nonlinear damping did
+// not remove, below the global limit of 4 ln N = 27 on 800 samples).
+double LocalLine(const std::vector<double>& power,
+                 int peak_k,
+                 double mean,
+                 double* ratio) {
+  const int n = static_cast<int>(power.size());
+  const int half = std::max(4, n / 16);
+  double sum = 0.0;
+  int bins = 0;
+  for (int d = 2; d <= half + 1; ++d) {
+    for (int k : {peak_k - d, peak_k + d}) {
+      const int wrapped = ((k % n) + n) % n;  // two-sided: k < 0 is -f
+      if (wrapped == 0) continue;
+      sum += power[wrapped];
+      ++bins;
+    }
+  }
+  // The fit takes the noise out of the bins its parameters reach (the
+  // modes' frequencies, the lowest ones), and a neighbourhood of such
+  // bins is no measure of the noise: on a 47-sample coning run the true
+  // model's own residual had a peak 5.3 times the mean of all bins, 28
+  // times that of neighbours the fit had emptied. The neighbourhood's mean
+  // is taken as at least half the mean of the bins beside the line.
+  const double local = std::max(bins > 0 ? sum / bins : 0.0, 0.5 * mean);
+  *ratio = local > 0.0 ? power[peak_k] / local : 0.0;
+  // An exponential ordinate over the mean of `bins` others exceeds x with
+  // chance (1 + x / bins)^-bins; over n bins, 1e-3 in all.
+  return bins * (std::pow(n / 1e-3, 1.0 / bins) - 1.0);
+}
+
+bool LocalSpectralLine(const std::vector<double>& x,
+                       double dt,
+                       SpectralLine* line) {
+  const int n = static_cast<int>(x.size());
+  if (n < 16 || !(dt > 0.0)) return false;
+  const std::vector<double> power =
+      Periodogram(std::vector<std::complex<double>>(x.begin(), x.end()));
+  int peak_k = 1;  // a real series' periodogram is even: k = 1 .. n / 2
+  for (int k = 2; k <= n / 2; ++k) {
+    if (power[k] > power[peak_k]) peak_k = k;
+  }
+  double ratio = 0.0;
+  const double limit =
+      LocalLine(power, peak_k, MeanBesideLine(power, peak_k), &ratio);
+  if (!(ratio > limit)) return false;
+  *line = {peak_k / (n * dt), ratio};
+  return true;
+}
+
 std::vector<double> Periodogram(const std::vector<double>& x) {
   return CentredPower(x, static_cast<int>(x.size()) / 2 + 1);
 }

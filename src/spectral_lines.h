@@ -17,7 +17,8 @@ namespace fit3dof {
 
 struct SpectralLine {
   double frequency_hz = 0.0;
-  double power_ratio = 0.0;  // over the mean power
+  double power_ratio = 0.0;  // over the mean power (LocalSpectralLine: its
+                             // neighbourhood's)
 };
 
 // The periodogram of x: |FFT(x - mean)|^2 at bins 0..N/2 (bin k is
@@ -36,6 +37,34 @@ std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
                                         double dt,
                                         double factor = 4.0,
                                         int most = 3);
+
+// The test of one line against its own neighbourhood, which colored noise
+// (a spectrum rising smoothly toward low frequencies) passes where the
+// global test against the mean of all bins may not. `power` is a
+// two-sided periodogram (k = 1 .. n - 1; k = 0, the mean, unused), the
+// line's largest ordinate at `peak_k`:
+//
+// MeanBesideLine is the mean ordinate but the line's own (that bin, the two
+// next to it, and the same three about its mirror n - peak_k, where a line
+// of a real series shows too).
+double MeanBesideLine(const std::vector<double>& power, int peak_k);
+
+// LocalLine puts the ordinate at `peak_k` over the mean of its
+// neighbours (the two next to it left out; at least half `mean`, which is
+// MeanBesideLine's) in *ratio and returns the ratio that noise with a
+// smooth spectrum exceeds with chance 1e-3 over the n bins.
+double LocalLine(const std::vector<double>& power,
+                 int peak_k,
+                 double mean,
+                 double* ratio);
+
+// The largest ordinate of the real series `x` (sampled every `dt` seconds,
+// at least 16 samples) in *line when it stands out of its own
+// neighbourhood (LocalLine on x's two-sided periodogram, the residual
+// check's test); false when it does not.
+bool LocalSpectralLine(const std::vector<double>& x,
+                       double dt,
+                       SpectralLine* line);
 
 }  // namespace fit3dof
 

@@ -5288,13 +5288,19 @@ TEST(Diagnose, SigmaAutoReadsAProbesLevelNoHigherThanTheMiddleChannel) {
 // (tests/data/coning_tunnel_buzz_draw165.yaml), pitch was held at
 // 0.0171 deg; the nominal fit left 0.034 there, and the check, its line
 // measured against a mean that was mostly its own, called it white. Held
-// again at 0.0357 the buzz passed for noise: `noise_level`.
+// again at 0.0357 the buzz passed for noise: `noise_level`. The
+// description measures its lines so too (LocalSpectralLine): it had said
+// "no line ... stands out" of the buzz at 3.05 Hz (3.15 Hz on the record's
+// 0.29-Hz bins).
 TEST(Diagnose, ABuzzOfOneChannelIsNotTheNoiseLevel) {
   const Diagnosis d = DiagnoseConfig("coning_tunnel_buzz_draw165.yaml");
   const std::string text = FormatDiagnosis(d, DiagnosedNoise(d, {}));
   EXPECT_EQ(d.verdict, Verdict::kNotExplained) << text;
   EXPECT_TRUE(d.steps.empty()) << text;
   EXPECT_LT(DiagnosedNoise(d, {}).theta, 0.02) << text;
+  EXPECT_NE(d.residual_description.find("pitch: a line at 3.15 Hz"),
+            std::string::npos)
+      << text;
 }
 
 // sigma: auto holds a channel again lower where the effects a search
