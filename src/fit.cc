@@ -322,7 +322,7 @@ void FitSegments(const Case& c,
       const std::vector<double> residual = ChannelResidual(fit, ch);
       const double dt =
           (p.data.t.back() - p.data.t.front()) / std::max(1, p.data.size() - 1);
-      for (const SpectralLine& line : SpectralLines(residual, dt)) {
+      for (const SpectralLine& line : ResidualLines(residual, dt)) {
         stats.spectral_lines_hz.push_back(line.frequency_hz);
       }
     }

@@ -192,27 +192,6 @@ Dependence Dependences(const Channel& c,
   return d;
 }
 
-// The lines of a channel's residual `r`: those above the mean of all bins
-// (SpectralLines) and the largest one standing out of its own
-// neighbourhood (LocalSpectralLine, the residual check's test). A strong
-// line of a short record is much of the mean it is measured against: draw
-// 165's tunnel buzz of the pitch reading (38 samples) was called structure
-// by the residual check and described as "no line ... stands out".
-std::vector<SpectralLine> ResidualLines(const std::vector<double>& r,
-                                        double dt) {
-  std::vector<SpectralLine> lines = SpectralLines(r, dt);
-  SpectralLine local;
-  if (!LocalSpectralLine(r, dt, &local)) return lines;
-  for (const SpectralLine& line : lines) {
-    if (std::abs(line.frequency_hz - local.frequency_hz) <=
-        kNear * local.frequency_hz) {
-      return lines;
-    }
-  }
-  lines.push_back(local);
-  return lines;
-}
-
 std::string DescribeChannel(const Channel& c,
                             const Eigen::VectorXd& t,
                             const Eigen::VectorXd& roll,

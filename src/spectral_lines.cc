@@ -151,4 +151,19 @@ std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
   return lines;
 }
 
+std::vector<SpectralLine> ResidualLines(const std::vector<double>& x,
+                                        double dt) {
+  std::vector<SpectralLine> lines = SpectralLines(x, dt);
+  SpectralLine local;
+  if (!LocalSpectralLine(x, dt, &local)) return lines;
+  const double bin = 1.0 / (x.size() * dt);
+  for (const SpectralLine& line : lines) {
+    if (std::abs(line.frequency_hz - local.frequency_hz) < 0.5 * bin) {
+      return lines;
+    }
+  }
+  lines.push_back(local);
+  return lines;
+}
+
 }  // namespace fit3dof

@@ -617,11 +617,14 @@ TEST(Fit, SaysWhenItCannotReachTheNoiseLevel) {
 }
 
 // Structured residuals are named with the test that found them: the
-// Ljung-Box statistic against its limit, lag 1 and the strongest lag. A
-// pitch calibration error (theta read as theta + c theta^3) on the 3-s run
-// leaves a residual at twice the pitch frequency, which at 10 points per
-// cycle correlates at lags 2 and 4 far more than at lag 1; quoting lag 1
+// Ljung-Box statistic against its limit, lag 1 and the strongest lag, and
+// the line. A pitch calibration error (theta read as theta + c theta^3) on
+// the 3-s run leaves a residual at three times the pitch frequency (the
+// cube's third harmonic; its first the fit takes as a gain), 3.3 samples a
+// cycle, which correlates at lag 5 far more than at lag 1; quoting lag 1
 // alone had read "not white noise (lag-1 autocorrelation 0.00 in theta)".
+// The line, 4.63 Hz on the record's 0.33-Hz bins (3 x 1.55), stands out of
+// its neighbourhood, not of the mean of all bins (ResidualLines).
 TEST(Fit, NamesTheTestThatFoundTheResidualsStructured) {
   const std::string dir = testing::ScratchDirectory("fit_structured_words");
   Case c = testing::ShortRun(dir, "  theta_cal3: -0.06\n", 3);
@@ -645,7 +648,8 @@ TEST(Fit, NamesTheTestThatFoundTheResidualsStructured) {
   std::snprintf(words,
                 sizeof(words),
                 "theta (Ljung-Box Q %.3g over 20 lags, its 1%% limit %.3g; "
-                "autocorrelation %.2f at lag 1, %.2f at lag %zu)",
+                "autocorrelation %.2f at lag 1, %.2f at lag %zu; spectral "
+                "lines at 4.63 Hz)",
                 theta.ljung_box,
                 theta.ljung_box_limit,
                 rho[0],

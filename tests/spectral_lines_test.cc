@@ -35,6 +35,8 @@ TEST(SpectralLines, FindsTheSpinAndItsHarmonic) {
   }
   const std::vector<SpectralLine> lines = SpectralLines(x, dt);
   ASSERT_GE(lines.size(), 2u);
+  // The strongest, standing out of its neighbourhood too, is not repeated.
+  EXPECT_EQ(ResidualLines(x, dt).size(), lines.size());
   const double resolution = 1.0 / (800 * dt);
   EXPECT_NEAR(lines[0].frequency_hz, spin, resolution);
   EXPECT_NEAR(lines[1].frequency_hz, 2 * spin, resolution);
@@ -87,6 +89,10 @@ TEST(LocalSpectralLine, FindsAStrongLineOfAShortRecordNotColoredNoise) {
     if (LocalSpectralLine(buzz, dt, &line)) {
       ++local;
       EXPECT_NEAR(line.frequency_hz, 8.5 / (38 * dt), 0.5 / (38 * dt));
+      // The description's and the fit report's lines carry it.
+      const std::vector<SpectralLine> lines = ResidualLines(buzz, dt);
+      ASSERT_EQ(lines.size(), 1u);
+      EXPECT_EQ(lines[0].frequency_hz, line.frequency_hz);
     }
     white += LocalSpectralLine(ShortRecord(0.0, 0.0, 0.0, seed), dt, &line);
     colored += LocalSpectralLine(ShortRecord(0.0, 0.0, 0.6, seed), dt, &line);

@@ -87,8 +87,11 @@ struct ResidualStatistics {
   double ljung_box_limit = 0.0;
   int ljung_box_lags = 0;
   bool white = true;
-  std::vector<double> spectral_lines_hz;  // strongest first (at most 3)
-  std::vector<ErrorLine> error_lines;     // strongest first (at most 6)
+  // Periodogram peaks above 4 ln N times the mean power (strongest first,
+  // at most 3), then the largest one if it stands out of its own
+  // neighbourhood only (the residual check's test).
+  std::vector<double> spectral_lines_hz;
+  std::vector<ErrorLine> error_lines;  // strongest first (at most 6)
 };
 
 struct SegmentFit {
