@@ -5283,7 +5283,7 @@ TEST(Diagnose, SigmaAutoReadsAProbesLevelNoHigherThanTheMiddleChannel) {
 }
 
 // A line of one channel between two bins is structure
-// (MeanBesideLine, residual_check.cc): on draw 165's 3.4-s cone with a
+// (MeanBesideLine, spectral_lines.cc): on draw 165's 3.4-s cone with a
 // tunnel buzz at 2.3 times the pitch frequency, outside the catalog
 // (tests/data/coning_tunnel_buzz_draw165.yaml), pitch was held at
 // 0.0171 deg; the nominal fit left 0.034 there, and the check, its line
