@@ -94,40 +94,16 @@ double LocalLine(const std::vector<double>& power,
   return bins * (std::pow(n / 1e-3, 1.0 / bins) - 1.0);
 }
 
-bool LocalSpectralLine(const std::vector<double>& x,
-                       double dt,
-                       SpectralLine* line) {
-  const int n = static_cast<int>(x.size());
-  if (n < 16 || !(dt > 0.0)) return false;
-  const std::vector<double> power =
-      Periodogram(std::vector<std::complex<double>>(x.begin(), x.end()));
-  int peak_k = 1;  // a real series' periodogram is even: k = 1 .. n / 2
-  for (int k = 2; k <= n / 2; ++k) {
-    if (power[k] > power[peak_k]) peak_k = k;
-  }
-  double ratio = 0.0;
-  const double limit =
-      LocalLine(power, peak_k, MeanBesideLine(power, peak_k), &ratio);
-  if (!(ratio > limit)) return false;
-  *line = {peak_k / (n * dt), ratio};
-  return true;
-}
+namespace {
 
-std::vector<double> Periodogram(const std::vector<double>& x) {
-  return CentredPower(x, static_cast<int>(x.size()) / 2 + 1);
-}
-
-std::vector<double> Periodogram(const std::vector<std::complex<double>>& z) {
-  return CentredPower(z, static_cast<int>(z.size()));
-}
-
-std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
-                                        double dt,
-                                        double factor,
-                                        int most) {
-  const int n = static_cast<int>(x.size());
-  if (n < 16 || !(dt > 0.0)) return {};
-  const std::vector<double> power = Periodogram(x);
+// The lines of a real series' periodogram `power` (bins 0 .. n / 2 of n
+// samples every `dt` seconds) above `factor` ln(n) times its mean
+// (SpectralLines).
+std::vector<SpectralLine> LinesAboveMean(const std::vector<double>& power,
+                                         int n,
+                                         double dt,
+                                         double factor,
+                                         int most) {
   const int half = n / 2;
   double total = 0.0;
   for (int k = 1; k <= half; ++k) total += power[k];
@@ -151,16 +127,66 @@ std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
   return lines;
 }
 
+// LocalSpectralLine on a real series' periodogram `power` (bins 0 .. n / 2
+// of n samples every `dt` seconds): the two-sided periodogram LocalLine
+// reads is its mirror image, ordinate n - k being k's.
+bool LocalLineOf(const std::vector<double>& power,
+                 int n,
+                 double dt,
+                 SpectralLine* line) {
+  std::vector<double> two_sided(n);
+  for (int k = 0; k < n; ++k) two_sided[k] = power[std::min(k, n - k)];
+  int peak_k = 1;
+  for (int k = 2; k <= n / 2; ++k) {
+    if (power[k] > power[peak_k]) peak_k = k;
+  }
+  double ratio = 0.0;
+  const double limit =
+      LocalLine(two_sided, peak_k, MeanBesideLine(two_sided, peak_k), &ratio);
+  if (!(ratio > limit)) return false;
+  *line = {peak_k / (n * dt), ratio};
+  return true;
+}
+
+}  // namespace
+
+std::vector<double> Periodogram(const std::vector<double>& x) {
+  return CentredPower(x, static_cast<int>(x.size()) / 2 + 1);
+}
+
+std::vector<double> Periodogram(const std::vector<std::complex<double>>& z) {
+  return CentredPower(z, static_cast<int>(z.size()));
+}
+
+std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
+                                        double dt,
+                                        double factor,
+                                        int most) {
+  const int n = static_cast<int>(x.size());
+  if (n < 16 || !(dt > 0.0)) return {};
+  return LinesAboveMean(Periodogram(x), n, dt, factor, most);
+}
+
+bool LocalSpectralLine(const std::vector<double>& x,
+                       double dt,
+                       SpectralLine* line) {
+  const int n = static_cast<int>(x.size());
+  if (n < 16 || !(dt > 0.0)) return false;
+  return LocalLineOf(Periodogram(x), n, dt, line);
+}
+
 std::vector<SpectralLine> ResidualLines(const std::vector<double>& x,
                                         double dt) {
-  std::vector<SpectralLine> lines = SpectralLines(x, dt);
+  const int n = static_cast<int>(x.size());
+  if (n < 16 || !(dt > 0.0)) return {};
+  // One periodogram for both tests.
+  const std::vector<double> power = Periodogram(x);
+  std::vector<SpectralLine> lines =
+      LinesAboveMean(power, n, dt, kLineFactor, kMostLinesNamed);
   SpectralLine local;
-  if (!LocalSpectralLine(x, dt, &local)) return lines;
-  const double bin = 1.0 / (x.size() * dt);
+  if (!LocalLineOf(power, n, dt, &local)) return lines;
   for (const SpectralLine& line : lines) {
-    if (std::abs(line.frequency_hz - local.frequency_hz) < 0.5 * bin) {
-      return lines;
-    }
+    if (line.frequency_hz == local.frequency_hz) return lines;  // one bin
   }
   lines.push_back(local);
   return lines;

@@ -31,12 +31,17 @@ std::vector<double> Periodogram(const std::vector<double>& x);
 // Hz; bin 0 is 0.
 std::vector<double> Periodogram(const std::vector<std::complex<double>>& z);
 
+// SpectralLines' defaults: lines above 4 ln(N) times the mean power, the
+// strongest three.
+inline constexpr double kLineFactor = 4.0;
+inline constexpr int kMostLinesNamed = 3;
+
 // The strongest lines (at most `most`, strongest first) of `x` sampled
 // every `dt` seconds; none for fewer than 16 samples.
 std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
                                         double dt,
-                                        double factor = 4.0,
-                                        int most = 3);
+                                        double factor = kLineFactor,
+                                        int most = kMostLinesNamed);
 
 // The test of one line against its own neighbourhood, which colored noise
 // (a spectrum rising smoothly toward low frequencies) passes where the
