@@ -878,6 +878,87 @@ constexpr char kTwinWords[] =
     "; a near twin of the free parameters, which its score ranked out of "
     "every round's refits";
 
+// The candidates scored at the first complete model `first` (the one the
+// verdict's words name; none when it holds no effect, whose twins go into
+// *d instead) and, into *open_ridge, the tunnel terms whose scores leave
+// Eq. 43's ridge open there.
+std::vector<Candidate> ScoredAtFirst(const CompleteModel& first,
+                                     const DiagnoseOptions& options,
+                                     Diagnosis* d,
+                                     std::vector<const Effect*>* open_ridge) {
+  if (first.effects.empty()) {
+    NominalTwins(first, options, d);
+    return {};
+  }
+  std::vector<Candidate> scored =
+      ScoredCandidates(first.c, *first.fit, options);
+  for (const Candidate& k : scored) {
+    if (OnTunnelRidge(*k.effect) && ScoreLeavesOpen(k, *first.fit, options)) {
+      open_ridge->push_back(k.effect);
+    }
+  }
+  return scored;
+}
+
+// The effects tried beside every complete model: the `contended` ones not
+// in a tie (a tied effect's models are the tie's: WidenForTie), then the
+// `lesser` refits `scored` at `first` so (Lesser; each recorded in
+// d->lesser_refits, and into *lesser_twins when a near twin there: it then
+// counts as one, as it never stands in for a step, FindSetReplacements).
+std::vector<const Effect*> TriedBeside(
+    const std::vector<const Effect*>& contended,
+    const std::vector<const Effect*>& lesser,
+    const std::vector<Candidate>& scored,
+    const FitResult& first,
+    const DiagnoseOptions& options,
+    Diagnosis* d,
+    std::vector<const Effect*>* lesser_twins) {
+  std::vector<const Effect*> effects;
+  for (const Effect* e : contended) {
+    if (!InTie(*d, e->id)) effects.push_back(e);
+  }
+  for (const Candidate& k : Lesser(scored, lesser, first, options)) {
+    if (InTie(*d, k.effect->id) ||
+        std::find(effects.begin(), effects.end(), k.effect) != effects.end()) {
+      continue;
+    }
+    effects.push_back(k.effect);
+    d->lesser_refits.push_back(k.effect->id);
+    if (IsNearTwin(k.score)) lesser_twins->push_back(k.effect);
+  }
+  return effects;
+}
+
+// The `trials` the record cannot exclude (NotExcludedBeside) into *d, each
+// effect once, beside the first complete model it is not excluded beside;
+// those among `twins` as near twins of the free parameters. `at_noise`:
+// whether each model reaches the noise, for the words.
+void ListNotExcluded(const std::vector<Beside>& trials,
+                     const std::vector<const Effect*>& twins,
+                     const std::map<const FitResult*, bool>& at_noise,
+                     const DiagnoseOptions& options,
+                     Diagnosis* d) {
+  for (const Beside& t : trials) {
+    if (!t.fitted) continue;
+    const double rise = t.rise;
+    VLOG(1) << t.effect->id << " beside the complete model: BIC "
+            << (rise >= 0.0 ? "+" : "") << rise << " " << t.implausible;
+    if (!NotExcludedBeside(t, options)) continue;
+    const bool final = t.model->fit == &d->FinalFit();
+    const bool twin =
+        std::find(twins.begin(), twins.end(), t.effect) != twins.end();
+    TakeNotExcluded(
+        t,
+        BesideWords(
+            final ? "final" : "search's", at_noise.at(t.model->fit), rise) +
+            (twin ? kTwinWords : ""),
+        options,
+        &d->not_excluded,
+        d);
+    if (twin) d->near_twins.push_back(t.effect->id);
+  }
+}
+
 }  // namespace
 
 void FindNotExcluded(const std::vector<const Effect*>& contended,
@@ -908,21 +989,12 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   for (const CompleteModel& m : complete) {
     at_noise[m.fit] = CheckResiduals(*m.fit, options).at_noise_level;
   }
-  // Scored at the first complete model (the one the words name): what
-  // its effects made twins of its free parameters, what no round
-  // refitted, which lesser refits to try.
+  // Scored at the first complete model: what its effects made twins of
+  // its free parameters, what no round refitted, which lesser refits to
+  // try.
   const std::vector<CompleteModel> first = {complete[0]};
   const std::vector<Candidate> scored =
-      first[0].effects.empty()
-          ? std::vector<Candidate>()
-          : ScoredCandidates(first[0].c, *first[0].fit, options);
-  if (first[0].effects.empty()) NominalTwins(first[0], options, d);
-  for (const Candidate& k : scored) {
-    if (OnTunnelRidge(*k.effect) &&
-        ScoreLeavesOpen(k, *first[0].fit, options)) {
-      open_ridge->push_back(k.effect);
-    }
-  }
+      ScoredAtFirst(first[0], options, d, open_ridge);
   // A final model with no effect (the nominal fit, the tie short of the
   // noise) carries its own twins whatever the search's model holds: on a
   // cone of another body with a tunnel damping, a Magnus moment and a flow
@@ -933,58 +1005,23 @@ void FindNotExcluded(const std::vector<const Effect*>& contended,
   if (search_model_first && complete[1].effects.empty()) {
     NominalTwins(complete[1], options, d);
   }
-  // A tied effect's models are the tie's (WidenForTie).
-  std::vector<const Effect*> effects;
-  for (const Effect* e : contended) {
-    if (!InTie(*d, e->id)) effects.push_back(e);
-  }
-  // A lesser refit that is a near twin there counts as one (it never
-  // stands in for a step: FindSetReplacements).
-  std::vector<const Effect*> lesser_twins;
-  for (const Candidate& k : Lesser(scored, lesser, *first[0].fit, options)) {
-    if (InTie(*d, k.effect->id) ||
-        std::find(effects.begin(), effects.end(), k.effect) != effects.end()) {
-      continue;
-    }
-    effects.push_back(k.effect);
-    d->lesser_refits.push_back(k.effect->id);
-    if (IsNearTwin(k.score)) lesser_twins.push_back(k.effect);
-  }
+  std::vector<const Effect*> twins;  // lesser refits first, then NearTwins
+  const std::vector<const Effect*> effects =
+      TriedBeside(contended, lesser, scored, *first[0].fit, options, d, &twins);
   std::vector<Beside> trials = FitBeside(complete, effects, data);
   // The near twins of the first complete model's parameters and the
   // effects its score finds unrefitted: tried beside it alone.
-  const std::vector<const Effect*> twins =
+  const std::vector<const Effect*> near =
       NearTwins(scored, effects, first[0], d);
-  std::vector<const Effect*> alone = twins;
+  std::vector<const Effect*> alone = near;
   for (const Effect* e : Unrefitted(scored, effects, first[0], *d, options)) {
     alone.push_back(e);
   }
   for (Beside& t : FitBeside(first, alone, data)) {
     trials.push_back(std::move(t));
   }
-  for (const Beside& t : trials) {
-    if (!t.fitted) continue;
-    const double rise = t.rise;
-    VLOG(1) << t.effect->id << " beside the complete model: BIC "
-            << (rise >= 0.0 ? "+" : "") << rise << " " << t.implausible;
-    if (!NotExcludedBeside(t, options)) continue;
-    // Each effect listed once: beside the first complete model it is not
-    // excluded beside.
-    const bool final = t.model->fit == &d->FinalFit();
-    const bool twin =
-        std::find(twins.begin(), twins.end(), t.effect) != twins.end() ||
-        std::find(lesser_twins.begin(), lesser_twins.end(), t.effect) !=
-            lesser_twins.end();
-    TakeNotExcluded(
-        t,
-        BesideWords(
-            final ? "final" : "search's", at_noise[t.model->fit], rise) +
-            (twin ? kTwinWords : ""),
-        options,
-        &d->not_excluded,
-        d);
-    if (twin) d->near_twins.push_back(t.effect->id);
-  }
+  twins.insert(twins.end(), near.begin(), near.end());
+  ListNotExcluded(trials, twins, at_noise, options, d);
   FindOpenTerms(complete, data, options, d);
 }
 

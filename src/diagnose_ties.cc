@@ -419,6 +419,42 @@ bool SeparatedOutOfSample(const CandidateFit& rival,
          rival.prediction_gain < step.prediction_gain;
 }
 
+// The swaps of `rivals` for `step` (of the model `at`, whose effects are
+// `steps`) into the model without it, `without`, unfitted (Unresolved's
+// rules): none for a rival in the model or one out of sample separates
+// from the step; as good unfitted for a drift in time, or where it does
+// not apply; a twin (as good unless far worse, FarWorse) for a
+// roll-locked rival of a roll-locked step that tied with it at the step
+// (one that lost there by more, WiderRivals, must win the swap), unless
+// the spins separate them (`twins_separate`).
+std::vector<Swap> SwapsFor(const std::vector<CandidateFit>& rivals,
+                           const DiagnosisStep& step,
+                           const std::vector<DiagnosisStep>& steps,
+                           const Case& without,
+                           bool twins_separate,
+                           const DiagnoseOptions& options) {
+  const Effect* own = FindEffect(step.effect);
+  std::vector<Swap> swaps;
+  for (const CandidateFit& rival : rivals) {
+    if (HoldsEffect(steps, rival.effect)) continue;
+    if (SeparatedOutOfSample(rival, step, options)) {
+      VLOG(1) << step.effect << "'s rival " << rival.effect
+              << " failed out of sample where it explained the record";
+      continue;
+    }
+    Swap w;
+    w.rival = &rival;
+    w.effect = FindEffect(rival.effect);
+    w.tied_at_step = step.bic_drop - rival.bic_drop < options.ambiguity_bic;
+    w.twin = own != nullptr && own->roll_locked && w.effect != nullptr &&
+             w.effect->roll_locked && !twins_separate && w.tied_at_step;
+    w.unfitted_as_good = rival.effect == kDriftInTime ||
+                         !RivalCase(without, rival.effect, &w.c, &w.terms);
+    swaps.push_back(std::move(w));
+  }
+  return swaps;
+}
+
 // The rivals of `step` (recorded when the search added it) that still
 // explain the record as well in the explained model `fit` (of case `at`,
 // whose effects are `steps`): swapped in for it, BIC within ambiguity_bic
@@ -447,34 +483,12 @@ std::vector<CandidateFit> Unresolved(
     std::vector<Diagnosis::TieModel>* tie_models) {
   const Case without = WithoutStep(at, step);
   const Effect* own = FindEffect(step.effect);
-  const bool twins_separate = SpinSeparatesRollLocked(at, fit, data);
-  // Each rival's swap: none for a rival in the model; as good unfitted
-  // for a drift in time, or where it does not apply; as good unless far
-  // worse (FarWorse) for an inseparable twin (a roll-locked rival of a
-  // roll-locked step that tied with it at the step: one that lost there by
-  // more, WiderRivals, must win the swap).
-  std::vector<Swap> swaps;
-  for (const CandidateFit& rival : rivals) {
-    if (HoldsEffect(steps, rival.effect)) continue;
-    if (SeparatedOutOfSample(rival, step, options)) {
-      VLOG(1) << step.effect << "'s rival " << rival.effect
-              << " failed out of sample where it explained the record";
-      continue;
-    }
-    Swap w;
-    w.rival = &rival;
-    w.effect = FindEffect(rival.effect);
-    const bool tied_at_step =
-        step.bic_drop - rival.bic_drop < options.ambiguity_bic;
-    const bool twins = own != nullptr && own->roll_locked &&
-                       w.effect != nullptr && w.effect->roll_locked &&
-                       !twins_separate && tied_at_step;
-    w.twin = twins;
-    w.tied_at_step = tied_at_step;
-    w.unfitted_as_good = rival.effect == kDriftInTime ||
-                         !RivalCase(without, rival.effect, &w.c, &w.terms);
-    swaps.push_back(std::move(w));
-  }
+  std::vector<Swap> swaps = SwapsFor(rivals,
+                                     step,
+                                     steps,
+                                     without,
+                                     SpinSeparatesRollLocked(at, fit, data),
+                                     options);
   // The swaps' fits are independent: side by side.
   auto fit_all = [&](std::vector<Swap>* all) {
     ParallelFor(static_cast<int>(all->size()), [&](int i) {
@@ -702,6 +716,25 @@ void CompanionsBeforeLastTie(const std::vector<DiagnosisStep>& steps,
   }
 }
 
+// The steps before the first tie (`first`) without rivals that the
+// pruning took away (`pruned`, of `steps`) marked in doubt and redundant:
+// no more needed. On draw 105's coning run with a bearing moment, a
+// calibration error and a roll torque (tied with a roll damping), a tunnel
+// damping taken first ended t2 = 0.058 +- 0.062, t4 = 0.033 +- 0.068 in the
+// final model, each complete model 9 lower in BIC without it.
+void PrunedBeforeTie(const std::vector<std::vector<CandidateFit>>& rivals,
+                     const std::vector<DiagnosisStep>& pruned,
+                     const std::vector<DiagnosisStep>& steps,
+                     int first,
+                     std::vector<bool>* tied,
+                     std::vector<bool>* redundant) {
+  for (int i = 0; i < first; ++i) {
+    if (!rivals[i].empty() || HoldsEffect(pruned, steps[i].effect)) continue;
+    (*tied)[i] = true;
+    (*redundant)[i] = true;
+  }
+}
+
 // Ties (the first at step *tie; `rivals` holds each step's) on the way to
 // a record explained: the pruning (Prune) of every step, then the rivals
 // of each step still in the model swapped in for it (Unresolved). A roll torque
@@ -756,19 +789,7 @@ bool TieDissolves(const std::vector<TimeHistory>& data,
     open_ties.back().insert(open_ties.back().end(), open.begin(), open.end());
   }
   if (first >= 0) {
-    // A step before the tie without rivals that the pruning took away is
-    // no more needed: on draw 105's coning run with a bearing moment, a
-    // calibration error and a roll torque (tied with a roll damping), a
-    // tunnel damping taken first ended t2 = 0.058 +- 0.062, t4 = 0.033 +-
-    // 0.068 in the final model, each complete model 9 lower in BIC
-    // without it.
-    for (int i = 0; i < first; ++i) {
-      if (!rivals[i].empty() || HoldsEffect(pruned.steps, d->steps[i].effect)) {
-        continue;
-      }
-      (*tied)[i] = true;
-      (*redundant)[i] = true;
-    }
+    PrunedBeforeTie(rivals, pruned.steps, d->steps, first, tied, redundant);
     if (open_ties.size() == 1 && first + 1 == static_cast<int>(tied->size())) {
       CompanionsBeforeLastTie(
           pruned.steps, at, fit, data, options, first, tied, redundant, d);

@@ -284,19 +284,10 @@ std::vector<FormApart> FormsApart(const Diagnosis& d) {
   return apart;
 }
 
-}  // namespace
-
-std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
-  json out;
-  out["name"] = c.name;
-  out["verdict"] = VerdictToString(d.verdict);
-  out["verdict_text"] = d.verdict_text;
-  out["noise_held"] = d.noise_held;
-  out["search_step"] = d.search_step;
-  out["effects_known_absent"] = d.absent;
-  out["effects_added"] = json::array();
-  for (const DiagnosisStep& s : d.steps)
-    out["effects_added"].push_back(s.effect);
+// diagnosis.json's ties: ambiguous_between and its groups, what would
+// separate them, the alternatives and the tie models.
+void AddTies(const Diagnosis& d, json* into) {
+  json& out = *into;
   // Every effect in doubt, the first tie's first, each once (a probe can
   // tie in two groups); each tie on its own in ambiguous_groups.
   const std::vector<CandidateFit> tied = Tied(d);
@@ -360,6 +351,13 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
     out["stood_in"].push_back(
         {{"effect", d.stood_in[i].effect}, {"for", d.stood_in_for[i]}});
   }
+}
+
+// diagnosis.json's effects in doubt beside the final model: not excluded,
+// near twins, coefficient twins, outdone by a probe, refused for drag,
+// open terms.
+void AddDoubts(const Diagnosis& d, json* into) {
+  json& out = *into;
   out["not_excluded"] = Contenders(d.not_excluded);
   out["near_twins"] = d.near_twins;
   out["coefficient_twins"] = json::array();
@@ -378,18 +376,11 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["outdone_by_probe"] = d.outdone_by_probe;
   out["refused_for_drag"] = d.refused_for_drag;
   out["open_terms"] = Contenders(d.open_terms);
-  if (!d.residual_description.empty()) {
-    out["residual_description"] = d.residual_description;
-  }
-  out["rejected"] = Contenders(d.rejected);
-  // What the verdict reads of the record's roll (RollLockedUnconfirmed).
-  const std::vector<TimeHistory> fitted =
-      d.fits.empty() ? std::vector<TimeHistory>() : FittedData(d.FinalFit());
-  out["roll_span_deg"] = RollSpan(fitted);
-  out["roll_separates"] = RollSeparates(fitted);
-  // The nominal fit's wild points: the search saw the samples it kept.
-  out["outliers"] = OutliersJson(d.fits.empty() ? std::vector<Outlier>()
-                                                : d.fits[0].outliers);
+}
+
+// diagnosis.json's explanations outside the catalog and its look-alikes.
+void AddOutside(const Diagnosis& d, json* into) {
+  json& out = *into;
   out["outside_catalog"] = d.outside_catalog.effect.empty()
                                ? json(nullptr)
                                : Contender(d.outside_catalog);
@@ -399,6 +390,13 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   out["catalog_alike"] = d.catalog_alike;
   out["catalog_alike_bic"] =
       d.catalog_alike.empty() ? json(nullptr) : json(d.catalog_alike_bic);
+}
+
+// diagnosis.json's models: the final parameters (with the final model's
+// own errors where a tie or an effect not excluded widened them), the
+// residuals before and after, the steps, partial and pruned.
+void AddModels(const Diagnosis& d, const Case& c, json* into) {
+  json& out = *into;
   out["final_parameters"] = Estimates(d.final_parameters);
   // Where a tie or an effect not excluded widened an error bar, the final
   // model's own error too: the one to quote if that effect is known absent
@@ -434,6 +432,37 @@ std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
   }
   out["pruned"] = json::array();
   for (const DiagnosisStep& s : d.pruned) out["pruned"].push_back(Step(s));
+}
+
+}  // namespace
+
+std::string DiagnosisJson(const Diagnosis& d, const Case& c) {
+  json out;
+  out["name"] = c.name;
+  out["verdict"] = VerdictToString(d.verdict);
+  out["verdict_text"] = d.verdict_text;
+  out["noise_held"] = d.noise_held;
+  out["search_step"] = d.search_step;
+  out["effects_known_absent"] = d.absent;
+  out["effects_added"] = json::array();
+  for (const DiagnosisStep& s : d.steps)
+    out["effects_added"].push_back(s.effect);
+  AddTies(d, &out);
+  AddDoubts(d, &out);
+  if (!d.residual_description.empty()) {
+    out["residual_description"] = d.residual_description;
+  }
+  out["rejected"] = Contenders(d.rejected);
+  // What the verdict reads of the record's roll (RollLockedUnconfirmed).
+  const std::vector<TimeHistory> fitted =
+      d.fits.empty() ? std::vector<TimeHistory>() : FittedData(d.FinalFit());
+  out["roll_span_deg"] = RollSpan(fitted);
+  out["roll_separates"] = RollSeparates(fitted);
+  // The nominal fit's wild points: the search saw the samples it kept.
+  out["outliers"] = OutliersJson(d.fits.empty() ? std::vector<Outlier>()
+                                                : d.fits[0].outliers);
+  AddOutside(d, &out);
+  AddModels(d, c, &out);
   return out.dump(2) + "\n";
 }
 
@@ -444,8 +473,13 @@ ChannelValues DiagnosedNoise(const Diagnosis& d, const ChannelValues& stated) {
   return d.fits[0].segments[0].sigma_deg;  // one level for every segment
 }
 
-std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
-  std::string out = WildPointLines(d);
+namespace {
+
+// The report's lines for the effects known absent and for each step
+// (added, not adopted, dropped again; forms apart), with the residual
+// before and after against the noise `sigma`.
+std::string StepLines(const Diagnosis& d, const ChannelValues& sigma) {
+  std::string out;
   if (!d.absent.empty()) {
     std::string ids;
     for (const std::string& id : d.absent)
@@ -485,6 +519,13 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
            " (not adopted): in the final model its form takes up part of "
            "what the effects not adopted explain\n";
   }
+  return out;
+}
+
+// The report's lines for the tied candidates, the stand-ins, the
+// complete models and the models that keep a tie open.
+std::string TieLines(const Diagnosis& d) {
+  std::string out;
   for (const CandidateFit& a : Tied(d)) {
     // drift_in_time, a roll-locked effect's rival, has no fit to quote.
     out += "  candidate: " + a.effect +
@@ -527,6 +568,13 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
            "): BIC " + FormatNumber("%+.1f", m->rise) + ", probable error " +
            FormatNumber("%.3g", m->check.probable_error) + "\n";
   }
+  return out;
+}
+
+// The report's lines for the explanation outside the catalog and those
+// beside it.
+std::string OutsideLines(const Diagnosis& d) {
+  std::string out;
   if (!d.outside_catalog.effect.empty()) {
     out += "  outside the catalog, not adopted: " + d.outside_catalog.effect +
            " (" + Values(d.outside_catalog.parameters) + "), BIC lower by " +
@@ -543,6 +591,13 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
     out +=
         "  beside it, these explain the record (not adopted): " + beside + "\n";
   }
+  return out;
+}
+
+// The report's lines for the effects not excluded, the terms left open,
+// the coefficients' twins and the effects not added.
+std::string DoubtLines(const Diagnosis& d) {
+  std::string out;
   for (const CandidateFit& k : d.not_excluded) {
     out += "  not excluded, the final error bars cover it: " + k.effect + " (" +
            Values(k.parameters) + "): " + k.rejected + "\n";
@@ -563,6 +618,17 @@ std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
     out += "  not added: " + r.effect + " (" + Values(r.parameters) +
            "): " + r.rejected + "\n";
   }
+  return out;
+}
+
+}  // namespace
+
+std::string FormatDiagnosis(const Diagnosis& d, const ChannelValues& sigma) {
+  std::string out = WildPointLines(d);
+  out += StepLines(d, sigma);
+  out += TieLines(d);
+  out += OutsideLines(d);
+  out += DoubtLines(d);
   out += "verdict: " + d.verdict_text + "\n";
   out += Widened(d);
   if (!d.residual_description.empty()) {
