@@ -129,11 +129,16 @@ std::string Percent(double share) {
   return FormatNumber("%.0f", 100.0 * share) + "%";
 }
 
-// What a residual line at f (Hz) sits at: a mode of the motion, a
-// harmonic of the spin, or neither.
+// What a residual line at f (Hz) of a record `duration` s long sits at:
+// the periodogram's first bin (one cycle over the record: a slow drift,
+// which a missing effect that changes over the run leaves, the roll's of
+// a spin that slows), a mode of the motion, a harmonic of the spin, or
+// neither.
 std::string LineName(double f,
+                     double duration,
                      const std::vector<SpectralLine>& modes,
                      double spin_hz) {
+  if (f * duration < 1.5) return "one cycle over the record: a slow drift";
   for (const SpectralLine& m : modes) {
     if (std::abs(f - m.frequency_hz) <= kNear * m.frequency_hz) {
       return "at the motion's mode of " + FormatNumber("%.3g", m.frequency_hz) +
@@ -148,9 +153,19 @@ std::string LineName(double f,
   return "at neither the motion's modes nor the spin";
 }
 
+// A channel's residual (measured minus computed, deg; roll's within a
+// turn), its computed angle and whether its dependences (Dependences) are
+// asked: pitch's and yaw's, not roll's. Roll's residual is described by
+// its lines alone: its angle grows without bound, and over a slow roll its
+// harmonics and a trend are slow functions of time that serially
+// correlated reading errors follow as an effect would (AR(1) errors of 0.6
+// on a 3-s run at 30 deg/s: "roll: a dependence on the roll angle,
+// harmonics 1-3 (58-66%)" in 3 of 20 records); a roll-locked error over
+// several turns shows as a line at the spin's harmonics.
 struct Channel {
   const char* name;
-  Eigen::VectorXd residual, angle, computed;
+  Eigen::VectorXd residual, angle;
+  bool dependences = true;
 };
 
 // The shares of a channel's residual variance that a trend in time, the
@@ -192,9 +207,12 @@ Dependence Dependences(const Channel& c,
   return d;
 }
 
+// What channel `c`'s residual shows (lines against the motion's `modes`
+// and the spin's harmonics, a trend, dependences), or empty.
 std::string DescribeChannel(const Channel& c,
                             const Eigen::VectorXd& t,
                             const Eigen::VectorXd& roll,
+                            const std::vector<SpectralLine>& modes,
                             double spin_hz) {
   const int n = static_cast<int>(t.size());
   const double dt = (t(n - 1) - t(0)) / (n - 1);
@@ -203,13 +221,12 @@ std::string DescribeChannel(const Channel& c,
     text += (text.empty() ? "" : ", ") + s;
   };
   const std::vector<double> r(c.residual.data(), c.residual.data() + n);
-  const std::vector<double> motion(c.computed.data(), c.computed.data() + n);
-  const std::vector<SpectralLine> modes = SpectralLines(motion, dt, 4.0, 2);
   for (const SpectralLine& line : ResidualLines(r, dt)) {
     add("a line at " + FormatNumber("%.3g", line.frequency_hz) + " Hz (" +
-        LineName(line.frequency_hz, modes, spin_hz) + ")");
+        LineName(line.frequency_hz, n * dt, modes, spin_hz) + ")");
   }
-  const Dependence d = Dependences(c, t, roll, kZ999);
+  const Dependence d =
+      c.dependences ? Dependences(c, t, roll, kZ999) : Dependence();
   if (d.trend_named) add("a trend in time (" + Percent(d.trend) + ")");
   if (d.amplitude_named) {
     add(std::string("a dependence on the ") + c.name + " angle (" +
@@ -262,28 +279,48 @@ std::string GridReadings(const SegmentFit& s) {
 }
 
 // The pitch and yaw channels of segment `s` (at least 16 samples) into
-// channels[0..1], its times into *t and its fitted roll (rad) into *roll.
+// channels[0..1], roll's into channels[2], its times into *t and its
+// fitted roll (rad) into *roll.
 void SegmentChannels(const SegmentFit& s,
                      Eigen::VectorXd* t,
                      Eigen::VectorXd* roll,
-                     Channel channels[2]) {
+                     Channel channels[3]) {
   const int n = s.data.size();
   t->resize(n);
   roll->resize(n);
-  channels[0] = {
-      "pitch", Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)};
-  channels[1] = {
-      "yaw", Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  channels[0] = {"pitch", Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  channels[1] = {"yaw", Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  channels[2] = {"roll", Eigen::VectorXd(n), Eigen::VectorXd(n), false};
   for (int i = 0; i < n; ++i) {
     (*t)(i) = s.data.t[i];
     (*roll)(i) = s.computed[3 * i] * kDegree;
-    const double measured[2] = {s.data.theta[i], s.data.psi[i]};
-    for (int c = 0; c < 2; ++c) {
-      channels[c].computed(i) = s.computed[3 * i + 1 + c];
-      channels[c].angle(i) = channels[c].computed(i);
-      channels[c].residual(i) = measured[c] - channels[c].computed(i);
+    const double measured[3] = {s.data.theta[i], s.data.psi[i], s.data.phi[i]};
+    const double computed[3] = {
+        s.computed[3 * i + 1], s.computed[3 * i + 2], s.computed[3 * i]};
+    for (int c = 0; c < 3; ++c) {
+      double r = measured[c] - computed[c];
+      if (c == 2) r -= WholeTurns(r);  // roll is compared modulo a turn
+      channels[c].angle(i) = computed[c];
+      channels[c].residual(i) = r;
     }
   }
+}
+
+// The modes of the motion of segment `s` (the strongest lines of its
+// computed pitch and yaw, Hz) that its residuals' lines are named against.
+std::vector<SpectralLine> MotionModes(const Channel channels[3],
+                                      const Eigen::VectorXd& t) {
+  const int n = static_cast<int>(t.size());
+  const double dt = (t(n - 1) - t(0)) / (n - 1);
+  std::vector<SpectralLine> modes;
+  for (int c = 0; c < 2; ++c) {
+    const Eigen::VectorXd& a = channels[c].angle;
+    for (const SpectralLine& m : SpectralLines(
+             std::vector<double>(a.data(), a.data() + n), dt, 4.0, 2)) {
+      modes.push_back(m);
+    }
+  }
+  return modes;
 }
 
 // The segments DescribeResiduals and ResidualsDepend look at: enough
@@ -338,10 +375,14 @@ bool ResidualsDepend(const FitResult& fit) {
   for (const SegmentFit& s : fit.segments) {
     if (s.data.size() < kLeastSamples) continue;
     Eigen::VectorXd t, roll;
-    Channel channels[2];
+    Channel channels[3];
     SegmentChannels(s, &t, &roll, channels);
-    for (const Channel& c : channels) {
-      if (Dependences(c, t, roll, kZ1e5).Any()) return true;
+    // Pitch and yaw: the residual check's test of what the aerodynamic
+    // moments leave. Roll's residual is described (DescribeResiduals), not
+    // tested: what roll's equation leaves (Cl_0, Cl_p) the check judges by
+    // the residual's size and lag-1 autocorrelation already.
+    for (int c = 0; c < 2; ++c) {
+      if (Dependences(channels[c], t, roll, kZ1e5).Any()) return true;
     }
   }
   return false;
@@ -352,12 +393,13 @@ std::string DescribeResiduals(const FitResult& fit) {
   for (const SegmentFit& s : fit.segments) {
     if (s.data.size() < kLeastSamples) continue;
     Eigen::VectorXd t, roll;
-    Channel channels[2];
+    Channel channels[3];
     SegmentChannels(s, &t, &roll, channels);
+    const std::vector<SpectralLine> modes = MotionModes(channels, t);
     const double spin_hz = SpinHz(s);
     std::string segment;
     for (const Channel& c : channels) {
-      const std::string part = DescribeChannel(c, t, roll, spin_hz);
+      const std::string part = DescribeChannel(c, t, roll, modes, spin_hz);
       if (!part.empty()) segment += (segment.empty() ? "" : "; ") + part;
     }
     // The readings' notes, each under its segment's name when there are

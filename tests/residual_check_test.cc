@@ -303,6 +303,45 @@ TEST(DescribeResiduals, NamesAResidualCorrelatedFromSampleToSample) {
   EXPECT_GE(colored, 3 * kSeeds / 4);
 }
 
+// A 10-s run spinning at 1 Hz (200 samples), white noise in every channel
+// and a roll reading error locked to roll, `error` deg times sin(phi): an
+// eccentric roll encoder. Its residual is a line at the spin.
+FitResult EccentricRoll(double error, int seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, kNoise);
+  SegmentFit s;
+  const int n = 200;
+  for (int i = 0; i < n; ++i) {
+    const double t = 0.05 * i;
+    const double phi = 360.0 * t;
+    const double theta = 8.0 * std::cos(2.0 * M_PI * 0.37 * t);
+    const double psi = 8.0 * std::sin(2.0 * M_PI * 0.37 * t);
+    s.data.Append(t,
+                  phi + error * std::sin(phi * kDegree) + noise(rng),
+                  theta + noise(rng),
+                  psi + noise(rng));
+    s.computed.insert(s.computed.end(), {phi, theta, psi});
+  }
+  return FitOf(s);
+}
+
+// Roll's residual is described by its lines: an eccentric roll encoder
+// (an error of three times the noise at the spin) is named so, noise in
+// roll is not.
+TEST(DescribeResiduals, NamesALineOfTheRollResidualAtTheSpin) {
+  int named = 0, chance = 0;
+  for (int seed = 1; seed <= 20; ++seed) {
+    const std::string text = DescribeResiduals(EccentricRoll(0.03, seed));
+    named +=
+        text.find("roll: a line at 1 Hz (at 1 x spin)") != std::string::npos;
+    chance += DescribeResiduals(EccentricRoll(0.0, seed)).find("roll:") !=
+              std::string::npos;
+  }
+  std::printf("eccentric roll named %d of 20, noise %d of 20\n", named, chance);
+  EXPECT_GE(named, 19);
+  EXPECT_EQ(chance, 0);
+}
+
 // A reading far off the fitted motion is named with its time, whatever
 // else the residual shows: a smooth missing effect never leaves one, a
 // wild point or a transient the model lacks (a filter starting at rest) do.

@@ -907,10 +907,12 @@ Diagnosis Diagnose(const Case& c, const DiagnoseOptions& options);
 // effect would).
 bool ResidualsDepend(const FitResult& fit);
 
-// What structured residuals show, for an engineer to act on: the strongest
-// lines of theta + i psi against the motion's modal frequencies and the
-// spin's harmonics, a trend in time, a dependence on the pitch or yaw
-// angle, a dependence on the roll angle (residual_description.cc), each
+// What structured residuals show, for an engineer to act on: each
+// channel's strongest lines (pitch's, yaw's and roll's) against the
+// motion's modal frequencies and the spin's harmonics (one in the
+// periodogram's first bin named a slow drift), and in pitch and yaw a
+// trend in time, a dependence on the channel's angle, a dependence on the
+// roll angle (residual_description.cc), each
 // named only above the share of the residual's variance that noise takes
 // with chance 1e-3; the readings far off the fitted motion
 // (ScreenResiduals, wild_points.h), with channel and time; and the channels
