@@ -599,6 +599,21 @@ bool SweepTheAngle(const Case& c,
          sweep->highest > 0.0;
 }
 
+// Whether `fit`'s bearing angle (free, determined: OnBearingRidge) is
+// known to less than a factor of two within two of its errors (its
+// standard error over a quarter of it). The ridge's branches then part
+// within the record's reach: on draw 173's pair of 3-s runs with a moment
+// saturating at half a degree (Cm_bearing -0.00524), fitted at 2.83 +- 1.11
+// deg and -0.00179 +- 0.00098 (its profile from the solution), Cm_bearing
+// frozen farther out refitted the angle upward (9.4 deg at the truth's
+// value, chi-square 7.3 up) where the branch below, the angle near 0.5 deg,
+// fits the truth 5.0 up: the truth had been 3.5 errors off.
+bool AngleLoose(const FitResult& fit) {
+  const ParameterEstimate* angle = SharedEstimate(fit, "bearing_angle");
+  return angle != nullptr &&
+         !(4.0 * angle->standard_error < std::abs(angle->value));
+}
+
 // The error bars of every free shared parameter widened to cover the
 // values the ridge passes through within three errors (`sweep`); their
 // names are added to *names (once). Returns, for the ridge's warning,
@@ -666,16 +681,31 @@ std::vector<std::string> WidenTradedStiffness(
     const Case& c, const std::vector<TimeHistory>& data, FitResult* fit) {
   bool undetermined = false;
   if (!OnBearingRidge(*fit, &undetermined)) return {};
-  // Where the record does not determine the angle, the ridge has branches
-  // a refit from the solution does not reach: swept first, so that the
-  // profiles start from its probes too.
+  // Where the record does not determine the angle, or lets it halve or
+  // double within two errors, the ridge has branches a refit from the
+  // solution does not reach: swept first, so that the profiles start from
+  // its probes too.
   AngleSweep sweep;
-  const bool swept = undetermined && SweepTheAngle(c, data, *fit, &sweep);
+  const bool swept = (undetermined || AngleLoose(*fit)) &&
+                     SweepTheAngle(c, data, *fit, &sweep);
+  const ParameterEstimate angle = *SharedEstimate(*fit, "bearing_angle");
   std::vector<std::string> widened;
   std::string text =
       ProfileTradedStiffness(c, data, sweep.probes, fit, &widened);
   if (swept) text += WidenAlongTheAngle(sweep, fit, &widened);
   if (text.empty()) return widened;
+  // A determined angle has no ridge warning (CheckRidges) to carry what
+  // its sweep widened: one of its own says so.
+  if (swept && !undetermined) {
+    fit->warnings.push_back(
+        kBearingRidge + FormatNumber("%.3g", std::abs(angle.value)) + " +- " +
+        FormatNumber("%.2g", angle.standard_error) +
+        " deg may halve or double within two of its errors: Cm_bearing "
+        "trades with it along a ridge whose branches a refit from the "
+        "solution does not reach" +
+        text);
+    return widened;
+  }
   for (std::string& w : fit->warnings) {
     if (w.rfind(kBearingRidge, 0) != 0) continue;
     // Before the advice at the warning's end (BearingRidgeWarning).

@@ -211,7 +211,9 @@ void CheckRidges(const Case& c,
 // asymmetric, Cn_beta; free, not profiled yet) widened to their profiles'
 // where those are flatter than their linear error bars, and the ridge's
 // warning saying so; returns the names widened. Where the record does not
-// determine the angle, the angle is swept first (src/profile_error_bar.h,
+// determine the angle, or lets it halve or double within two of its errors
+// (its standard error over a quarter of it), the angle is swept first
+// (src/profile_error_bar.h,
 // SweepBearingAngle): those profiles refit from its probes too, and every
 // free shared parameter's error bars widen to cover the values the ridge
 // passes through within three errors (the angle's own included). FitSamples
