@@ -60,6 +60,14 @@ Case BearingHeldFit(const std::string& dir, std::uint64_t seed) {
 
 // Where the profile is quadratic (Cm_alpha, determined to 0.3%), the
 // secant gives the linear error bar back: 15% at most wider.
+// Whether one of `fit`'s warnings holds `text`.
+bool Warned(const FitResult& fit, const std::string& text) {
+  return std::any_of(
+      fit.warnings.begin(), fit.warnings.end(), [&](const std::string& w) {
+        return w.find(text) != std::string::npos;
+      });
+}
+
 TEST(ProfileErrorBar, IsTheLinearOneOnAQuadraticProfile) {
   const std::string dir = testing::ScratchDirectory("profile_quadratic");
   const Case c = BearingHeldFit(dir, 3);
@@ -218,11 +226,7 @@ TEST(ProfileErrorBar, CoversTheStiffnessTheBearingMomentTradesWith) {
       << stiffness->value << " +- " << stiffness->standard_error;
   EXPECT_TRUE(testing::InPipeline(fit, "Cm_alpha's error bar from its profile"))
       << ::testing::PrintToString(fit.pipeline);
-  const auto warned = std::find_if(
-      fit.warnings.begin(), fit.warnings.end(), [](const std::string& w) {
-        return w.find("Cm_alpha's is its profile's too") != std::string::npos;
-      });
-  EXPECT_NE(warned, fit.warnings.end())
+  EXPECT_TRUE(Warned(fit, "Cm_alpha's is its profile's too"))
       << ::testing::PrintToString(fit.warnings);
   // Cm_q, which the moment does not trade with, keeps its linear error bar.
   EXPECT_EQ(SharedEstimate(fit, "Cm_q")->standard_error,
@@ -261,12 +265,7 @@ TEST(ProfileErrorBar, SweepsTheAngleTheRecordDoesNotDetermine) {
   EXPECT_TRUE(testing::InPipeline(
       fit, "bearing_angle's error bar along the bearing angle"))
       << ::testing::PrintToString(fit.pipeline);
-  const auto warned = std::find_if(
-      fit.warnings.begin(), fit.warnings.end(), [](const std::string& w) {
-        return w.find("the values the ridge passes through") !=
-               std::string::npos;
-      });
-  EXPECT_NE(warned, fit.warnings.end())
+  EXPECT_TRUE(Warned(fit, "the values the ridge passes through"))
       << ::testing::PrintToString(fit.warnings);
 
   // The sweep itself: up to the far branch, its refits kept for the
@@ -308,12 +307,7 @@ TEST(ProfileErrorBar, SweepsAnAngleThatMayHalveOrDouble) {
   EXPECT_TRUE(testing::InPipeline(
       fit, "Cm_bearing's error bar along the bearing angle"))
       << ::testing::PrintToString(fit.pipeline);
-  const auto warned = std::find_if(
-      fit.warnings.begin(), fit.warnings.end(), [](const std::string& w) {
-        return w.find("may halve or double within two of its errors") !=
-               std::string::npos;
-      });
-  EXPECT_NE(warned, fit.warnings.end())
+  EXPECT_TRUE(Warned(fit, "may halve or double within two of its errors"))
       << ::testing::PrintToString(fit.warnings);
 }
 
