@@ -306,8 +306,9 @@ void SegmentChannels(const SegmentFit& s,
   }
 }
 
-// The modes of the motion of segment `s` (the strongest lines of its
-// computed pitch and yaw, Hz) that its residuals' lines are named against.
+// The modes of a segment's motion that its residuals' lines are named
+// against: the strongest lines of the computed pitch and yaw of its
+// `channels` (SegmentChannels), sampled at times `t`.
 std::vector<SpectralLine> MotionModes(const Channel channels[3],
                                       const Eigen::VectorXd& t) {
   const int n = static_cast<int>(t.size());
