@@ -599,9 +599,10 @@ bool SweepTheAngle(const Case& c,
          sweep->highest > 0.0;
 }
 
-// Whether `fit`'s bearing angle (free, determined: OnBearingRidge) is
-// known to less than a factor of two within two of its errors (its
-// standard error over a quarter of it). The ridge's branches then part
+// Whether `fit`'s bearing angle (free: OnBearingRidge) is known to less
+// than a factor of two within two of its errors (its standard error over a
+// quarter of it, or none), as every angle the record does not determine
+// is. The ridge's branches then part
 // within the record's reach: on draw 173's pair of 3-s runs with a moment
 // saturating at half a degree (Cm_bearing -0.00524), fitted at 2.83 +- 1.11
 // deg and -0.00179 +- 0.00098 (its profile from the solution), Cm_bearing
@@ -681,13 +682,12 @@ std::vector<std::string> WidenTradedStiffness(
     const Case& c, const std::vector<TimeHistory>& data, FitResult* fit) {
   bool undetermined = false;
   if (!OnBearingRidge(*fit, &undetermined)) return {};
-  // Where the record does not determine the angle, or lets it halve or
-  // double within two errors, the ridge has branches a refit from the
-  // solution does not reach: swept first, so that the profiles start from
-  // its probes too.
+  // Where the record lets the angle halve or double within two errors
+  // (AngleLoose; one it does not determine too), the ridge has branches a
+  // refit from the solution does not reach: swept first, so that the
+  // profiles start from its probes too.
   AngleSweep sweep;
-  const bool swept = (undetermined || AngleLoose(*fit)) &&
-                     SweepTheAngle(c, data, *fit, &sweep);
+  const bool swept = AngleLoose(*fit) && SweepTheAngle(c, data, *fit, &sweep);
   const ParameterEstimate angle = *SharedEstimate(*fit, "bearing_angle");
   std::vector<std::string> widened;
   std::string text =

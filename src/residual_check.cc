@@ -80,8 +80,7 @@ ResidualCheck CheckResiduals(const FitResult& fit,
       }
     }
     check.peak_ratio = total > 0.0 ? peak / (total / (n - 1)) : 0.0;
-    line_limit = LocalLine(
-        power, peak_k, MeanBesideLine(power, peak_k), &check.line_ratio);
+    line_limit = LocalLine(power, peak_k, &check.line_ratio);
     const double duration = s.data.t.back() - s.data.t.front();
     const int signed_k = peak_k <= n / 2 ? peak_k : peak_k - n;
     check.peak_frequency_hz = signed_k * (n - 1) / (n * duration);

@@ -29,8 +29,6 @@ std::vector<double> CentredPower(const std::vector<T>& x, int bins) {
   return power;
 }
 
-}  // namespace
-
 // The mean ordinate of a periodogram `power` (k = 1 .. n - 1; k = 0, the
 // mean, unused) but the line's own at `peak_k`: that bin, the two next to
 // it, and the same three about its mirror, n - peak_k (a line in one
@@ -57,6 +55,8 @@ double MeanBesideLine(const std::vector<double>& power, int peak_k) {
   return bins > 0 ? sum / bins : 0.0;
 }
 
+}  // namespace
+
 // The neighbourhood is up to n / 16 bins on each side, at least 4, the two
 // next to the line left out (a line between two bins spreads into them).
 // The global test (peak over the mean of all bins) must let colored noise
@@ -65,10 +65,7 @@ double MeanBesideLine(const std::vector<double>& power, int peak_k) {
 // structure whatever the color around it (Coulomb friction left a line 20
 // times its surroundings that a Magnus moment and a nonlinear damping did
 // not remove, below the global limit of 4 ln N = 27 on 800 samples).
-double LocalLine(const std::vector<double>& power,
-                 int peak_k,
-                 double mean,
-                 double* ratio) {
+double LocalLine(const std::vector<double>& power, int peak_k, double* ratio) {
   const int n = static_cast<int>(power.size());
   const int half = std::max(4, n / 16);
   double sum = 0.0;
@@ -87,7 +84,8 @@ double LocalLine(const std::vector<double>& power,
   // model's own residual had a peak 5.3 times the mean of all bins, 28
   // times that of neighbours the fit had emptied. The neighbourhood's mean
   // is taken as at least half the mean of the bins beside the line.
-  const double local = std::max(bins > 0 ? sum / bins : 0.0, 0.5 * mean);
+  const double local = std::max(bins > 0 ? sum / bins : 0.0,
+                                0.5 * MeanBesideLine(power, peak_k));
   *ratio = local > 0.0 ? power[peak_k] / local : 0.0;
   // An exponential ordinate over the mean of `bins` others exceeds x with
   // chance (1 + x / bins)^-bins; over n bins, 1e-3 in all.
@@ -141,8 +139,7 @@ bool LocalLineOf(const std::vector<double>& power,
     if (power[k] > power[peak_k]) peak_k = k;
   }
   double ratio = 0.0;
-  const double limit =
-      LocalLine(two_sided, peak_k, MeanBesideLine(two_sided, peak_k), &ratio);
+  const double limit = LocalLine(two_sided, peak_k, &ratio);
   if (!(ratio > limit)) return false;
   *line = {peak_k / (n * dt), ratio};
   return true;

@@ -47,21 +47,13 @@ std::vector<SpectralLine> SpectralLines(const std::vector<double>& x,
 // (a spectrum rising smoothly toward low frequencies) passes where the
 // global test against the mean of all bins may not. `power` is a
 // two-sided periodogram (k = 1 .. n - 1; k = 0, the mean, unused), the
-// line's largest ordinate at `peak_k`:
-//
-// MeanBesideLine is the mean ordinate but the line's own (that bin, the two
-// next to it, and the same three about its mirror n - peak_k, where a line
-// of a real series shows too).
-double MeanBesideLine(const std::vector<double>& power, int peak_k);
-
-// LocalLine puts the ordinate at `peak_k` over the mean of its
-// neighbours (the two next to it left out; at least half `mean`, which is
-// MeanBesideLine's) in *ratio and returns the ratio that noise with a
-// smooth spectrum exceeds with chance 1e-3 over the n bins.
-double LocalLine(const std::vector<double>& power,
-                 int peak_k,
-                 double mean,
-                 double* ratio);
+// line's largest ordinate at `peak_k`: its ratio to the mean of its
+// neighbours (the two next to it left out; at least half the mean of every
+// ordinate but the line's own, that bin, the two next to it and the same
+// three about its mirror n - peak_k, where a line of a real series shows
+// too) into *ratio; returns the ratio that noise with a smooth spectrum
+// exceeds with chance 1e-3 over the n bins.
+double LocalLine(const std::vector<double>& power, int peak_k, double* ratio);
 
 // The largest ordinate of the real series `x` (sampled every `dt` seconds,
 // at least 16 samples) in *line when it stands out of its own
