@@ -25,6 +25,7 @@
 
 #include "diagnose_search.h"
 #include "fit3dof/diagnose.h"
+#include "fit3dof/thread_budget.h"
 #include "format.h"
 #include "stage_solver.h"
 
@@ -125,7 +126,8 @@ std::vector<std::string> ExplainedIds(const Diagnosis& d) {
 // searched on with the catalog's effects beside it (`without` probes), its
 // complete model's BIC against `catalog`'s (`margin`, negative when lower),
 // and whether it explains the record with the probe's terms of their
-// physical sign (WrongSign).
+// physical sign (WrongSign); or, where that search could only retrace the
+// catalog's (BesideAnswer), `catalog` with the probe beside its final model.
 struct ProbeBeside {
   Diagnosis d;
   double margin = 0.0;
@@ -146,6 +148,76 @@ ProbeBeside SearchedBeside(const SearchNotes& notes,
   VLOG(1) << "probe " << probe_id << " searched beside, BIC " << b.margin
           << " against the catalog's; explains " << b.explains;
   return b;
+}
+
+// How far a probe fitted in place of one step of the catalog's answer must
+// stay above that answer's complete model (in BIC) for the probe to stand
+// in for none of its steps (BesideAnswer). Where a search beside the
+// probe dropped a step of the catalog's answer (suite draws 176-177), it
+// ended where the probe in that step's place had come (6.7, 9.4, 22.4
+// above the catalog's model) or where the probe beside them all had (10.9,
+// that step's place 14.1); where it kept them all, the probe in a step's
+// place had come 31.1, 32.5 and more (Table 6 records: over 1800). The
+// search's answer is read only within ambiguity_bic (10) of the
+// catalog's or below: 30 leaves 20 for what a search might add beside
+// the probe in a step's place.
+constexpr double kStandInBic = 30.0;
+
+// The probe `probe_id` beside `catalog`, an outright answer, without a
+// search (SearchedBeside, a diagnosis's time again: 3.4-3.9 of 7-8.7 s on
+// draws 172-175's Table 6 bearing + calibration + roll torque): the probe
+// fitted beside its final model and in place of each of its steps, one
+// fit each. When the probe lowers BIC by less than ambiguity_bic beside
+// them and in no step's place comes within kStandInBic, the search beside
+// it could only retrace the catalog's with the probe's terms more (on
+// draws 172-175 it did, each probe then 6.7-7.2 above the catalog's
+// model, as fitted beside it here): *b is then `catalog`, with the probe
+// beside its final model (margin and sign). False, *b untouched,
+// otherwise.
+bool BesideAnswer(const DiagnoseOptions& options,
+                  const Diagnosis& catalog,
+                  const std::string& probe_id,
+                  ProbeBeside* b) {
+  if (catalog.verdict != Verdict::kExplained || !catalog.ambiguous.empty() ||
+      !catalog.partial.empty()) {
+    return false;
+  }
+  const Effect* probe = FindProbe(probe_id);
+  CHECK(probe != nullptr) << probe_id;
+  const std::vector<TimeHistory> data = FittedData(catalog.FinalFit());
+  const Case at = CaseAtSolution(catalog.final_case, catalog.FinalFit());
+  // The probe beside the final model (0), then in each step's place.
+  const int n = 1 + static_cast<int>(catalog.steps.size());
+  std::vector<FitResult> fits(n);
+  std::vector<char> fitted(n, 0);
+  ParallelFor(n, [&](int i) {
+    Case c;
+    std::vector<std::string> added;
+    fitted[i] =
+        CandidateCase(i == 0 ? at : WithoutStep(at, catalog.steps[i - 1]),
+                      *probe,
+                      &c,
+                      &added) &&
+        FitFrom(c, catalog.FinalFit(), data, "with " + probe_id, &fits[i]);
+  });
+  const double complete = CompleteBic(catalog);
+  double least_in_place = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    if (!fitted[i]) return false;
+    if (i > 0) least_in_place = std::min(least_in_place, Bic(fits[i]));
+  }
+  const double margin = Bic(fits[0]) - complete;
+  VLOG(1) << "probe " << probe_id << " beside the catalog's answer: BIC "
+          << FormatNumber("%+.1f", margin) << ", in a step's place "
+          << FormatNumber("%+.1f", least_in_place - complete) << " at least";
+  if (!(margin > -options.ambiguity_bic) ||
+      !(least_in_place - complete > kStandInBic)) {
+    return false;
+  }
+  b->d = catalog;
+  b->margin = margin;
+  b->explains = WrongSign(*probe, fits[0]).empty();
+  return true;
 }
 
 // Whether the probe *d names, searched beside (`b`, SearchedBeside), explains
@@ -378,8 +450,10 @@ Diagnosis CatalogAlone(const Case& c,
             << ": the probe not weighed beside it";
     return d;
   }
-  ProbeBeside beside =
-      SearchedBeside(notes, without, other, d.outside_catalog.effect);
+  ProbeBeside beside;
+  if (!BesideAnswer(options, other, d.outside_catalog.effect, &beside)) {
+    beside = SearchedBeside(notes, without, other, d.outside_catalog.effect);
+  }
   if (std::optional<Diagnosis> fewer =
           WithoutStandIns(c, nominal, without, other, beside)) {
     other = std::move(*fewer);

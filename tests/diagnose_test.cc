@@ -1218,6 +1218,32 @@ TEST(Diagnose, AProbeBesideTheWholeCatalogAnswerIsNoAlikeModel) {
       << text;
 }
 
+// A probe that stands in for one step of the catalog's answer is searched
+// beside the catalog's effects, not only fitted beside its final model:
+// on draw 176's coning run with a Magnus moment, a nonlinear damping and
+// a calibration error (tests/data/coning_magnus_damping_calibration_
+// vary176.yaml), the ball's dry friction outdid every catalog effect at
+// the first step. Beside the three effects it is not needed (BIC +5), but
+// in the nonlinear damping's place, a damping that grows with the
+// amplitude as the friction's describing function falls, it comes within
+// 10 of them: with the Magnus moment beside it the probe explains the
+// record alike, which the verdict names, with what would separate them.
+TEST(Diagnose, AProbeThatStandsInForAStepIsSearchedBeside) {
+  const Diagnosis d =
+      DiagnoseConfig("coning_magnus_damping_calibration_vary176.yaml");
+  const std::string text = FormatDiagnosis(d, {0.01, 0.01, 0.01});
+  ASSERT_EQ(d.verdict, Verdict::kExplained) << text;
+  EXPECT_EQ(EffectIds(d.steps),
+            (std::set<std::string>{
+                "calibration_nonlinearity", "magnus", "nonlinear_damping"}))
+      << text;
+  EXPECT_EQ(d.outside_catalog_alike,
+            (std::vector<std::string>{"bearing_friction", "magnus"}))
+      << text;
+  EXPECT_NE(d.verdict_text.find("another amplitude"), std::string::npos)
+      << text;
+}
+
 // Dry friction about the pitch axis alone, which the ball's friction and
 // the friction of both axes did not model: on the 3-s runs of draws 4 and
 // 7 it had got a nonlinear damping and a body asymmetry (the two tests
