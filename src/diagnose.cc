@@ -20,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -789,42 +790,50 @@ bool SearchRound(const std::vector<Candidate>& candidates,
   return true;
 }
 
-// The search's answer once its rounds are done (s, moved from): the final
-// model settled (SettleFinalModel) and reported, the effects it cannot
-// exclude beside it (FindNotExcluded), a step that effects in its place
-// outdo (notes->outdone, with the answer that has them tied), then the
-// error bars widened and the verdict (Concluded).
-Diagnosis SearchAnswer(const Case& c,
-                       const DiagnoseOptions& options,
-                       SearchNotes* notes,
-                       SearchState s) {
-  Diagnosis& d = s.d;
-  const std::vector<TimeHistory>& data = s.data;
+// The search's answer once its rounds are done: the final model settled
+// (SettleFinalModel), back in the user's program where it can be
+// (BackToSymmetric), reported, and its error bars widened for a tie or a
+// probe alike; what is left to do is AnswerErrorBars'.
+void SettleAnswer(const DiagnoseOptions& options, SearchState* s) {
+  Diagnosis& d = s->d;
+  const std::vector<TimeHistory>& data = s->data;
   // A probe that outdoes the catalog, even past the noise level
   // (noise_held), is structure the catalog lacks: the record is not
   // explained by it.
-  if (!d.outside_catalog.effect.empty()) s.check.at_noise_level = false;
+  if (!d.outside_catalog.effect.empty()) s->check.at_noise_level = false;
   d.partial_fit = d.fits.size() - 1;
-  d.final = SettleFinalModel(s.quiet,
+  d.final = SettleFinalModel(s->quiet,
                              data,
                              options,
-                             s.models,
-                             s.tie,
-                             s.rivals,
-                             s.check,
+                             s->models,
+                             s->tie,
+                             s->rivals,
+                             s->check,
                              &d,
-                             &s.current);
-  BackToSymmetric(s.quiet, data, &d, &s.current);
+                             &s->current);
+  BackToSymmetric(s->quiet, data, &d, &s->current);
   // The final model and the partial one, when it is another.
-  std::vector<const Case*> reported = {&s.current};
+  std::vector<const Case*> reported = {&s->current};
   std::vector<FitResult*> fits = {&d.fits[d.final_fit]};
   if (!d.partial.empty() && d.partial_fit != d.final_fit) {
-    reported.push_back(&s.models[d.partial_fit]);
+    reported.push_back(&s->models[d.partial_fit]);
     fits.push_back(&d.fits[d.partial_fit]);
   }
   ReportedAll(reported, data, fits);
   WidenForTie(options, &d);
   WidenForOutsideAlike(&d);
+}
+
+// The settled answer of the search `s` (SettleAnswer; moved from), with
+// the effects it cannot exclude beside it (FindNotExcluded), a step that
+// effects in its place outdo (notes->outdone, with the answer that has
+// them tied), then the error bars widened and the verdict (Concluded).
+Diagnosis AnswerErrorBars(const Case& c,
+                          const DiagnoseOptions& options,
+                          SearchNotes* notes,
+                          SearchState s) {
+  Diagnosis& d = s.d;
+  const std::vector<TimeHistory>& data = s.data;
   // What the search was run without is tried beside its model too: the
   // record may not exclude it there (DiagnoseOptions::searched_without;
   // catalog effects only, as contenders are).
@@ -865,14 +874,13 @@ Diagnosis SearchAnswer(const Case& c,
   return Concluded(c, s.quiet, s.current, data, options, std::move(d));
 }
 
-}  // namespace
-
-// The forward search (diagnose.h) from `nominal`, the fit of `c`, with
-// `options`' catalog; *notes gets what else it found.
-Diagnosis Search(const Case& c,
-                 const FitResult& nominal,
-                 const DiagnoseOptions& options,
-                 SearchNotes* notes) {
+// The forward search's rounds from `nominal`, the fit of `c`, with
+// `options`' catalog, to its settled answer (SettleAnswer); *notes gets
+// what else it found.
+SearchState SettledSearch(const Case& c,
+                          const FitResult& nominal,
+                          const DiagnoseOptions& options,
+                          SearchNotes* notes) {
   *notes = SearchNotes();
   SearchState s = StartSearch(c, nominal, options);
   // At the noise level with sigma given, one round for the near twins alone
@@ -908,7 +916,45 @@ Diagnosis Search(const Case& c,
   }
   // The last step's effects beside a step in its other form.
   ReformRound(options, &s);
-  return SearchAnswer(c, options, notes, std::move(s));
+  SettleAnswer(options, &s);
+  return s;
+}
+
+}  // namespace
+
+// What a search left undone (SearchUnfinished): its settled state and
+// what AnswerErrorBars needs besides.
+struct UnfinishedSearch {
+  Case c;
+  DiagnoseOptions options;
+  SearchState s;
+};
+
+Diagnosis Search(const Case& c,
+                 const FitResult& nominal,
+                 const DiagnoseOptions& options,
+                 SearchNotes* notes) {
+  return AnswerErrorBars(
+      c, options, notes, SettledSearch(c, nominal, options, notes));
+}
+
+Diagnosis SearchUnfinished(const Case& c,
+                           const FitResult& nominal,
+                           const DiagnoseOptions& options,
+                           SearchNotes* notes) {
+  SearchState s = SettledSearch(c, nominal, options, notes);
+  Diagnosis d = s.d;
+  d.final_case = FinalCase(c, s.current, d.FinalFit());
+  Conclude(&d);
+  notes->unfinished = std::make_shared<UnfinishedSearch>(
+      UnfinishedSearch{c, options, std::move(s)});
+  return d;
+}
+
+Diagnosis Finished(Diagnosis d, SearchNotes* notes) {
+  if (notes->unfinished == nullptr) return d;
+  std::shared_ptr<UnfinishedSearch> u = std::move(notes->unfinished);
+  return AnswerErrorBars(u->c, u->options, notes, std::move(u->s));
 }
 
 const char* VerdictToString(Verdict verdict) {

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -827,6 +828,8 @@ std::string FindSingleReplacement(const std::vector<Case>& models,
 // one that earned its place at some round (a joint set's lead under
 // joint_sets_from_bounds), and the model of the probe that outdid the
 // catalog (Diagnosis::outside_catalog), as fitted.
+struct UnfinishedSearch;
+
 struct SearchNotes {
   // The first step's effect when it opened a tie with another that earned
   // its place, and whether that other (the search without it takes it
@@ -858,6 +861,9 @@ struct SearchNotes {
   // The answer is the catalog's without probes (CatalogAlone), whose
   // search had its own second thoughts.
   bool catalog_alone = false;
+  // What a search whose answer's error bars were left undone
+  // (SearchUnfinished) needs to finish it (Finished).
+  std::shared_ptr<UnfinishedSearch> unfinished;
 };
 
 // The step of `d`, an ambiguous answer, adopted in a joint set with an
@@ -909,6 +915,19 @@ Diagnosis Search(const Case& c,
                  const DiagnoseOptions& options,
                  SearchNotes* notes);
 
+// Search with its answer's error bars left undone (the effects the record
+// cannot exclude beside the final model, the sets that would replace a
+// step, the widening: most of an answer's time once its rounds are done),
+// for a caller that may set the answer aside on its fits, steps and
+// verdict alone (FirstHeld, diagnose.cc): those are as Search's, and
+// notes->unfinished holds the rest. Finished(d, notes) is then Search's
+// answer (`d` itself when nothing was left undone).
+Diagnosis SearchUnfinished(const Case& c,
+                           const FitResult& nominal,
+                           const DiagnoseOptions& options,
+                           SearchNotes* notes);
+Diagnosis Finished(Diagnosis d, SearchNotes* notes);
+
 // The search from `nominal`, the fit of `c`, without the catalog effect
 // `id` (a second thought's other answer), for a caller that takes it only
 // when it explains the record with a complete model below `explain_below`
@@ -934,8 +953,10 @@ Diagnosis DiagnoseFrom(const Case& c,
 // DiagnoseFrom in two halves, for a caller that reads the search's answer
 // before its second thoughts (WithNoiseHeld, diagnose.cc): the search
 // (with the catalog searched alone where a probe outdid it), *notes
-// getting what the second thoughts need; then those second thoughts on
-// its answer `first`. Rethought(FirstSearch(...)) is DiagnoseFrom.
+// getting what the second thoughts need, its answer's error bars left
+// undone where no probe outdid the catalog (SearchUnfinished); then
+// those error bars (Finished) and the second thoughts on its answer
+// `first`. Rethought(FirstSearch(...)) is DiagnoseFrom.
 Diagnosis FirstSearch(const Case& c,
                       const FitResult& nominal,
                       const DiagnoseOptions& options,
