@@ -954,6 +954,9 @@ Diagnosis SearchUnfinished(const Case& c,
 Diagnosis Finished(Diagnosis d, SearchNotes* notes) {
   if (notes->unfinished == nullptr) return d;
   std::shared_ptr<UnfinishedSearch> u = std::move(notes->unfinished);
+  CHECK(d.steps.size() == u->s.d.steps.size() &&
+        d.fits.size() == u->s.d.fits.size())
+      << "an answer other than the unfinished search's";
   return AnswerErrorBars(u->c, u->options, notes, std::move(u->s));
 }
 

@@ -92,6 +92,40 @@ TEST(FirstSearch, RethoughtIsDiagnoseFrom) {
   EXPECT_EQ(end.hits - start.hits, end.calls - start.calls);
 }
 
+// A search with its answer's error bars left undone (SearchUnfinished, for
+// FirstHeld to set the answer aside unpaid): the answer's steps, fits and
+// verdict are the whole search's, fewer fits are made, and once Finished
+// the answer is the whole search's, diagnosis.json and all.
+TEST(SearchUnfinished, FinishedIsTheWholeSearch) {
+  Case c = LoadConfig(testing::SourcePath(
+      "tests/data/short_calibration_in_pitch_varied101.yaml"));
+  c.sigma = {0.01, 0.01, 0.01};
+  c.sigma_auto = {false, false, false};
+  DiagnoseOptions options;
+  options.noise_held = true;
+  const FitResult nominal = Fit(c);
+  SearchNotes whole_notes;
+  const FitMemoCounts start = GetFitMemoCounts();
+  const Diagnosis whole = Search(c, nominal, options, &whole_notes);
+  const FitMemoCounts middle = GetFitMemoCounts();
+  SearchNotes notes;
+  Diagnosis unfinished = SearchUnfinished(c, nominal, options, &notes);
+  const FitMemoCounts end = GetFitMemoCounts();
+  ASSERT_NE(notes.unfinished, nullptr);
+  EXPECT_EQ(unfinished.verdict, whole.verdict);
+  EXPECT_EQ(unfinished.verdict_text, whole.verdict_text);
+  ASSERT_EQ(unfinished.fits.size(), whole.fits.size());
+  for (size_t i = 0; i < whole.fits.size(); ++i) {
+    EXPECT_EQ(unfinished.fits[i].sum_of_residuals,
+              whole.fits[i].sum_of_residuals);
+  }
+  EXPECT_LT(end.calls - middle.calls, middle.calls - start.calls);
+  const Diagnosis finished = Finished(std::move(unfinished), &notes);
+  EXPECT_EQ(notes.unfinished, nullptr);
+  EXPECT_EQ(DiagnosisJson(finished, c), DiagnosisJson(whole, c));
+  EXPECT_EQ(notes.outdone, whole_notes.outdone);
+}
+
 // The step a search without it questions (PartnerTied): one adopted with
 // a partner that then tied. Draw 124's Table 6 bearing moment +
 // calibration nonlinearity + roll torque, in outline: the bearing moment
