@@ -270,7 +270,12 @@ def main():
     # (sigma: auto), where a reading lag is weighed beside the catalog;
     # draw 120's pair with a tunnel stiffness, a roll reading error and a
     # flow angularity (the fixed conditions' slowest at the 61st session),
-    # where a tie outdone on its other side is searched without.
+    # where a tie outdone on its other side is searched without; draw
+    # 174's Table 6 and draw 177's pair with a bearing moment, a
+    # calibration error and a roll torque (sigma: auto), where a probe is
+    # weighed beside the catalog's answer and where the first answer is set
+    # aside for the noise held again (the 89th session's two searches
+    # spared).
     print("== fit3dof diagnose against a plain fit of the same record "
           "(median of 3)")
     rows = []
@@ -281,7 +286,9 @@ def main():
                  "table6_bearing_calibration_roll_torque_draw65",
                  "short_bearing_calibration_roll_torque_varied84",
                  "pair_damping_magnus_angularity_vary110",
-                 "pair_stiffness_roll_angularity_draw120"):
+                 "pair_stiffness_roll_angularity_draw120",
+                 "table6_bearing_calibration_roll_torque_vary174",
+                 "pair_bearing_calibration_roll_torque_vary177"):
         config = os.path.join(root, "tests", "data", name + ".yaml")
         seconds, fit_seconds, d = time_diagnose(root, config)
         exact = d["exact_step"]
