@@ -58,14 +58,21 @@ TEST(SearchedWithout, WeighsNoProbeBesideACatalogAnswerItCannotTake) {
   EXPECT_LE(middle.calls - start.calls, end.calls - middle.calls);
 }
 
-// DiagnoseFrom in its two halves (WithNoiseHeld reads the search's answer
-// before its second thoughts): the same answer from the same fits, the
-// second time all from the fit memo.
-TEST(FirstSearch, RethoughtIsDiagnoseFrom) {
+// tests/data/short_calibration_in_pitch_varied101.yaml (a 3-s run with a
+// cubic error of the pitch reading) at its noise, 0.01 deg, given.
+Case CalibrationInPitchAtTheNoise() {
   Case c = LoadConfig(testing::SourcePath(
       "tests/data/short_calibration_in_pitch_varied101.yaml"));
   c.sigma = {0.01, 0.01, 0.01};
   c.sigma_auto = {false, false, false};
+  return c;
+}
+
+// DiagnoseFrom in its two halves (WithNoiseHeld reads the search's answer
+// before its second thoughts): the same answer from the same fits, the
+// second time all from the fit memo.
+TEST(FirstSearch, RethoughtIsDiagnoseFrom) {
+  const Case c = CalibrationInPitchAtTheNoise();
   DiagnoseOptions options;
   options.noise_held = true;
   const FitResult nominal = Fit(c);
@@ -97,10 +104,7 @@ TEST(FirstSearch, RethoughtIsDiagnoseFrom) {
 // verdict are the whole search's, fewer fits are made, and once Finished
 // the answer is the whole search's, diagnosis.json and all.
 TEST(SearchUnfinished, FinishedIsTheWholeSearch) {
-  Case c = LoadConfig(testing::SourcePath(
-      "tests/data/short_calibration_in_pitch_varied101.yaml"));
-  c.sigma = {0.01, 0.01, 0.01};
-  c.sigma_auto = {false, false, false};
+  const Case c = CalibrationInPitchAtTheNoise();
   DiagnoseOptions options;
   options.noise_held = true;
   const FitResult nominal = Fit(c);
